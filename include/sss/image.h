@@ -1,0 +1,64 @@
+/* sss/image.h — linear float RGB images, their file formats, tone mapping and image metrics.
+ *
+ * Does: read/write PNG (8-bit sRGB), Radiance HDR, PFM and OpenEXR (half or float RGB); tone map
+ * exactly as SCENE.md render.exposure; SSIM/DSSIM (Wang et al. 2004, FACTS.md 5), PSNR, RMSE, max abs
+ * error; find NaN/Inf. Does not: resample, colour-manage beyond sRGB, GL.
+ * Pixels are linear RGB floats, row-major, top row first. PNG files are decoded with the exact inverse
+ * of the sRGB curve, so writing a decoded PNG again at exposure 0 gives back the same bytes.
+ */
+#ifndef SSS_IMAGE_H
+#define SSS_IMAGE_H
+
+#include <stdint.h>
+
+#include "sss/common.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Largest accepted width or height, for reading and creating (documented limit). */
+#define SSS_IMAGE_MAX_DIM 32768
+
+typedef struct sss_image {
+    int width, height;
+    float *pixels; /* width * height * 3 */
+} sss_image;
+
+sss_result sss_image_create(sss_image *img, int width, int height, sss_error *err); /* zero-filled */
+void sss_image_free(sss_image *img);
+
+/* Format by file extension (case-insensitive): .png, .hdr, .pfm, .exr. Errors name the path. */
+sss_result sss_image_read(const char *path, sss_image *out, sss_error *err);
+/* PNG is tone-mapped with exposure; HDR, PFM and EXR store linear values (exposure ignored).
+ * The file is written to a temporary name in the same folder and renamed when complete. */
+sss_result sss_image_write(const char *path, const sss_image *img, double exposure, sss_error *err);
+
+/* out = round(255 * srgb(clamp(linear * 2^exposure, 0, 1))) per channel; NaN maps to 0.
+ * dst holds width * height * 3 bytes. */
+void sss_image_to_srgb8(const sss_image *img, double exposure, uint8_t *dst);
+double sss_srgb_encode(double linear);  /* sRGB OETF, [0,1] -> [0,1] */
+double sss_srgb_decode(double encoded); /* its inverse */
+
+/* Number of NaN or infinite values (0 means the image is safe to write). */
+size_t sss_image_count_nonfinite(const sss_image *img);
+
+typedef struct sss_image_metrics {
+    double ssim;     /* mean SSIM over pixels and channels, 8-bit sRGB, data range 255 */
+    double dssim;    /* (1 - ssim) / 2 */
+    double psnr;     /* dB on the 8-bit images; INFINITY when identical */
+    double rmse;     /* on the 8-bit images, in [0, 255] */
+    double max_abs;  /* largest absolute 8-bit difference */
+} sss_image_metrics;
+
+/* Compares a and b after tone mapping both with exposure (FACTS.md 5: 11x11 Gaussian window,
+ * sigma 1.5, K1 0.01, K2 0.03, per channel, averaged; borders as scikit-image, which crops 5 pixels).
+ * dssim_map (optional, may be NULL) receives a width x height image whose three channels hold the
+ * per-pixel DSSIM of R, G and B. Images of different sizes are an error. */
+sss_result sss_image_compare(const sss_image *a, const sss_image *b, double exposure,
+                             sss_image_metrics *out, sss_image *dssim_map, sss_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

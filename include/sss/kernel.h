@@ -1,0 +1,100 @@
+/* sss/kernel.h — kernels the real-time techniques sample: the disc-integrated 2D LUT of seed 000 and
+ * the separable 1D kernels of seed 002.
+ *
+ * Does: tabulate R'_d(r, A) = (1/A) * integral of R_d over a disc of area A centred at distance r
+ * (seed 000, Eq. 5, sections 7.1-7.2) as a float RGB texture; build separable kernels by
+ * pre-integration (seed 002, Eq. 4-5), from the artist model (Eq. 6) and by SVD (rank N, LAPACKE).
+ * Does not: upload to GL (the arrays are texture-ready), know about scenes.
+ * Memory: every _build/_create allocates inside its output struct; pair it with the matching _free.
+ */
+#ifndef SSS_KERNEL_H
+#define SSS_KERNEL_H
+
+#include "sss/common.h"
+#include "sss/profile.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- Disc-integrated LUT (seed 000) ---------------------------------------------------------- */
+
+typedef enum sss_lut_axes {
+    SSS_LUT_AXES_LINEAR = 0, /* texel i at r = r_max i/(N-1), texel j at A = A_max j/(N-1) (seed 000) */
+    SSS_LUT_AXES_SQRT        /* r = r_max (i/(N-1))^2, A = A_max (j/(N-1))^2: denser near 0 */
+} sss_lut_axes;
+
+/* Zero-initialised means defaults. */
+typedef struct sss_lut_desc {
+    int size;              /* texels per axis; 0 -> 512 */
+    sss_lut_axes axes;     /* 0 -> linear, as the paper */
+    double source_cutoff;  /* r_max solves Q(r_max) = alpha' sigma_t' e^(-sigma_t' r_max) = cutoff,
+                              largest over the channels; 0 -> 1e-7 (seed 000, section 7.1) */
+    double r_max;          /* > 0 overrides the cut-off rule */
+} sss_lut_desc;
+
+typedef struct sss_lut {
+    int size;
+    sss_lut_axes axes;
+    double r_max, a_max;   /* scene units, scene units^2; a_max = pi r_max^2 */
+    float *texels;         /* size * size * 3 floats: texel (i along r, j along A) at
+                              texels[3 * (j * size + i) + channel]; row j = 0 is A = 0 (R_d itself) */
+} sss_lut;
+
+sss_result sss_lut_build(const sss_profile *profile, const sss_lut_desc *desc, sss_lut *out,
+                         sss_error *err);
+void sss_lut_free(sss_lut *lut);
+/* r_max of the source-function cut-off for a material (seed 000, section 7.1). */
+double sss_lut_r_max(const sss_material *m, double source_cutoff);
+/* (r, A) that texel (i, j) stands for. */
+double sss_lut_texel_r(const sss_lut *lut, int i);
+double sss_lut_texel_area(const sss_lut *lut, int j);
+/* Bilinear lookup with clamping, as a GPU sampler with the same axes does. */
+void sss_lut_lookup(const sss_lut *lut, double r, double area, double out[3]);
+
+/* ---- Separable kernels (seed 002) ------------------------------------------------------------ */
+
+/* A 1D kernel of `taps` samples, applied horizontally then vertically. Offsets are in the profile's
+ * length unit, ascending and symmetric around 0; weights per tap and channel. For the pre-integrated
+ * and artist kernels each channel's weights sum to 1 (energy: the profile's total reflectance is
+ * applied separately, see `total`). */
+typedef struct sss_separable_kernel {
+    int taps;
+    float *offsets;    /* taps */
+    float *weights;    /* taps * 3, weights[3 * k + channel] */
+    double total[3];   /* plane integral of the profile per channel (1 for the artist model) */
+    double range;      /* half-width covered by the taps */
+} sss_separable_kernel;
+
+/* The pre-integrated 1D kernel a_p(x) = integral of R_d(sqrt(x^2 + y^2)) dy (seed 002, Eq. 4). */
+double sss_kernel_preintegrated_eval(const sss_profile *profile, int channel, double x);
+
+/* Discretised a_p / ||R_d||_1 (Eq. 5): tap positions importance-sample the dominant channel (the one
+ * with the widest profile), each tap's weight integrates every channel's a_p over the tap's interval
+ * (midpoints between taps). taps >= 1 and odd (0 -> 7); range <= 0 -> the radius holding 99.9% of the
+ * dominant channel's a_p. */
+sss_result sss_kernel_preintegrated(const sss_profile *profile, int taps, double range,
+                                    sss_separable_kernel *out, sss_error *err);
+/* The artist model's a_m, discretised the same way. */
+sss_result sss_kernel_artist(const sss_artist_params *params, int taps, sss_separable_kernel *out,
+                             sss_error *err);
+void sss_separable_kernel_free(sss_separable_kernel *k);
+
+/* Rank-N SVD approximation of the profile discretised on a grid x grid raster of half-width extent
+ * (cells of (2 extent / grid)^2, each holding R_d at its centre times the cell area). */
+typedef struct sss_svd_kernel {
+    int grid, rank;
+    double extent;
+    double *singular_values; /* 3 * grid: all singular values per channel, descending */
+    float *vectors;          /* rank * 3 * grid: sqrt(s_k) * u_k per channel (u = v by symmetry),
+                                vectors[(k * 3 + channel) * grid + x] */
+} sss_svd_kernel;
+
+sss_result sss_kernel_svd(const sss_profile *profile, int grid, double extent, int rank,
+                          sss_svd_kernel *out, sss_error *err);
+void sss_svd_kernel_free(sss_svd_kernel *k);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

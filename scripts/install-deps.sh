@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages sss needs to build, test and run, if any are missing.
+# Usage: scripts/install-deps.sh [--dev]   (--dev adds tools only developers need, e.g. scikit-image)
+set -euo pipefail
+
+PKGS=(
+  build-essential cmake pkg-config git
+  libmeshoptimizer-dev libcjson-dev libstb-dev libopenexr-dev liblapacke-dev
+  libcairo2-dev
+)
+if [ "${1:-}" = "--dev" ]; then
+  PKGS+=(python3-skimage python3-numpy clang libclang-rt-14-dev valgrind)
+fi
+
+missing=()
+for p in "${PKGS[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null 2>&1; then SUDO="sudo"; else
+    echo "install-deps: missing packages: ${missing[*]}; run this script as root" >&2; exit 1
+  fi
+fi
+echo "install-deps: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,10 @@
+#include "sss/common.h"
+
+#include <time.h>
+
+double sss_time_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
