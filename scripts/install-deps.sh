@@ -6,7 +6,7 @@ set -euo pipefail
 PKGS=(
   build-essential cmake pkg-config git
   libmeshoptimizer-dev libcjson-dev libstb-dev libopenexr-dev liblapacke-dev
-  libcairo2-dev
+  libcairo2-dev libembree-dev
 )
 if [ "${1:-}" = "--dev" ]; then
   PKGS+=(python3-skimage python3-numpy clang libclang-rt-14-dev valgrind)
