@@ -13,6 +13,8 @@ int sss_cmd_lut(int argc, char **argv);
 int sss_cmd_kernel(int argc, char **argv);
 int sss_cmd_compare(int argc, char **argv);
 int sss_cmd_mesh(int argc, char **argv);
+int sss_cmd_reference(int argc, char **argv);
+int sss_cmd_export(int argc, char **argv);
 
 /* Prints "sss CMD: message" and "Try 'sss CMD --help'." to stderr; returns CLI_EXIT_USAGE. */
 int cli_usage_error(const char *cmd, const char *fmt, ...)

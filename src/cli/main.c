@@ -16,6 +16,8 @@ static const command commands[] = {
     {"kernel", sss_cmd_kernel, "print the taps of a separable kernel (seed 002)"},
     {"compare", sss_cmd_compare, "compare two images: DSSIM, PSNR, RMSE, and a DSSIM map"},
     {"mesh", sss_cmd_mesh, "inspect or simplify a mesh (mesh info, mesh simplify)"},
+    {"reference", sss_cmd_reference, "render a scene's CPU ground truth (the subsurface integral)"},
+    {"export", sss_cmd_export, "write a scene for another renderer (export pbrt)"},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 
