@@ -7,6 +7,7 @@ PKGS=(
   build-essential cmake pkg-config git
   libmeshoptimizer-dev libcjson-dev libstb-dev libopenexr-dev liblapacke-dev
   libcairo2-dev libembree-dev
+  libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev xvfb xauth
 )
 if [ "${1:-}" = "--dev" ]; then
   PKGS+=(python3-skimage python3-numpy clang libclang-rt-14-dev valgrind)

@@ -17,6 +17,8 @@ static const command commands[] = {
     {"compare", sss_cmd_compare, "compare two images: DSSIM, PSNR, RMSE, and a DSSIM map"},
     {"mesh", sss_cmd_mesh, "inspect or simplify a mesh (mesh info, mesh simplify)"},
     {"reference", sss_cmd_reference, "render a scene's CPU ground truth (the subsurface integral)"},
+    {"render", sss_cmd_render, "render a scene in real time with OpenGL (headless) to an image"},
+    {"techniques", sss_cmd_techniques, "list the real-time techniques"},
     {"export", sss_cmd_export, "write a scene for another renderer (export pbrt)"},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
