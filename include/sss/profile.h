@@ -113,16 +113,20 @@ typedef struct sss_profile {
     sss_material material;
     const sss_pbd_table *table;  /* PBD: borrowed, built for material.eta and material.g */
     sss_dipole dipole[3];        /* DIPOLE: per channel */
-    double gauss6_mm_per_unit;   /* GAUSS6: millimetres per scene unit */
+    double gauss6_mm_per_unit;   /* GAUSS6: millimetres per scene unit; init sets 1, change it after */
 } sss_profile;
 
-/* table is required for SSS_PROFILE_PBD and must match the material's eta and g. */
+/* table is required for SSS_PROFILE_PBD and must match the material's eta and g. m is validated for
+ * PBD and DIPOLE; for GAUSS6 it may be NULL. Sets gauss6_mm_per_unit = 1 (assign it afterwards). */
 sss_result sss_profile_init(sss_profile *p, sss_profile_model model, const sss_material *m,
                             const sss_pbd_table *table, sss_error *err);
 double sss_profile_eval(const sss_profile *p, int channel, double r);     /* R_d(r), >= 0 */
 void sss_profile_eval_rgb(const sss_profile *p, double r, double out[3]);
 double sss_profile_total(const sss_profile *p, int channel);             /* plane integral */
-/* Radius within which the given fraction (e.g. 0.999) of the channel's plane integral lies. */
+/* Radius within which the given fraction (e.g. 0.999) of the channel's plane integral lies: closed-form
+ * CDF + bisection for DIPOLE and GAUSS6 (fraction capped at 1 - 1e-12); for PBD the table's inverse CDF
+ * (PBRT Sample_Sr), and fraction >= 1 gives the table's last radius. 0 for fraction <= 0 or a zero
+ * profile. */
 double sss_profile_radius_for_fraction(const sss_profile *p, int channel, double fraction);
 
 #ifdef __cplusplus
