@@ -56,7 +56,9 @@ sss_result sss_pbd_table_build(double eta, double g, sss_pbd_table *table, sss_e
 
 /* S_r(r) of one channel for coefficients in scene units, exactly as PBRT-v3 TabulatedBSSRDF::Sr:
  * Catmull-Rom in (rho, r sigma_t), divided by 2 pi r_opt (when r_opt > 0), times sigma_t^2, >= 0.
- * At r = 0 this returns the limit r -> 0+ (PBRT returns 0 there: an artefact of storing 2 pi r S). */
+ * At r = 0 this returns the limit r -> 0+ (PBRT returns 0 there: an artefact of storing 2 pi r S): on
+ * [0, r_1] the spline through the stored 2 pi r S is t f_1 + O(t^2), t = r_opt / r_1, so the limit is
+ * the albedo-interpolated S at the first non-zero node r_1 = 0.0025, times sigma_t^2. */
 double sss_pbd_sr(const sss_pbd_table *table, double sigma_a, double sigma_s, double r);
 /* rho_eff for a single-scattering albedo rho (Catmull-Rom in the table's albedos). */
 double sss_pbd_rho_eff(const sss_pbd_table *table, double rho);

@@ -87,6 +87,15 @@ sss_result sss_pbd_table_build(double eta, double g, sss_pbd_table *t, sss_error
                              eta, SSS_ETA_MIN, SSS_ETA_MAX);
     if (!isfinite(g) || g <= -1.0 || g >= 1.0)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "PBD table: g = %g is outside (-1, 1)", g);
+    /* PBRT's Fresnel-moment fits leave their fitted range near eta 2.5 and c_phi = (1 - 2 FM1)/4 turns
+     * negative at eta ~ 2.85 (the exact moment integral stays positive), which makes the whole table
+     * negative. Refuse rather than return a non-physical profile. */
+    double cphi4 = 1.0 - 2.0 * sss_fresnel_moment1(eta), ce2 = 1.0 - 3.0 * sss_fresnel_moment2(eta);
+    if (!(cphi4 > 0.0 && ce2 > 0.0))
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "PBD table: eta = %g is beyond the range of PBRT's Fresnel-moment fits "
+                             "(1 - 2 FM1 = %.4g, 1 - 3 FM2 = %.4g; use eta <= 2.8)",
+                             eta, cphi4, ce2);
     t->eta = eta;
     t->g = g;
 

@@ -217,6 +217,20 @@ int main(void)
     CHECK(sss_pbd_table_build(1.33, 1.0, &t2, &err) == SSS_ERROR_INVALID_ARGUMENT);
     CHECK(sss_pbd_table_build(NAN, 0.0, &t2, &err) == SSS_ERROR_INVALID_ARGUMENT);
     CHECK(sss_pbd_table_build(1.33, 0.0, NULL, &err) == SSS_ERROR_INVALID_ARGUMENT);
+    /* Over the accepted eta range the table is either built non-negative with rho_eff rising in the
+     * albedo, or refused (where PBRT's moment fit makes c_phi negative, eta ~ 2.85 and above). */
+    int built = 0;
+    for (double eta = SSS_ETA_MIN; eta <= SSS_ETA_MAX + 1e-9; eta += 0.05) {
+        sss_result r = sss_pbd_table_build(eta, 0.0, &t2, &err);
+        CHECK(r == SSS_OK || r == SSS_ERROR_INVALID_ARGUMENT);
+        if (r != SSS_OK) continue;
+        built++;
+        int neg = 0, mono = 1;
+        for (int i = 0; i < SSS_PBD_ALBEDOS * SSS_PBD_RADII; i++) neg += !(t2.profile[i] >= 0.0);
+        for (int i = 1; i < SSS_PBD_ALBEDOS; i++) mono &= t2.rho_eff[i] > t2.rho_eff[i - 1];
+        CHECK_MSG(neg == 0 && mono, "eta %g: %d negative entries, monotone %d", eta, neg, mono);
+    }
+    CHECK(built >= 30); /* at least eta in [1, 2.5] */
     /* Anisotropic table: still finite, with rho_eff rising in the albedo. */
     CHECK(sss_pbd_table_build(1.5, 0.7, &t2, &err) == SSS_OK);
     for (int i = 1; i < SSS_PBD_ALBEDOS; i++) CHECK(t2.rho_eff[i] > t2.rho_eff[i - 1] && isfinite(t2.rho_eff[i]));
