@@ -1,0 +1,40 @@
+/* scene/scene_internal.h — the parts of the scene loader shared between its files (internal). */
+#ifndef SSS_SCENE_INTERNAL_H
+#define SSS_SCENE_INTERNAL_H
+
+#include <cjson/cJSON.h>
+
+#include "scene/json_reader.h"
+#include "sss/scene.h"
+
+#define SCENE_COUNT(a) (sizeof(a) / sizeof((a)[0]))
+
+/* What the parsers need besides the JSON: where relative paths start and the load flags. */
+typedef struct scene_ctx {
+    jr r;
+    const char *base_dir;
+    unsigned flags;
+} scene_ctx;
+
+char *scene_strdup(const char *s);
+
+/* Reads the string field `key` of obj as a file path: resolved against base_dir (absolute paths are
+ * kept) into *out (malloc'd); unless SSS_SCENE_SKIP_FILE_CHECKS, the file must be a readable regular
+ * file ("<name>: <path>.<key>: <as written>: cannot open: <reason>"). Absent and not required:
+ * *out = NULL. */
+sss_result scene_file_field(scene_ctx *c, const cJSON *obj, const char *key, int required, char **out);
+
+/* Parsers of one JSON value at the current path (c->r.path) into an element that the caller zeroed. */
+sss_result scene_parse_material(scene_ctx *c, const cJSON *item, sss_scene_material *m);
+sss_result scene_parse_light(scene_ctx *c, const cJSON *item, sss_light *l);
+sss_result scene_parse_object(scene_ctx *c, const cJSON *item, sss_scene_object *o);
+
+/* Resolves a parsed subsurface/diffuse material's coefficients (table must match its eta and g for
+ * subsurface materials; NULL for diffuse). */
+sss_result scene_resolve_material(scene_ctx *c, sss_scene_material *m, const sss_pbd_table *table);
+
+void scene_material_free(sss_scene_material *m);
+void scene_object_free(sss_scene_object *o);
+void scene_light_free(sss_light *l);
+
+#endif

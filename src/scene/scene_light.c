@@ -1,0 +1,104 @@
+/* Lights of SCENE.md: point, spot, directional, area, environment. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene/scene_internal.h"
+
+static double len3(const double v[3])
+{
+    return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+static sss_result nonneg_colour(jr *r, const cJSON *obj, const char *key, int required, const double *def,
+                                double out[3])
+{
+    sss_result res = jr_vec(r, obj, key, required, def, 3, out, NULL);
+    if (res != SSS_OK) return res;
+    return jr_range_vec(r, key, out, 3, 0, 0, INFINITY, 0);
+}
+
+static sss_result nonzero_vec(jr *r, const char *key, const double v[3])
+{
+    if (len3(v) > 0) return SSS_OK;
+    return jr_fail_key(r, key, SSS_ERROR_INVALID_ARGUMENT, "must be a non-zero vector");
+}
+
+sss_result scene_parse_light(scene_ctx *c, const cJSON *item, sss_light *l)
+{
+    jr *r = &c->r;
+    sss_result res;
+    if ((res = jr_expect_object(r, item)) != SSS_OK) return res;
+    const char *type = NULL;
+    if ((res = jr_string(r, item, "type", 1, &type)) != SSS_OK) return res;
+
+    if (strcmp(type, "point") == 0) {
+        static const char *const fields[] = {"type", "position", "intensity"};
+        l->type = SSS_LIGHT_POINT;
+        if ((res = jr_check_fields(r, item, fields, SCENE_COUNT(fields))) != SSS_OK) return res;
+        if ((res = jr_vec(r, item, "position", 1, NULL, 3, l->position, NULL)) != SSS_OK) return res;
+        return nonneg_colour(r, item, "intensity", 1, NULL, l->intensity);
+    }
+    if (strcmp(type, "spot") == 0) {
+        static const char *const fields[] = {"type", "position", "look_at", "cone_angle", "cone_delta",
+                                             "intensity"};
+        l->type = SSS_LIGHT_SPOT;
+        if ((res = jr_check_fields(r, item, fields, SCENE_COUNT(fields))) != SSS_OK) return res;
+        if ((res = jr_vec(r, item, "position", 1, NULL, 3, l->position, NULL)) != SSS_OK) return res;
+        if ((res = jr_vec(r, item, "look_at", 1, NULL, 3, l->look_at, NULL)) != SSS_OK) return res;
+        double d[3] = {l->look_at[0] - l->position[0], l->look_at[1] - l->position[1],
+                       l->look_at[2] - l->position[2]};
+        if (!(len3(d) > 0))
+            return jr_fail_key(r, "look_at", SSS_ERROR_INVALID_ARGUMENT, "equals the light's position");
+        /* PBRT-v3 spot: coneangle is the half-angle of the cone, conedelta the falloff width. */
+        if ((res = jr_number(r, item, "cone_angle", 1, 0, &l->cone_angle)) != SSS_OK) return res;
+        if ((res = jr_range(r, "cone_angle", l->cone_angle, 0, 1, 90, 0)) != SSS_OK) return res;
+        if ((res = jr_number(r, item, "cone_delta", 1, 0, &l->cone_delta)) != SSS_OK) return res;
+        if ((res = jr_range(r, "cone_delta", l->cone_delta, 0, 0, l->cone_angle, 0)) != SSS_OK) return res;
+        return nonneg_colour(r, item, "intensity", 1, NULL, l->intensity);
+    }
+    if (strcmp(type, "directional") == 0) {
+        static const char *const fields[] = {"type", "direction", "radiance"};
+        l->type = SSS_LIGHT_DIRECTIONAL;
+        if ((res = jr_check_fields(r, item, fields, SCENE_COUNT(fields))) != SSS_OK) return res;
+        if ((res = jr_vec(r, item, "direction", 1, NULL, 3, l->direction, NULL)) != SSS_OK) return res;
+        if ((res = nonzero_vec(r, "direction", l->direction)) != SSS_OK) return res;
+        double n = len3(l->direction);
+        for (int i = 0; i < 3; i++) l->direction[i] /= n;
+        return nonneg_colour(r, item, "radiance", 1, NULL, l->radiance);
+    }
+    if (strcmp(type, "area") == 0) {
+        static const char *const fields[] = {"type", "center", "u", "v", "radiance", "two_sided"};
+        l->type = SSS_LIGHT_AREA;
+        if ((res = jr_check_fields(r, item, fields, SCENE_COUNT(fields))) != SSS_OK) return res;
+        if ((res = jr_vec(r, item, "center", 1, NULL, 3, l->center, NULL)) != SSS_OK) return res;
+        if ((res = jr_vec(r, item, "u", 1, NULL, 3, l->u, NULL)) != SSS_OK) return res;
+        if ((res = nonzero_vec(r, "u", l->u)) != SSS_OK) return res;
+        if ((res = jr_vec(r, item, "v", 1, NULL, 3, l->v, NULL)) != SSS_OK) return res;
+        if ((res = nonzero_vec(r, "v", l->v)) != SSS_OK) return res;
+        const double *u = l->u, *v = l->v;
+        double cr[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+        if (!(len3(cr) > 1e-9 * len3(u) * len3(v)))
+            return jr_fail_key(r, "v", SSS_ERROR_INVALID_ARGUMENT, "parallel to u (the rectangle has no area)");
+        if ((res = nonneg_colour(r, item, "radiance", 1, NULL, l->radiance)) != SSS_OK) return res;
+        return jr_bool(r, item, "two_sided", 0, &l->two_sided);
+    }
+    if (strcmp(type, "environment") == 0) {
+        static const char *const fields[] = {"type", "file", "scale", "rotate_y"};
+        static const double one[3] = {1, 1, 1};
+        l->type = SSS_LIGHT_ENVIRONMENT;
+        if ((res = jr_check_fields(r, item, fields, SCENE_COUNT(fields))) != SSS_OK) return res;
+        if ((res = scene_file_field(c, item, "file", 1, &l->file)) != SSS_OK) return res;
+        if ((res = nonneg_colour(r, item, "scale", 0, one, l->scale)) != SSS_OK) return res;
+        return jr_number(r, item, "rotate_y", 0, 0, &l->rotate_y);
+    }
+    return jr_fail_key(r, "type", SSS_ERROR_INVALID_ARGUMENT,
+                       "unknown light type \"%s\" (expected point, spot, directional, area or environment)",
+                       type);
+}
+
+void scene_light_free(sss_light *l)
+{
+    free(l->file);
+    l->file = NULL;
+}

@@ -1,0 +1,404 @@
+/* The scene loader: JSON text -> validated sss_scene (SCENE.md), then the load phase (PBD tables,
+ * material resolution, meshes). */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "core/file_util.h"
+#include "scene/scene_internal.h"
+
+char *scene_strdup(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d) memcpy(d, s, n);
+    return d;
+}
+
+/* base_dir + "/" + rel, or rel when it is absolute. */
+static char *join_path(const char *base_dir, const char *rel)
+{
+    if (rel[0] == '/' || !base_dir || !base_dir[0]) return scene_strdup(rel);
+    size_t nb = strlen(base_dir), nr = strlen(rel);
+    int slash = base_dir[nb - 1] != '/';
+    char *p = malloc(nb + (size_t)slash + nr + 1);
+    if (!p) return NULL;
+    memcpy(p, base_dir, nb);
+    if (slash) p[nb] = '/';
+    memcpy(p + nb + (size_t)slash, rel, nr + 1);
+    return p;
+}
+
+sss_result scene_file_field(scene_ctx *c, const cJSON *obj, const char *key, int required, char **out)
+{
+    jr *r = &c->r;
+    const char *rel = NULL;
+    *out = NULL;
+    sss_result res = jr_string(r, obj, key, required, &rel);
+    if (res != SSS_OK || !rel) return res;
+    char *path = join_path(c->base_dir, rel);
+    if (!path) return jr_fail_key(r, key, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (!(c->flags & SSS_SCENE_SKIP_FILE_CHECKS)) {
+        struct stat st;
+        FILE *f = NULL;
+        if (stat(path, &st) != 0 || !(f = fopen(path, "rb"))) {
+            int e = errno;
+            free(path);
+            return jr_fail_key(r, key, SSS_ERROR_IO, "%s: cannot open: %s", rel, strerror(e));
+        }
+        fclose(f);
+        if (!S_ISREG(st.st_mode)) {
+            free(path);
+            return jr_fail_key(r, key, SSS_ERROR_IO, "%s: not a regular file", rel);
+        }
+    }
+    *out = path;
+    return SSS_OK;
+}
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static sss_result parse_camera(scene_ctx *c, const cJSON *item, sss_camera *cam)
+{
+    jr *r = &c->r;
+    static const char *const fields[] = {"position", "look_at", "up", "fov", "width", "height"};
+    static const double y_up[3] = {0, 1, 0};
+    sss_result res;
+    if ((res = jr_expect_object(r, item)) != SSS_OK) return res;
+    if ((res = jr_check_fields(r, item, fields, SCENE_COUNT(fields))) != SSS_OK) return res;
+    if ((res = jr_vec(r, item, "position", 1, NULL, 3, cam->position, NULL)) != SSS_OK) return res;
+    if ((res = jr_vec(r, item, "look_at", 1, NULL, 3, cam->look_at, NULL)) != SSS_OK) return res;
+    if ((res = jr_vec(r, item, "up", 0, y_up, 3, cam->up, NULL)) != SSS_OK) return res;
+    if ((res = jr_number(r, item, "fov", 0, 35, &cam->fov)) != SSS_OK) return res;
+    if ((res = jr_range(r, "fov", cam->fov, 0, 1, 180, 1)) != SSS_OK) return res;
+    long w = 0, h = 0;
+    if ((res = jr_int(r, item, "width", 0, 512, 1, SSS_SCENE_MAX_IMAGE_SIZE, &w)) != SSS_OK) return res;
+    if ((res = jr_int(r, item, "height", 0, 512, 1, SSS_SCENE_MAX_IMAGE_SIZE, &h)) != SSS_OK) return res;
+    cam->width = (int)w;
+    cam->height = (int)h;
+
+    double f[3] = {cam->look_at[0] - cam->position[0], cam->look_at[1] - cam->position[1],
+                   cam->look_at[2] - cam->position[2]};
+    double fl = sqrt(dot3(f, f)), ul = sqrt(dot3(cam->up, cam->up));
+    if (!(fl > 0)) return jr_fail_key(r, "look_at", SSS_ERROR_INVALID_ARGUMENT, "equals camera.position");
+    if (!isfinite(fl)) return jr_fail_key(r, "look_at", SSS_ERROR_INVALID_ARGUMENT, "too far from camera.position");
+    if (!(ul > 0)) return jr_fail_key(r, "up", SSS_ERROR_INVALID_ARGUMENT, "must be a non-zero vector");
+    /* |sin| of the angle between up and the view direction. */
+    double cx = f[1] * cam->up[2] - f[2] * cam->up[1], cy = f[2] * cam->up[0] - f[0] * cam->up[2],
+           cz = f[0] * cam->up[1] - f[1] * cam->up[0];
+    if (!(sqrt(cx * cx + cy * cy + cz * cz) / (fl * ul) > 1e-6))
+        return jr_fail_key(r, "up", SSS_ERROR_INVALID_ARGUMENT, "parallel to the view direction (look_at - position)");
+    return SSS_OK;
+}
+
+static sss_result parse_render(scene_ctx *c, const cJSON *item, sss_render_settings *rs)
+{
+    jr *r = &c->r;
+    static const char *const fields[] = {"technique", "exposure"};
+    sss_result res;
+    if ((res = jr_expect_object(r, item)) != SSS_OK) return res;
+    if ((res = jr_check_fields(r, item, fields, SCENE_COUNT(fields))) != SSS_OK) return res;
+    const char *tech = NULL;
+    if ((res = jr_string(r, item, "technique", 0, &tech)) != SSS_OK) return res;
+    if (tech) {
+        if (strlen(tech) >= SSS_SCENE_TECHNIQUE_SIZE)
+            return jr_fail_key(r, "technique", SSS_ERROR_LIMIT, "longer than %d characters",
+                               SSS_SCENE_TECHNIQUE_SIZE - 1);
+        snprintf(rs->technique, sizeof rs->technique, "%s", tech);
+    }
+    return jr_number(r, item, "exposure", 0, 0, &rs->exposure);
+}
+
+/* Parses an array member `key` of root with a per-element parser. */
+static sss_result parse_array(scene_ctx *c, const cJSON *root, const char *key, int required, size_t max,
+                              size_t elem_size, void **out, size_t *count,
+                              sss_result (*parse)(scene_ctx *, const cJSON *, void *))
+{
+    jr *r = &c->r;
+    const cJSON *arr = jr_get(root, key);
+    if (!arr) {
+        if (required) return jr_fail_key(r, key, SSS_ERROR_PARSE, "required field missing");
+        return SSS_OK;
+    }
+    size_t mark = jr_enter_key(r, key);
+    sss_result res = SSS_OK;
+    int n = cJSON_GetArraySize(arr);
+    if (!cJSON_IsArray(arr)) res = jr_fail(r, SSS_ERROR_PARSE, "expected an array");
+    else if (required && n == 0) res = jr_fail(r, SSS_ERROR_INVALID_ARGUMENT, "must not be empty");
+    else if ((size_t)n > max) res = jr_fail(r, SSS_ERROR_LIMIT, "%d entries, more than the %zu accepted", n, max);
+    else if (n > 0 && !(*out = calloc((size_t)n, elem_size))) res = jr_fail(r, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (res == SSS_OK) {
+        size_t i = 0;
+        for (const cJSON *e = arr->child; e; e = e->next, i++) {
+            size_t m2 = jr_enter_index(r, i);
+            res = parse((scene_ctx *)c, e, (char *)*out + i * elem_size);
+            *count = i + 1; /* so that sss_scene_free releases what this element allocated */
+            jr_leave(r, m2);
+            if (res != SSS_OK) break;
+        }
+    }
+    jr_leave(r, mark);
+    return res;
+}
+
+static sss_result parse_object_cb(scene_ctx *c, const cJSON *e, void *out)
+{
+    return scene_parse_object(c, e, out);
+}
+
+static sss_result parse_light_cb(scene_ctx *c, const cJSON *e, void *out)
+{
+    return scene_parse_light(c, e, out);
+}
+
+/* Line and column (1-based) of offset in text. */
+static void line_column(const char *text, size_t offset, size_t *line, size_t *col)
+{
+    *line = 1;
+    *col = 1;
+    for (size_t i = 0; i < offset; i++) {
+        if (text[i] == '\n') {
+            (*line)++;
+            *col = 1;
+        } else {
+            (*col)++;
+        }
+    }
+}
+
+static sss_result parse_root(scene_ctx *c, const cJSON *root, sss_scene *s)
+{
+    jr *r = &c->r;
+    static const char *const fields[] = {"camera", "objects", "lights", "render"};
+    sss_result res;
+    if (!cJSON_IsObject(root)) return jr_fail(r, SSS_ERROR_PARSE, "expected a JSON object at the top level");
+    if ((res = jr_check_fields(r, root, fields, SCENE_COUNT(fields))) != SSS_OK) return res;
+    if ((res = jr_require(r, root, "camera")) != SSS_OK) return res;
+    size_t mark = jr_enter_key(r, "camera");
+    res = parse_camera(c, jr_get(root, "camera"), &s->camera);
+    jr_leave(r, mark);
+    if (res != SSS_OK) return res;
+    if ((res = sss_camera_basis_init(&s->camera, &s->basis, NULL)) != SSS_OK)
+        return jr_fail_key(r, "camera", res, "degenerate camera");
+
+    if ((res = parse_array(c, root, "objects", 1, SSS_SCENE_MAX_OBJECTS, sizeof(sss_scene_object),
+                           (void **)&s->objects, &s->object_count, parse_object_cb)) != SSS_OK)
+        return res;
+    if ((res = parse_array(c, root, "lights", 0, SSS_SCENE_MAX_LIGHTS, sizeof(sss_light), (void **)&s->lights,
+                           &s->light_count, parse_light_cb)) != SSS_OK)
+        return res;
+
+    snprintf(s->render.technique, sizeof s->render.technique, "%s", SSS_SCENE_DEFAULT_TECHNIQUE);
+    s->render.exposure = 0;
+    const cJSON *render = jr_get(root, "render");
+    if (render) {
+        mark = jr_enter_key(r, "render");
+        res = parse_render(c, render, &s->render);
+        jr_leave(r, mark);
+    }
+    return res;
+}
+
+/* ---- Load phase ------------------------------------------------------------------------------ */
+
+const sss_pbd_table *sss_scene_find_table(const sss_scene *scene, double eta, double g)
+{
+    for (size_t i = 0; i < scene->table_count; i++)
+        if (scene->tables[i]->eta == eta && scene->tables[i]->g == g) return scene->tables[i];
+    return NULL;
+}
+
+/* The cached table for (eta, g), built on first use. */
+static sss_result scene_table(scene_ctx *c, sss_scene *s, double eta, double g, const sss_pbd_table **out)
+{
+    *out = sss_scene_find_table(s, eta, g);
+    if (*out) return SSS_OK;
+    sss_pbd_table **grown = realloc(s->tables, (s->table_count + 1) * sizeof *grown);
+    if (!grown) return jr_fail(&c->r, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+    s->tables = grown;
+    sss_pbd_table *t = malloc(sizeof *t);
+    if (!t) return jr_fail(&c->r, SSS_ERROR_OUT_OF_MEMORY, "out of memory for a PBD table");
+    sss_result res = sss_pbd_table_build(eta, g, t, c->r.err);
+    if (res != SSS_OK) {
+        free(t);
+        return jr_prefix(&c->r, NULL, res);
+    }
+    s->tables[s->table_count++] = t;
+    *out = t;
+    return SSS_OK;
+}
+
+static sss_result build_procedural(const sss_procedural *p, sss_mesh *m, sss_error *err)
+{
+    switch (p->shape) {
+    case SSS_SHAPE_SPHERE: return sss_mesh_sphere(p->radius, p->subdivisions, m, err);
+    case SSS_SHAPE_TORUS: return sss_mesh_torus(p->major, p->minor, p->segments, m, err);
+    case SSS_SHAPE_TREFOIL: return sss_mesh_trefoil(p->radius, p->tube, p->segments, m, err);
+    case SSS_SHAPE_PLANE: return sss_mesh_plane(p->size, m, err);
+    case SSS_SHAPE_BOX: return sss_mesh_box(p->box_size, m, err);
+    default: return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "not a procedural shape");
+    }
+}
+
+static sss_result load_object(scene_ctx *c, sss_scene *s, sss_scene_object *o)
+{
+    jr *r = &c->r;
+    sss_result res;
+    if (o->material.type == SSS_SCENE_MATERIAL_SUBSURFACE) {
+        const sss_pbd_table *t = NULL;
+        size_t mark = jr_enter_key(r, "material");
+        res = scene_table(c, s, o->material.optical.eta, o->material.optical.g, &t);
+        if (res == SSS_OK) res = scene_resolve_material(c, &o->material, t);
+        jr_leave(r, mark);
+        if (res != SSS_OK) return res;
+    }
+    if (c->flags & SSS_SCENE_SKIP_MESHES) return SSS_OK;
+    if (o->mesh_path) res = sss_mesh_read(o->mesh_path, &o->mesh, r->err);
+    else res = build_procedural(&o->procedural, &o->mesh, r->err);
+    if (res != SSS_OK) return jr_prefix(r, o->mesh_path ? "mesh" : "procedural", res);
+    sss_mesh_bounds(&o->mesh, o->bounds_min, o->bounds_max);
+    if (o->splat_mesh_path && (res = sss_mesh_read(o->splat_mesh_path, &o->splat_mesh, r->err)) != SSS_OK)
+        return jr_prefix(r, "splat_mesh", res);
+    return SSS_OK;
+}
+
+static sss_result load_phase(scene_ctx *c, sss_scene *s)
+{
+    jr *r = &c->r;
+    size_t mark = jr_enter_key(r, "objects");
+    sss_result res = SSS_OK;
+    for (size_t i = 0; i < s->object_count && res == SSS_OK; i++) {
+        size_t m2 = jr_enter_index(r, i);
+        res = load_object(c, s, &s->objects[i]);
+        jr_leave(r, m2);
+    }
+    jr_leave(r, mark);
+    return res;
+}
+
+/* ---- Entry points ---------------------------------------------------------------------------- */
+
+static int is_space(char ch)
+{
+    return ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r';
+}
+
+sss_result sss_scene_parse(const char *json_text, size_t size, const char *base_dir, const char *name,
+                           const sss_scene_load_desc *desc, sss_scene *scene, sss_error *err)
+{
+    scene_ctx ctx;
+    memset(scene, 0, sizeof *scene);
+    if (!name) name = "scene";
+    jr_init(&ctx.r, name, err);
+    ctx.base_dir = base_dir ? base_dir : ".";
+    ctx.flags = desc ? desc->flags : 0;
+    if (!json_text && size > 0) return jr_fail(&ctx.r, SSS_ERROR_INVALID_ARGUMENT, "no text");
+    if (size > SSS_SCENE_MAX_FILE_SIZE)
+        return jr_fail(&ctx.r, SSS_ERROR_LIMIT, "%zu bytes, more than the %u accepted", size,
+                       (unsigned)SSS_SCENE_MAX_FILE_SIZE);
+
+    size_t start = 0;
+    if (size >= 3 && memcmp(json_text, "\xEF\xBB\xBF", 3) == 0) start = 3; /* UTF-8 byte order mark */
+    size_t k = start;
+    while (k < size && is_space(json_text[k])) k++;
+    if (k == size) return jr_fail(&ctx.r, SSS_ERROR_PARSE, "empty file (expected a JSON object)");
+
+    const char *end = NULL;
+    cJSON *root = cJSON_ParseWithLengthOpts(json_text + start, size - start, &end, 0);
+    size_t line, col;
+    if (!root) {
+        size_t off = end && end >= json_text + start && end <= json_text + size ? (size_t)(end - json_text) : start;
+        line_column(json_text, off, &line, &col);
+        return jr_fail(&ctx.r, SSS_ERROR_PARSE, "line %zu, column %zu: malformed JSON", line, col);
+    }
+    size_t off = end ? (size_t)(end - json_text) : size;
+    while (off < size && is_space(json_text[off])) off++;
+    if (off < size) {
+        cJSON_Delete(root);
+        line_column(json_text, off, &line, &col);
+        return jr_fail(&ctx.r, SSS_ERROR_PARSE, "line %zu, column %zu: unexpected text after the JSON value",
+                       line, col);
+    }
+
+    sss_result res = SSS_OK;
+    scene->name = scene_strdup(name);
+    scene->base_dir = scene_strdup(ctx.base_dir);
+    if (!scene->name || !scene->base_dir) res = jr_fail(&ctx.r, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (res == SSS_OK) res = parse_root(&ctx, root, scene);
+    cJSON_Delete(root);
+    if (res == SSS_OK) res = load_phase(&ctx, scene);
+    if (res != SSS_OK) sss_scene_free(scene);
+    return res;
+}
+
+sss_result sss_scene_load(const char *path, const sss_scene_load_desc *desc, sss_scene *scene, sss_error *err)
+{
+    memset(scene, 0, sizeof *scene);
+    char *text = NULL;
+    size_t size = 0;
+    sss_result res = sss_read_file(path, SSS_SCENE_MAX_FILE_SIZE, &text, &size, err);
+    if (res != SSS_OK) return res;
+    /* The folder of the scene file: relative paths inside it start there. */
+    char *dir = scene_strdup(path);
+    if (!dir) {
+        free(text);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    }
+    char *slash = strrchr(dir, '/');
+    if (!slash) strcpy(dir, ".");
+    else if (slash == dir) dir[1] = '\0';
+    else *slash = '\0';
+    res = sss_scene_parse(text, size, dir, path, desc, scene, err);
+    free(dir);
+    free(text);
+    return res;
+}
+
+void sss_scene_free(sss_scene *scene)
+{
+    if (!scene) return;
+    for (size_t i = 0; i < scene->object_count; i++) scene_object_free(&scene->objects[i]);
+    for (size_t i = 0; i < scene->light_count; i++) scene_light_free(&scene->lights[i]);
+    for (size_t i = 0; i < scene->table_count; i++) free(scene->tables[i]);
+    free(scene->objects);
+    free(scene->lights);
+    free(scene->tables);
+    free(scene->name);
+    free(scene->base_dir);
+    memset(scene, 0, sizeof *scene);
+}
+
+const char *sss_animation_type_name(sss_animation_type type)
+{
+    switch (type) {
+    case SSS_ANIMATION_NONE: return "none";
+    case SSS_ANIMATION_TWIST: return "twist";
+    case SSS_ANIMATION_BEND: return "bend";
+    case SSS_ANIMATION_WAVE: return "wave";
+    }
+    return "unknown";
+}
+
+const char *sss_shape_name(sss_shape shape)
+{
+    static const char *const names[] = {"mesh", "sphere", "torus", "trefoil", "plane", "box"};
+    return (unsigned)shape < SCENE_COUNT(names) ? names[shape] : "unknown";
+}
+
+const char *sss_light_type_name(sss_light_type type)
+{
+    static const char *const names[] = {"point", "spot", "directional", "area", "environment"};
+    return (unsigned)type < SCENE_COUNT(names) ? names[type] : "unknown";
+}
+
+const char *sss_scene_profile_name(sss_scene_profile profile)
+{
+    static const char *const names[] = {"pbd", "dipole", "artist"};
+    return (unsigned)profile < SCENE_COUNT(names) ? names[profile] : "unknown";
+}
