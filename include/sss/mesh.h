@@ -28,7 +28,13 @@ typedef struct sss_mesh {
     float *normals;    /* 3 * vertex_count, unit length */
     float *uvs;        /* 2 * vertex_count, or NULL when the file has none */
     uint32_t *indices; /* 3 * triangle_count, counter-clockwise seen from outside */
+    uint32_t source_flags; /* SSS_MESH_FROM_FILE_*: what the file itself provided (set by readers) */
 } sss_mesh;
+
+/* Bits of sss_mesh.source_flags. Normals are always present after loading; this tells whether they
+ * came from the file (normalised) or were computed (area-weighted). */
+#define SSS_MESH_FROM_FILE_NORMALS 1u
+#define SSS_MESH_FROM_FILE_UVS 2u
 
 void sss_mesh_free(sss_mesh *mesh);
 
@@ -49,6 +55,19 @@ sss_result sss_mesh_compute_normals(sss_mesh *mesh, sss_error *err);
 void sss_mesh_vertex_areas(const sss_mesh *mesh, float *areas);
 double sss_mesh_surface_area(const sss_mesh *mesh);
 void sss_mesh_bounds(const sss_mesh *mesh, float min[3], float max[3]);
+/* Signed volume by the divergence theorem (sum of det(a, b, c) / 6): positive for a closed mesh
+ * wound counter-clockwise seen from outside; only an approximation when the mesh has holes. */
+double sss_mesh_signed_volume(const sss_mesh *mesh);
+
+/* Edge statistics of the index mesh. A mesh is closed when every edge has exactly two triangles. */
+typedef struct sss_mesh_topology {
+    uint64_t edge_count;        /* distinct undirected edges (between distinct vertices) */
+    uint64_t boundary_edges;    /* edges with one incident triangle */
+    uint64_t nonmanifold_edges; /* edges with more than two incident triangles */
+    uint64_t degenerate_triangles; /* repeated index or zero area */
+} sss_mesh_topology;
+
+sss_result sss_mesh_topology_compute(const sss_mesh *mesh, sss_mesh_topology *out, sss_error *err);
 
 /* Vertex adjacency in compressed rows: the neighbours of v are
  * neighbors[offsets[v] .. offsets[v + 1]), sorted, without duplicates or v itself. */
@@ -61,7 +80,14 @@ typedef struct sss_mesh_adjacency {
 sss_result sss_mesh_adjacency_build(const sss_mesh *mesh, sss_mesh_adjacency *out, sss_error *err);
 void sss_mesh_adjacency_free(sss_mesh_adjacency *adj);
 
-/* Procedural shapes of SCENE.md, centred at the origin. */
+/* Procedural shapes of SCENE.md, centred at the origin, with exact normals, CCW outward winding.
+ * sphere: icosahedron subdivided `subdivisions` (0..8) times, 20 * 4^s triangles, closed, no UVs.
+ * torus: in the xz-plane around +y, `segments` (3..2048) around both circles, closed, no UVs
+ *   (UVs would need duplicated seam vertices, which would open the index mesh); minor < major.
+ * trefoil: a tube of radius `tube` along the knot (sin t + 2 sin 2t, cos t - 2 cos 2t, -sin 3t) *
+ *   radius / 3 (so `radius` is its extent in the xy-plane), `segments` (3..4096) along the knot and
+ *   max(3, segments / 8) around the tube, closed, no UVs; 0 < tube <= radius / 6.
+ * plane: two triangles, UVs (u along +x, v along -z). box: 24 vertices (flat faces), UVs per face. */
 sss_result sss_mesh_sphere(double radius, int subdivisions, sss_mesh *out, sss_error *err);
 sss_result sss_mesh_torus(double major, double minor, int segments, sss_mesh *out, sss_error *err);
 sss_result sss_mesh_trefoil(double radius, double tube, int segments, sss_mesh *out, sss_error *err);

@@ -1,7 +1,115 @@
-/* Placeholder until the mesh command lands (replaced by its module's owner). */
+/* sss mesh — inspect, simplify or convert a triangle mesh (PLY or OBJ). */
+#include <stdio.h>
+#include <string.h>
+
 #include "cli/cli.h"
+#include "sss/mesh.h"
+
+static const char *const CMD = "mesh";
+
+static void print_help(void)
+{
+    printf("usage: sss mesh info FILE\n"
+           "       sss mesh simplify FILE --triangles N -o OUT.ply\n"
+           "       sss mesh convert FILE -o OUT.ply\n\n"
+           "info      counts, whether the file had normals/UVs, bounding box, surface area, edges,\n"
+           "          signed volume (exact for closed meshes) and degenerate triangles\n"
+           "simplify  reduce to at most N triangles (meshoptimizer) and write binary PLY\n"
+           "convert   write the mesh as binary little-endian PLY with positions, normals (and UVs)\n\n"
+           "FILE is .ply (ascii or binary) or .obj. Exit status: 0 ok, 1 bad input, 2 usage error.\n");
+}
+
+static int cmd_info(const char *path)
+{
+    sss_mesh m;
+    sss_error err;
+    if (sss_mesh_read(path, &m, &err) != SSS_OK) return cli_fail(CMD, &err);
+    sss_mesh_topology topo;
+    if (sss_mesh_topology_compute(&m, &topo, &err) != SSS_OK) {
+        sss_mesh_free(&m);
+        return cli_fail(CMD, &err);
+    }
+    float lo[3], hi[3];
+    sss_mesh_bounds(&m, lo, hi);
+    int closed = topo.boundary_edges == 0 && topo.nonmanifold_edges == 0;
+    printf("file: %s\n", path);
+    printf("vertices: %u\n", m.vertex_count);
+    printf("triangles: %u\n", m.triangle_count);
+    printf("normals: %s\n", m.source_flags & SSS_MESH_FROM_FILE_NORMALS ? "from file" : "computed (not in file)");
+    printf("uvs: %s\n", m.source_flags & SSS_MESH_FROM_FILE_UVS ? "from file" : "none");
+    printf("bounds min: %.9g %.9g %.9g\n", lo[0], lo[1], lo[2]);
+    printf("bounds max: %.9g %.9g %.9g\n", hi[0], hi[1], hi[2]);
+    printf("size: %.9g %.9g %.9g\n", (double)hi[0] - lo[0], (double)hi[1] - lo[1], (double)hi[2] - lo[2]);
+    printf("surface area: %.9g\n", sss_mesh_surface_area(&m));
+    printf("edges: %llu (%llu boundary, %llu non-manifold)\n", (unsigned long long)topo.edge_count,
+           (unsigned long long)topo.boundary_edges, (unsigned long long)topo.nonmanifold_edges);
+    printf("closed: %s\n", closed ? "yes" : "no");
+    printf("signed volume: %.9g%s\n", sss_mesh_signed_volume(&m), closed ? "" : " (approximate: the mesh has holes)");
+    printf("degenerate triangles: %llu\n", (unsigned long long)topo.degenerate_triangles);
+    sss_mesh_free(&m);
+    return CLI_EXIT_OK;
+}
+
+static int cmd_write(const char *path, const char *output, int triangles)
+{
+    sss_mesh m, s;
+    sss_error err;
+    if (sss_mesh_read(path, &m, &err) != SSS_OK) return cli_fail(CMD, &err);
+    const sss_mesh *result = &m;
+    if (triangles > 0) {
+        if (sss_mesh_simplify(&m, (uint32_t)triangles, &s, &err) != SSS_OK) {
+            sss_mesh_free(&m);
+            sss_error_prefix(&err, path);
+            return cli_fail(CMD, &err);
+        }
+        result = &s;
+    }
+    sss_result r = sss_mesh_write_ply(output, result, &err);
+    if (r == SSS_OK) {
+        if (triangles > 0)
+            printf("%s: %u -> %u triangles (%u vertices), wrote %s\n", path, m.triangle_count, s.triangle_count,
+                   s.vertex_count, output);
+        else
+            printf("%s: %u triangles, %u vertices, wrote %s\n", path, m.triangle_count, m.vertex_count, output);
+    }
+    if (triangles > 0) sss_mesh_free(&s);
+    sss_mesh_free(&m);
+    return r == SSS_OK ? CLI_EXIT_OK : cli_fail(CMD, &err);
+}
+
 int sss_cmd_mesh(int argc, char **argv)
 {
-    (void)argc; (void)argv;
-    return cli_failf("mesh", "not built yet");
+    if (cli_wants_help(argc, argv)) {
+        print_help();
+        return CLI_EXIT_OK;
+    }
+    if (argc < 2) return cli_usage_error(CMD, "missing subcommand (info, simplify or convert)");
+    const char *sub = argv[1];
+    int is_info = strcmp(sub, "info") == 0, is_simplify = strcmp(sub, "simplify") == 0,
+        is_convert = strcmp(sub, "convert") == 0;
+    if (!is_info && !is_simplify && !is_convert) return cli_usage_error(CMD, "unknown subcommand '%s'", sub);
+    const char *input = NULL, *output = NULL;
+    int triangles = 0, have_triangles = 0;
+    for (int i = 2; i < argc; i++) {
+        const char *a = argv[i];
+        if (!is_info && (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0)) {
+            if (!(output = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
+        } else if (is_simplify && strcmp(a, "--triangles") == 0) {
+            const char *v = cli_option_value(CMD, argc, argv, &i);
+            if (!v || !cli_parse_int(CMD, "--triangles", v, &triangles)) return CLI_EXIT_USAGE;
+            if (triangles < 1) return cli_usage_error(CMD, "--triangles must be at least 1");
+            have_triangles = 1;
+        } else if (a[0] == '-' && a[1] != '\0') {
+            return cli_usage_error(CMD, "unknown option '%s' for 'mesh %s'", a, sub);
+        } else if (!input) {
+            input = a;
+        } else {
+            return cli_usage_error(CMD, "unexpected argument '%s'", a);
+        }
+    }
+    if (!input) return cli_usage_error(CMD, "missing FILE");
+    if (is_info) return cmd_info(input);
+    if (is_simplify && !have_triangles) return cli_usage_error(CMD, "simplify needs --triangles N");
+    if (!output) return cli_usage_error(CMD, "%s needs -o OUT.ply", sub);
+    return cmd_write(input, output, is_simplify ? triangles : 0);
 }
