@@ -15,9 +15,10 @@ extern "C" {
 #endif
 
 /* Accepted range of the relative index of refraction. eta < 1 (a medium optically thinner than its
- * surroundings) is rejected: the Fresnel-moment fits and PBRT's table assume eta >= 1. */
+ * surroundings) is rejected: the Fresnel-moment fits and PBRT's table assume eta >= 1. Above 2.5 PBRT's
+ * polynomial fit of FM1 degrades (1 - 2 FM1 turns negative near 2.85 and the table with it). */
 #define SSS_ETA_MIN 1.0
-#define SSS_ETA_MAX 3.0
+#define SSS_ETA_MAX 2.5
 
 /* ---- Fresnel ------------------------------------------------------------------------------- */
 
