@@ -31,11 +31,25 @@ void sss_image_free(sss_image *img);
 /* Format by file extension (case-insensitive): .png, .hdr, .pfm, .exr. Errors name the path. */
 sss_result sss_image_read(const char *path, sss_image *out, sss_error *err);
 /* PNG is tone-mapped with exposure; HDR, PFM and EXR store linear values (exposure ignored).
- * The file is written to a temporary name in the same folder and renamed when complete. */
+ * The file is written to a temporary name in the same folder and renamed when complete.
+ * Writers REFUSE images holding NaN or Inf (SSS_ERROR_NUMERIC, the message gives the count; see
+ * sss_image_count_nonfinite) and never leave a partial or temporary file behind on any error.
+ * EXR is written as 32-bit float (exact), ZIP compressed; HDR is flat RGBE (negative values become 0,
+ * relative precision about 1/256 of the brightest channel); PFM is little-endian "PF". */
 sss_result sss_image_write(const char *path, const sss_image *img, double exposure, sss_error *err);
 
+/* OpenEXR with a choice of sample type: half != 0 writes 16-bit half floats (fails with
+ * SSS_ERROR_LIMIT if a value rounds beyond the half range, |v| >= 65520), else 32-bit float. */
+sss_result sss_image_write_exr(const char *path, const sss_image *img, int half, sss_error *err);
+
+/* Writes ready-made 8-bit sRGB bytes (width * height * 3, row-major, top row first) as a PNG,
+ * atomically (for false-colour maps and the like). */
+sss_result sss_image_write_png8(const char *path, int width, int height, const uint8_t *rgb, sss_error *err);
+
 /* out = round(255 * srgb(clamp(linear * 2^exposure, 0, 1))) per channel; NaN maps to 0.
- * dst holds width * height * 3 bytes. */
+ * dst holds width * height * 3 bytes. Evaluated in float exactly as PBRT-v3 writes PNGs, so at
+ * exposure 0 the bytes equal PBRT's; decoding a PNG with sss_image_read and mapping it again at
+ * exposure 0 returns the file's bytes. */
 void sss_image_to_srgb8(const sss_image *img, double exposure, uint8_t *dst);
 double sss_srgb_encode(double linear);  /* sRGB OETF, [0,1] -> [0,1] */
 double sss_srgb_decode(double encoded); /* its inverse */
@@ -57,6 +71,12 @@ typedef struct sss_image_metrics {
  * per-pixel DSSIM of R, G and B. Images of different sizes are an error. */
 sss_result sss_image_compare(const sss_image *a, const sss_image *b, double exposure,
                              sss_image_metrics *out, sss_image *dssim_map, sss_error *err);
+
+/* The same on ready-made 8-bit sRGB images (width * height * 3 bytes each). Both compare functions
+ * need width and height >= 11 (the SSIM window), as scikit-image does. dssim_map, when given, is
+ * allocated here (free it with sss_image_free). */
+sss_result sss_image_compare_srgb8(const uint8_t *a, const uint8_t *b, int width, int height,
+                                   sss_image_metrics *out, sss_image *dssim_map, sss_error *err);
 
 #ifdef __cplusplus
 }

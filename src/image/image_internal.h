@@ -1,0 +1,32 @@
+/* image/image_internal.h — shared helpers of the image module's format readers and writers
+ * (internal, not public API). */
+#ifndef SSS_IMAGE_INTERNAL_H
+#define SSS_IMAGE_INTERNAL_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+#include "sss/image.h"
+
+/* Checks a size read from a file header before anything is allocated: 1..SSS_IMAGE_MAX_DIM. */
+sss_result sss_image_check_dims_(const char *path, long width, long height, sss_error *err);
+
+/* Validates img (non-NULL pixels, sizes in range) and refuses images holding NaN or Inf:
+ * every writer calls this first, so a non-finite value never reaches a file (COMMON.md). */
+sss_result sss_image_check_writable_(const char *path, const sss_image *img, sss_error *err);
+
+/* The PBRT-v3-compatible 8-bit tone map of one value (see sss_image_to_srgb8). */
+uint8_t sss_srgb8_from_linear_(float linear, float scale);
+/* table[k] = the linear value of 8-bit sRGB code k (the exact inverse curve, rounded to float). */
+void sss_srgb8_decode_table_(float table[256]);
+
+/* Format readers and writers (path names the file in every message). */
+sss_result sss_png_read_(const char *path, sss_image *out, sss_error *err);
+sss_result sss_png_write_(const char *path, const sss_image *img, double exposure, sss_error *err);
+sss_result sss_hdr_read_(const char *path, sss_image *out, sss_error *err);
+sss_result sss_hdr_write_(const char *path, const sss_image *img, sss_error *err);
+sss_result sss_pfm_read_(const char *path, sss_image *out, sss_error *err);
+sss_result sss_pfm_write_(const char *path, const sss_image *img, sss_error *err);
+sss_result sss_exr_read_(const char *path, sss_image *out, sss_error *err);
+
+#endif
