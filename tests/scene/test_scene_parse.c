@@ -173,7 +173,7 @@ static const bad_case bad_cases[] = {
     {SSS_OBJ("\"medium\": \"Jelly\""), "objects[0].material.medium: unknown medium \"Jelly\" (known: Apple"},
     {SSS_OBJ("\"sigma_a\": [0.1, -0.2, 0.1], \"sigma_s\": [1, 1, 1]"), "objects[0].material.sigma_a[1]: -0.2"},
     {SSS_OBJ("\"sigma_a\": [0, 0.2, 0.1], \"sigma_s\": [0, 1, 1]"), "objects[0].material: sigma_a + sigma_s is 0"},
-    {SSS_OBJ("\"medium\": \"Skin1\", \"eta\": 0.9"), "objects[0].material.eta: 0.9: out of range [1, 3]"},
+    {SSS_OBJ("\"medium\": \"Skin1\", \"eta\": 0.9"), "objects[0].material.eta: 0.9: out of range [1, "},
     {SSS_OBJ("\"reflectance\": [1.2, 0.5, 0.5], \"mfp\": 1"), "objects[0].material.reflectance[0]: 1.2"},
     {SSS_OBJ("\"reflectance\": [0.5, 0.5, 0.5], \"mfp\": 0"), "objects[0].material.mfp[0]"},
     {SSS_OBJ("\"reflectance\": [0.5, 0.5, 0.5], \"mfp\": 1, \"scale\": 10"), "objects[0].material.scale: not used"},
