@@ -1,7 +1,138 @@
-/* Placeholder until the compare command lands (replaced by its module's owner). */
+/* sss compare — DSSIM, PSNR and RMSE of two images (FACTS.md 5), optionally a DSSIM map. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
 #include "cli/cli.h"
+#include "core/file_util.h"
+#include "sss/image.h"
+
+static const char *const CMD = "compare";
+
+static void print_help(void)
+{
+    printf("usage: sss compare A B [--exposure E] [--map OUT] [--map-scale S]\n"
+           "\n"
+           "Compares two images (.png, .hdr, .pfm, .exr) after tone-mapping both to 8-bit sRGB with\n"
+           "exposure E stops (default 0): round(255 srgb(clamp(linear 2^E, 0, 1))), SCENE.md render.exposure.\n"
+           "Prints one line:  dssim=D psnr=P rmse=R max=M\n"
+           "  dssim  (1 - SSIM) / 2, SSIM of Wang et al. 2004 per colour channel (11x11 Gaussian window,\n"
+           "         sigma 1.5, K1 0.01, K2 0.03, range 255) averaged over R, G, B; the mean leaves out a\n"
+           "         5-pixel border. Equals scikit-image structural_similarity(gaussian_weights=True,\n"
+           "         sigma=1.5, use_sample_covariance=False, data_range=255, channel_axis=2).\n"
+           "  psnr   dB on the 8-bit images ('inf' when identical); rmse and max in 8-bit codes.\n"
+           "Images must be the same size and at least 11x11 pixels.\n"
+           "\n"
+           "options:\n"
+           "  --exposure E   stops applied to both images before the comparison (default 0)\n"
+           "  --map OUT      write the per-pixel DSSIM of R, G and B (full size). OUT.png holds\n"
+           "                 round(255 * min(1, S * dssim)) per channel, S = --map-scale, so black is\n"
+           "                 identical and with S = 10 white means DSSIM >= 0.1; OUT.exr, .pfm or .hdr\n"
+           "                 hold the raw DSSIM values (0 = identical, up to 1)\n"
+           "  --map-scale S  gain of the PNG map (default 10)\n"
+           "\n"
+           "exit status: 0 done, 1 a file is missing, unreadable or malformed, or the sizes differ,\n"
+           "2 usage error\n");
+}
+
+static int is_map_format(const char *path)
+{
+    char ext[8];
+    sss_path_extension(path, ext, sizeof ext);
+    return strcmp(ext, "png") == 0 || strcmp(ext, "exr") == 0 || strcmp(ext, "pfm") == 0 || strcmp(ext, "hdr") == 0;
+}
+
+static int write_map(const char *path, const sss_image *map, double scale, sss_error *err)
+{
+    char ext[8];
+    sss_path_extension(path, ext, sizeof ext);
+    if (strcmp(ext, "png") != 0) return sss_image_write(path, map, 0.0, err);
+    size_t n = (size_t)map->width * (size_t)map->height * 3;
+    uint8_t *rgb = malloc(n);
+    if (!rgb) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    for (size_t i = 0; i < n; i++) {
+        double v = scale * map->pixels[i];
+        v = v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0; /* also NaN -> 0 */
+        rgb[i] = (uint8_t)floor(255.0 * v + 0.5);
+    }
+    sss_result r = sss_image_write_png8(path, map->width, map->height, rgb, err);
+    free(rgb);
+    return r;
+}
+
+static void warn_nonfinite(const char *path, const sss_image *img)
+{
+    size_t bad = sss_image_count_nonfinite(img);
+    if (bad)
+        fprintf(stderr, "sss compare: warning: %s holds %zu NaN/Inf values (compared as: NaN and -Inf black, +Inf white)\n",
+                path, bad);
+}
+
 int sss_cmd_compare(int argc, char **argv)
 {
-    (void)argc; (void)argv;
-    return cli_failf("compare", "not built yet");
+    if (cli_wants_help(argc, argv)) {
+        print_help();
+        return CLI_EXIT_OK;
+    }
+    const char *files[2] = {NULL, NULL}, *map_path = NULL;
+    int nfiles = 0;
+    double exposure = 0.0, map_scale = 10.0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "--exposure") == 0) {
+            const char *v = cli_option_value(CMD, argc, argv, &i);
+            if (!v || !cli_parse_double(CMD, "--exposure", v, &exposure)) return CLI_EXIT_USAGE;
+        } else if (strcmp(a, "--map") == 0) {
+            map_path = cli_option_value(CMD, argc, argv, &i);
+            if (!map_path) return CLI_EXIT_USAGE;
+        } else if (strcmp(a, "--map-scale") == 0) {
+            const char *v = cli_option_value(CMD, argc, argv, &i);
+            if (!v || !cli_parse_double(CMD, "--map-scale", v, &map_scale)) return CLI_EXIT_USAGE;
+            if (map_scale <= 0.0) return cli_usage_error(CMD, "--map-scale must be positive, got '%s'", v);
+        } else if (a[0] == '-' && a[1] != '\0') {
+            return cli_usage_error(CMD, "unknown option '%s'", a);
+        } else {
+            if (nfiles == 2) return cli_usage_error(CMD, "expects two images, got a third: '%s'", a);
+            files[nfiles++] = a;
+        }
+    }
+    if (nfiles != 2) return cli_usage_error(CMD, "expects two images A and B");
+    if (exposure < -126.0 || exposure > 126.0)
+        return cli_usage_error(CMD, "--exposure must lie in [-126, 126] stops, got %g", exposure);
+    if (map_path && !is_map_format(map_path))
+        return cli_usage_error(CMD, "--map needs a .png, .exr, .pfm or .hdr file name, got '%s'", map_path);
+
+    sss_image img[2] = {{0}, {0}}, map = {0};
+    sss_error err = {0};
+    int status = CLI_EXIT_OK;
+    for (int k = 0; k < 2; k++)
+        if (sss_image_read(files[k], &img[k], &err) != SSS_OK) {
+            status = cli_fail(CMD, &err);
+            goto done;
+        }
+    if (img[0].width != img[1].width || img[0].height != img[1].height) {
+        status = cli_failf(CMD, "image sizes differ: %s is %dx%d, %s is %dx%d", files[0], img[0].width, img[0].height,
+                           files[1], img[1].width, img[1].height);
+        goto done;
+    }
+    warn_nonfinite(files[0], &img[0]);
+    warn_nonfinite(files[1], &img[1]);
+    sss_image_metrics m;
+    if (sss_image_compare(&img[0], &img[1], exposure, &m, map_path ? &map : NULL, &err) != SSS_OK) {
+        const char *msg = strncmp(err.message, "compare: ", 9) == 0 ? err.message + 9 : err.message;
+        status = cli_failf(CMD, "%s vs %s: %s", files[0], files[1], msg);
+        goto done;
+    }
+    if (map_path && write_map(map_path, &map, map_scale, &err) != SSS_OK) {
+        status = cli_fail(CMD, &err);
+        goto done;
+    }
+    printf("dssim=%.6f psnr=%.3f rmse=%.4f max=%.0f\n", m.dssim, m.psnr, m.rmse, m.max_abs);
+done:
+    sss_image_free(&img[0]);
+    sss_image_free(&img[1]);
+    sss_image_free(&map);
+    return status;
 }
