@@ -215,6 +215,10 @@ static int cmp_u64(const void *a, const void *b)
 sss_result sss_mesh_topology_compute(const sss_mesh *mesh, sss_mesh_topology *out, sss_error *err)
 {
     memset(out, 0, sizeof *out);
+    for (size_t i = 0; i < (size_t)mesh->triangle_count * 3; i++)
+        if (mesh->indices[i] >= mesh->vertex_count)
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "mesh: triangle %zu: index %u out of range", i / 3,
+                                 mesh->indices[i]);
     size_t n = 0;
     uint64_t *edges = malloc(((size_t)mesh->triangle_count * 3 + 1) * sizeof(uint64_t));
     if (!edges) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "mesh: out of memory for edges");

@@ -168,7 +168,8 @@ static sss_result read_face(cursor *c, const ply_prop *p, double count_value, bo
         double v;
         int rv = read_value(c, p->type, &v);
         if (rv != RV_OK) return value_error(c, rv, "a vertex index");
-        if (v != floor(v) || v < 0 || v >= (double)nv)
+        if (v != floor(v)) return fail(c, SSS_ERROR_PARSE, "vertex index %.17g is not an integer", v);
+        if (v < 0 || v >= (double)nv)
             return fail(c, SSS_ERROR_PARSE, "vertex index %.17g out of range (%u vertices)", v, nv);
         uint32_t i = (uint32_t)v;
         if (k >= 2) { /* fan around the first corner keeps the polygon's winding */

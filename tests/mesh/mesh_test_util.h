@@ -15,7 +15,7 @@ typedef struct bytes {
     size_t size;
 } bytes;
 
-static void put_text(bytes *b, const char *s)
+static inline void put_text(bytes *b, const char *s)
 {
     size_t n = strlen(s);
     memcpy(b->data + b->size, s, n);
@@ -23,20 +23,20 @@ static void put_text(bytes *b, const char *s)
 }
 
 /* Writes the low `size` bytes of v in little (be = 0) or big (be = 1) endian order. */
-static void put_uint(bytes *b, uint64_t v, int size, int be)
+static inline void put_uint(bytes *b, uint64_t v, int size, int be)
 {
     for (int i = 0; i < size; i++) b->data[b->size + (size_t)(be ? size - 1 - i : i)] = (unsigned char)(v >> (8 * i));
     b->size += (size_t)size;
 }
 
-static void put_f32(bytes *b, float f, int be)
+static inline void put_f32(bytes *b, float f, int be)
 {
     uint32_t u;
     memcpy(&u, &f, 4);
     put_uint(b, u, 4, be);
 }
 
-static void put_f64(bytes *b, double d, int be)
+static inline void put_f64(bytes *b, double d, int be)
 {
     uint64_t u;
     memcpy(&u, &d, 8);
@@ -44,7 +44,7 @@ static void put_f64(bytes *b, double d, int be)
 }
 
 /* 1 when every index is in range, every position and normal finite, every normal unit length. */
-static int mesh_is_sane(const sss_mesh *m)
+static inline int mesh_is_sane(const sss_mesh *m)
 {
     if (!m->positions || !m->normals || !m->indices || m->vertex_count == 0 || m->triangle_count == 0) return 0;
     for (size_t i = 0; i < (size_t)m->triangle_count * 3; i++)
