@@ -73,8 +73,9 @@ sss_result sss_image_compare(const sss_image *a, const sss_image *b, double expo
                              sss_image_metrics *out, sss_image *dssim_map, sss_error *err);
 
 /* The same on ready-made 8-bit sRGB images (width * height * 3 bytes each). Both compare functions
- * need width and height >= 11 (the SSIM window), as scikit-image does. dssim_map, when given, is
- * allocated here (free it with sss_image_free). */
+ * need width and height >= 11 (the SSIM window), as scikit-image does. dssim_map, when given, must
+ * not hold an image: it is allocated here (free it with sss_image_free) and left empty on error.
+ * Border pixels of the map use the same 'reflect' boundary as the filter (scikit-image's full map). */
 sss_result sss_image_compare_srgb8(const uint8_t *a, const uint8_t *b, int width, int height,
                                    sss_image_metrics *out, sss_image *dssim_map, sss_error *err);
 

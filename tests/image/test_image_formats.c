@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <stb_image_write.h>
+
 #include "check.h"
 #include "image_test_util.h"
 #include "sss/image.h"
@@ -325,6 +327,43 @@ static void test_refusals(const char *dir)
     sss_image_free(&img);
 }
 
+static void write_to_file(void *context, void *data, int size) { fwrite(data, 1, (size_t)size, (FILE *)context); }
+
+/* Run-length encoded HDR from an outside encoder (stb_image_write, which truncates mantissas:
+ * error < max channel / 128), including long runs of equal pixels and a width with a short tail. */
+static void test_hdr_from_stb(const char *dir)
+{
+    enum { W = 301, H = 5 };
+    static float v[W * H * 3];
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++)
+            for (int c = 0; c < 3; c++)
+                v[(y * W + x) * 3 + c] = x < 150 ? 0.75f * (float)(y + 1) : (float)(1 + (x * 7 + c * 13) % 97) * 0.03f;
+    char path[256];
+    snprintf(path, sizeof path, "%s/stb.hdr", dir);
+    FILE *f = fopen(path, "wb");
+    CHECK(f && stbi_write_hdr_to_func(write_to_file, f, W, H, 3, v));
+    if (f) fclose(f);
+    sss_image img = {0};
+    sss_error err = {0};
+    CHECK_MSG(sss_image_read(path, &img, &err) == SSS_OK, "%s", err.message);
+    if (img.pixels) {
+        CHECK(img.width == W && img.height == H);
+        int bad = 0;
+        for (int p = 0; p < W * H; p++) {
+            double m = fmax(v[3 * p], fmax(v[3 * p + 1], v[3 * p + 2]));
+            for (int c = 0; c < 3; c++) {
+                double e = v[3 * p + c] - img.pixels[3 * p + c];
+                bad += e < 0.0 || e > m / 128.0;
+            }
+        }
+        CHECK_MSG(bad == 0, "%d values off", bad);
+        CHECK(img.pixels[0] == 0.75f && img.pixels[3 * W * (H - 1)] == 3.75f); /* top row first */
+    }
+    sss_image_free(&img);
+    remove(path);
+}
+
 int main(void)
 {
     char dir[64];
@@ -335,6 +374,7 @@ int main(void)
     test_round_trips(dir);
     test_row_order(dir);
     test_refusals(dir);
+    test_hdr_from_stb(dir);
     remove_dir(dir);
     return CHECK_DONE();
 }

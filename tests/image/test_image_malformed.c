@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <stb_image_write.h>
+
 #include "check.h"
 #include "image_test_util.h"
 #include "sss/image.h"
@@ -60,6 +62,8 @@ static void truncations(const char *dir, const char *valid, const char *ext, siz
     free(b);
 }
 
+static void write_to_file(void *context, void *data, int size) { fwrite(data, 1, (size_t)size, (FILE *)context); }
+
 static void test_truncated(const char *dir)
 {
     sss_image img = {0};
@@ -75,12 +79,19 @@ static void test_truncated(const char *dir)
         truncations(dir, path, ext[i], i == 0 ? 4 : 0);
         remove(path);
     }
-    /* Wide HDR written with run-length encoding by an outside writer is covered in
-     * test_hdr_rle; the independent EXR and PFM files too: */
+    /* Files from the independent encoder of tools/ssim_reference.py, and a run-length encoded HDR
+     * (our writer's are flat) from stb_image_write: */
     truncations(dir, DATA "asym_half.exr", "exr", 0);
     truncations(dir, DATA "tiled_rgba.exr", "exr", 0);
     truncations(dir, DATA "grey_be.pfm", "pfm", 0);
     truncations(dir, DATA "base.png", "png", 4);
+    static float wide[40 * 9 * 3];
+    for (size_t i = 0; i < sizeof wide / sizeof wide[0]; i++) wide[i] = (float)((i / 3) % 5) * 0.5f + (float)(i % 3);
+    snprintf(path, sizeof path, "%s/rle.hdr", dir);
+    FILE *f = fopen(path, "wb");
+    CHECK(f && stbi_write_hdr_to_func(write_to_file, f, 40, 9, 3, wide));
+    if (f) fclose(f);
+    truncations(dir, path, "hdr", 0);
     sss_image_free(&img);
 }
 
