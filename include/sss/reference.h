@@ -1,0 +1,178 @@
+/* sss/reference.h — the CPU ground truth: the subsurface integral of FACTS.md 1, ray traced with
+ * Embree 3, as PBRT-v3's `subsurface` material converges to it under direct lighting.
+ *
+ * What an image shows (per camera sample; rays, shadows and lights as SCENE.md):
+ *  - subsurface object hit at x_o, seen from w_o:
+ *        L = F_t(x_o, w_o) / (pi c) * sum over surface samples x_i of the SAME object of
+ *            T(x_i) A_i S_r(|x_i - x_o|),
+ *    c = 1 - 2 FM1(1/eta), F_t = 1 - FrDielectric(cos theta_o, 1, eta), and
+ *    T(x) = sum over lights of (1 - F_r(cos theta_light)) times that light's irradiance at x
+ *    (shadow rays against every object; area and environment lights integrate F_t over their samples).
+ *    S_r is the material's profile: the PBD table (PBRT-v3, default), the classical dipole, or for
+ *    an artist profile its radially symmetric counterpart albedo * (w G2(r, near s) + (1 - w)
+ *    G2(r, far s)) with normalised 2D Gaussians G2 (the separable product a(x) a(y) of seed 002 is not
+ *    radial, so it has no meaning on a curved surface).
+ *  - diffuse object: reflectance / pi * E (Lambertian, two-sided, direct light only).
+ *  - area-light rectangles are visible (radiance on their emitting side, black behind) and cast
+ *    shadows; camera rays that miss see the environment map (black without one).
+ *  - no interreflection; no specular interface reflection unless desc.specular (then a smooth
+ *    dielectric mirror F_r(cos theta_o) * L of the environment and area lights is added).
+ *
+ * How (the density rule and the tree criterion are documented at sss_reference_desc):
+ *  - surface samples: every triangle of a visible subsurface object is cut into m^2 congruent
+ *    sub-triangles (sides at most ~2 h, area at most h^2) with one jittered sample each, weighted by
+ *    its exact area; T is computed once per sample and shared by all pixels.
+ *  - the profile is split at R0 = 4 h: S_r = S_far + S_near, S_far(r) = S_r(max(r, R0)) (continuous,
+ *    flat inside R0) summed over the samples, and S_near = S_r - S_far (the sharp peak at r -> 0,
+ *    where a sample sum would be noise) integrated in closed form over the local tangent disc with
+ *    the irradiance T(x_o) of the shaded point itself: near = T(x_o) int_0^R0 (S_r - S_r(R0)) 2 pi r dr.
+ *  - the sample sum is hierarchical (Jensen & Buhler 2002): a BVH over the samples stores per node
+ *    the sum of T A (per channel) and the T A-weighted centroid; desc.exact sums all samples instead.
+ *
+ * Determinism: for a given seed the image is bit-identical for any thread count (per-pixel and per-
+ * sample random streams are seeded by their index). The library never prints; progress goes through
+ * the callback.
+ */
+#ifndef SSS_REFERENCE_H
+#define SSS_REFERENCE_H
+
+#include <stdint.h>
+
+#include "sss/common.h"
+#include "sss/image.h"
+#include "sss/material.h"
+#include "sss/mesh.h"
+#include "sss/profile.h"
+#include "sss/scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum sss_reference_quality {
+    SSS_REFERENCE_FINAL = 0, /* default */
+    SSS_REFERENCE_DRAFT
+} sss_reference_quality;
+
+/* Zero-initialised = defaults (final quality, all cores, t = 0, seed 0).
+ *
+ * Density rule. For each visible subsurface object, fp = the world-space size of one pixel at the
+ * object's nearest visible points (the 1st percentile of the pixel footprints depth * 2 tan(fov/2) /
+ * min(width, height) over the pixel centres that see the object; objects no centre sees use their
+ * bounding box's nearest point). Spacing h = fp / 2 (final; 4 samples per pixel^2) or h = fp (draft),
+ * divided by sqrt(density). The total over all objects is capped at 16 M samples (final; draft 2 M)
+ * by growing h, and every triangle gets at least one sample. The mean free path does not appear:
+ * below R0 = 4 h the profile is integrated analytically (see above), and above it the sample sum of
+ * a profile that is flat inside R0 has a relative quadrature error of about 0.7/(4^2 * 2 pi ln(...))
+ * < 0.3% for the 1/r^2 single-scattering peak and less for the smoother diffusion tail.
+ *
+ * Tree criterion. A node (bounding sphere of diameter s around its points, distance d_min from x_o
+ * to that sphere) is used as one sample at its T A-weighted centroid when s <= 0.25 d_min and
+ * s <= 0.5 l(d_min), l(r) = min over channels of the local e-folding length |S_r / S_r'| of S_far;
+ * it is skipped when d_min is beyond the profile's support (where the tail beyond holds less than
+ * 1e-6 of the plane integral) or its T A is zero, and taken whole with S_r(R0) when it lies inside
+ * R0; leaves (<= 8 samples) are summed exactly.
+ *
+ * Pixel samples: spp stratified jittered samples (final 4 = 2x2, draft 1), and pixels whose samples
+ * see different surfaces (object, or normals differing by more than ~25 degrees) or whose 8-bit tone-mapped
+ * values differ by more than 2 get a further 4 x spp stratified samples (final: 16, draft: 4).
+ * Light samples per shaded point: area lights 16 per surface sample and 64 per camera sample
+ * (draft 4 and 16), environment maps 64 and 256 (draft 16 and 64), stratified.
+ */
+typedef struct sss_reference_desc {
+    sss_reference_quality quality;
+    int threads;           /* OpenMP threads; 0 = all cores */
+    double time;           /* animation time (seconds) for sss_reference_render */
+    uint64_t seed;
+    int exact;             /* brute-force sample sums instead of the tree (slow; for validation) */
+    int specular;          /* add the smooth dielectric reflection of environment and area lights */
+    int spp;               /* base samples per pixel (rounded up to a square); 0 = the quality's */
+    int no_adaptive;       /* no extra samples at edges */
+    double density;        /* multiplies the surface-sample density (samples per area); 0 = 1 */
+    int light_samples;     /* multiplies the light sample counts above; 0 = 1 */
+} sss_reference_desc;
+
+typedef struct sss_reference_stats {
+    uint64_t surface_samples;       /* over all subsurface objects */
+    uint64_t tree_nodes, tree_leaves;
+    uint32_t tree_depth;            /* deepest tree */
+    double spacing_min, spacing_max; /* h over subsurface objects (scene units) */
+    double split_radius_min;        /* R0 */
+    uint64_t camera_samples;        /* all primary rays */
+    uint64_t adaptive_pixels;       /* pixels that got the extra samples */
+    uint64_t lookups;               /* sample sums evaluated (camera samples on subsurface objects) */
+    double nodes_per_lookup;        /* mean nodes + samples visited per sum */
+    uint64_t nonfinite_samples;     /* camera samples that produced NaN/Inf and were replaced by 0 */
+    double seconds_setup;           /* Embree scene, profiles, lights */
+    double seconds_samples;         /* surface samples and their irradiance */
+    double seconds_tree;
+    double seconds_pixels;
+    double seconds_total;
+} sss_reference_stats;
+
+/* Progress: fraction in [0, 1] over the whole render, stage a static string ("setup", "surface
+ * samples", "pixels"). Called from worker threads, one call at a time, at most every ~0.1 s. */
+typedef void (*sss_reference_progress_fn)(void *user, double fraction, const char *stage);
+
+/* Renders a loaded scene (objects posed at desc->time with the scene module's shared deformation).
+ * out is allocated (camera width x height) and must be freed with sss_image_free; on failure it is
+ * left empty. stats and progress may be NULL. Environment maps are read with sss_image_read. */
+sss_result sss_reference_render(const sss_scene *scene, const sss_reference_desc *desc, sss_image *out,
+                                sss_reference_progress_fn progress, void *user,
+                                sss_reference_stats *stats, sss_error *err);
+
+/* ---- The scene-independent description the renderer works on -------------------------------- */
+
+typedef enum sss_reference_material {
+    SSS_REFERENCE_DIFFUSE = 0,
+    SSS_REFERENCE_SUBSURFACE
+} sss_reference_material;
+
+typedef struct sss_reference_object {
+    const sss_mesh *mesh;           /* WORLD space; its normals (if any) are the shading normals */
+    sss_reference_material type;
+    double reflectance[3];          /* DIFFUSE, [0, 1] */
+    sss_material optical;           /* SUBSURFACE: per scene unit, eta, g */
+    sss_scene_profile profile;      /* SUBSURFACE: PBD (default), DIPOLE or ARTIST */
+    const sss_pbd_table *table;     /* PBD: built for optical.eta and optical.g */
+    sss_artist_params artist;       /* ARTIST: s in scene units */
+    double albedo[3];               /* ARTIST: plane integral of the profile per channel */
+} sss_reference_object;
+
+typedef struct sss_reference_world {
+    sss_camera camera;
+    const sss_reference_object *objects;
+    size_t object_count;
+    const sss_light *lights;        /* as sss/scene.h (directional direction need not be unit) */
+    size_t light_count;
+    /* Optional, light_count entries: the map of each ENVIRONMENT light (NULL entries and a NULL
+     * array: read lights[i].file with sss_image_read). */
+    const sss_image *const *environment_maps;
+    double exposure;                /* display exposure: the adaptive-sampling threshold uses it */
+} sss_reference_world;
+
+sss_result sss_reference_render_world(const sss_reference_world *world, const sss_reference_desc *desc,
+                                      sss_image *out, sss_reference_progress_fn progress, void *user,
+                                      sss_reference_stats *stats, sss_error *err);
+
+/* ---- Conventions shared with the other renderers ---------------------------------------------- */
+
+/* Equirectangular environment maps (SCENE.md: +y up, u = 0.5 at -z), not mirrored: standing inside
+ * and facing -z, image right is world right (+x). The map's own direction of (u, v), v = 0 the top
+ * row, is  m = (sin theta sin phi, cos theta, -sin theta cos phi),  phi = 2 pi (u - 0.5), theta = pi v;
+ * the world direction is R_y(rotate_y) m, a right-handed rotation about +y (positive angles move the
+ * map's -z towards -x), i.e. the same formula with phi = 2 pi (u - 0.5) - rad(rotate_y). */
+void sss_reference_env_direction(double u, double v, double rotate_y_degrees, double dir[3]);
+/* Its inverse: dir need not be unit; u in [0, 1), v in [0, 1]. */
+void sss_reference_env_uv(const double dir[3], double rotate_y_degrees, double *u, double *v);
+
+/* Spot light falloff of PBRT-v3 (lights/spot.cpp): with cos_total = cos(cone_angle), cos_start =
+ * cos(cone_angle - cone_delta) and cos_theta the cosine between the spot's axis and the direction
+ * from the light to the lit point: 0 below cos_total, 1 above cos_start, delta^4 in between with
+ * delta = (cos_theta - cos_total) / (cos_start - cos_total). (PBRT-v4 uses smoothstep instead.) */
+double sss_reference_spot_falloff(double cone_angle_degrees, double cone_delta_degrees, double cos_theta);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

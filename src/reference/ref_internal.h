@@ -1,0 +1,282 @@
+/* reference/ref_internal.h — internals of the CPU ground truth (see sss/reference.h for the model). */
+#ifndef SSS_REF_INTERNAL_H
+#define SSS_REF_INTERNAL_H
+
+#include <embree3/rtcore.h>
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "sss/reference.h"
+
+#define REF_PI 3.14159265358979323846
+
+/* ---- small vector helpers (double[3]) -------------------------------------------------------- */
+
+static inline double v3_dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static inline void v3_cross(const double a[3], const double b[3], double o[3])
+{
+    double x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2], z = a[0] * b[1] - a[1] * b[0];
+    o[0] = x, o[1] = y, o[2] = z;
+}
+static inline double v3_len(const double a[3]) { return sqrt(v3_dot(a, a)); }
+/* Normalises in place; returns the old length (a zero vector stays zero). */
+static inline double v3_normalize(double a[3])
+{
+    double l = v3_len(a);
+    if (l > 0.0) a[0] /= l, a[1] /= l, a[2] /= l;
+    return l;
+}
+
+/* ---- random numbers: PCG32 streams seeded by a splitmix64 hash of (seed, stream ids) ---------- */
+
+typedef struct ref_rng {
+    uint64_t state, inc;
+} ref_rng;
+
+static inline uint64_t ref_hash64(uint64_t x)
+{
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+static inline uint32_t ref_rng_u32(ref_rng *r)
+{
+    uint64_t old = r->state;
+    r->state = old * 6364136223846793005ull + r->inc;
+    uint32_t xorshifted = (uint32_t)(((old >> 18u) ^ old) >> 27u);
+    uint32_t rot = (uint32_t)(old >> 59u);
+    return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
+}
+
+/* One independent stream per (seed, a, b): a = purpose/object, b = pixel or sample index. */
+static inline void ref_rng_seed(ref_rng *r, uint64_t seed, uint64_t a, uint64_t b)
+{
+    uint64_t h = ref_hash64(seed ^ ref_hash64(a ^ ref_hash64(b)));
+    r->state = 0;
+    r->inc = (ref_hash64(h + 1) << 1) | 1u;
+    ref_rng_u32(r);
+    r->state += h;
+    ref_rng_u32(r);
+}
+
+/* Uniform in [0, 1). */
+static inline double ref_rng_uniform(ref_rng *r) { return ref_rng_u32(r) * (1.0 / 4294967296.0); }
+
+/* ---- tabulated profile (ref_profile.c) -------------------------------------------------------- */
+
+/* The far part S_far(r) = S_r(max(r, R0)) per channel, on a grid uniform in r within each octave
+ * [R0 2^k, R0 2^(k+1)) with REF_PROFILE_STEPS steps: entry i is at r = R0 2^(i >> 8) (1 + (i & 255)/256),
+ * exactly the bits of the float r / R0 (exponent and top 8 mantissa bits), so a lookup is a bit shift. */
+#define REF_PROFILE_STEPS 256
+
+typedef struct ref_profile {
+    float r0, inv_r0;  /* split radius R0 */
+    float r_cut;       /* support: S_far = 0 beyond */
+    uint32_t n;        /* grid entries (the last one is zero) */
+    float *table;      /* 4 n floats: S_far of R, G, B and the criterion length l(r) at entry i */
+    double s0[3];      /* S_r(R0) */
+    double near[3];    /* int_0^R0 (S_r(r) - S_r(R0)) 2 pi r dr */
+    double total[3];   /* plane integral of S_r */
+} ref_profile;
+
+/* A radial profile to tabulate: the physics module's (PBD or dipole) or the artist mixture. */
+typedef struct ref_profile_source {
+    sss_scene_profile kind;
+    sss_profile profile;      /* PBD, DIPOLE */
+    sss_artist_params artist; /* ARTIST */
+    double albedo[3];         /* ARTIST */
+} ref_profile_source;
+
+sss_result ref_profile_source_init(ref_profile_source *src, const sss_reference_object *obj, sss_error *err);
+double ref_profile_source_eval(const ref_profile_source *src, int channel, double r);
+/* Largest radius worth tabulating (PBD: the table's end for the widest channel). */
+double ref_profile_source_support(const ref_profile_source *src);
+/* The profile's plane integral per channel (closed forms, or the table's rho_eff). */
+double ref_profile_source_total(const ref_profile_source *src, int channel);
+
+/* Builds the table for split radius r0 > 0 and maximum distance max_r (the object's diameter). */
+sss_result ref_profile_build(ref_profile *p, const ref_profile_source *src, double r0, double max_r,
+                             sss_error *err);
+void ref_profile_free(ref_profile *p);
+
+/* S_far at r for the three channels (zero beyond r_cut); *len (may be NULL) receives l(r). */
+static inline void ref_profile_lookup(const ref_profile *p, float r, float out[3], float *len)
+{
+    float x = r * p->inv_r0;
+    if (!(x > 1.0f)) x = 1.0f;
+    uint32_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    uint32_t i = (bits >> 15) - (127u << 8);
+    if (i + 1 >= p->n) {
+        out[0] = out[1] = out[2] = 0.0f;
+        if (len) *len = p->table[4 * (p->n - 1) + 3];
+        return;
+    }
+    float t = (float)(bits & 0x7fffu) * (1.0f / 32768.0f);
+    const float *a = p->table + 4 * i, *b = a + 4;
+    out[0] = a[0] + t * (b[0] - a[0]);
+    out[1] = a[1] + t * (b[1] - a[1]);
+    out[2] = a[2] + t * (b[2] - a[2]);
+    if (len) *len = a[3];
+}
+
+/* ---- surface samples and their tree (ref_tree.c) --------------------------------------------- */
+
+typedef struct ref_point {
+    float p[3];
+    float ta[3]; /* T(x_i) A_i per channel */
+} ref_point;
+
+typedef struct ref_node {
+    float center[3], radius; /* bounding sphere of the node's points (bbox centre, half diagonal) */
+    float centroid[3];       /* T A-weighted centroid (area-weighted when T A is zero) */
+    float ta[3];             /* sum of T A */
+    uint32_t first;          /* leaf: first point; inner: index of the first of two children */
+    uint32_t count;          /* leaf: number of points (> 0); inner: 0 */
+} ref_node;
+
+#define REF_LEAF_SIZE 8
+#define REF_TREE_MAX_DEPTH 96
+
+typedef struct ref_tree {
+    ref_point *points; /* reordered by the build */
+    size_t point_count;
+    ref_node *nodes;
+    size_t node_count, leaf_count;
+    uint32_t depth;
+} ref_tree;
+
+/* Builds the tree over tree->points (point_count of them, already filled; points get reordered). */
+sss_result ref_tree_build(ref_tree *tree, sss_error *err);
+void ref_tree_free(ref_tree *tree);
+/* sum over samples of T A S_far(|x - x_o|), hierarchical or brute force; *visits += nodes+points. */
+void ref_tree_sum(const ref_tree *tree, const ref_profile *prof, const float xo[3], double out[3],
+                  uint64_t *visits);
+void ref_brute_sum(const ref_tree *tree, const ref_profile *prof, const float xo[3], double out[3],
+                   uint64_t *visits);
+
+/* Tree criterion (see sss/reference.h). */
+#define REF_TREE_ANGLE 0.25f
+#define REF_TREE_PROFILE 0.5f
+
+/* ---- lights (ref_light.c) -------------------------------------------------------------------- */
+
+typedef struct ref_env {
+    const sss_image *map; /* borrowed or owned_map */
+    sss_image owned_map;
+    double scale[3], rotate_y;
+    int width, height;
+    double *marginal_cdf;     /* height + 1 */
+    double *conditional_cdf;  /* height * (width + 1) */
+    double *row_weight;       /* height: the row's total (for pdfs) */
+    double total;             /* sum of all weights */
+} ref_env;
+
+typedef struct ref_light {
+    sss_light src;
+    /* spot */
+    double axis[3], cos_total, cos_start;
+    /* directional: unit direction towards the light */
+    double to_light[3];
+    /* area */
+    double normal[3], area;
+    /* environment */
+    ref_env env;
+} ref_light;
+
+/* ---- the render context ---------------------------------------------------------------------- */
+
+typedef struct ref_object {
+    const sss_reference_object *src;
+    int subsurface;
+    double eta, c_norm;  /* c = 1 - 2 FM1(1/eta) */
+    ref_profile_source psrc;
+    ref_profile prof;
+    ref_tree tree;
+    double spacing, footprint;
+    double bounds_min[3], bounds_max[3];
+    int visible;         /* seen by a pixel centre */
+    uint64_t visible_pixels;
+} ref_object;
+
+typedef struct ref_camera {
+    double origin[3], right[3], up[3], forward[3];
+    double tan_half[2];
+    int width, height;
+} ref_camera;
+
+typedef struct ref_ctx {
+    const sss_reference_world *world;
+    sss_reference_desc desc;
+    RTCDevice device;
+    RTCScene scene;
+    ref_camera cam;
+    ref_object *objects;
+    size_t object_count;
+    ref_light *lights;
+    size_t light_count;
+    int has_env;
+    unsigned light_geom_base; /* geomID of the first area light rectangle; lights get one each */
+    unsigned *light_of_geom;  /* geomID - light_geom_base -> light index */
+    unsigned light_geom_count;
+    double eps;               /* ray offset scale (scene units) */
+    int area_samples_point, area_samples_camera, env_samples_point, env_samples_camera;
+    /* progress: a phase maps its own fraction [0, 1] to [phase_lo, phase_hi] of the whole */
+    sss_reference_progress_fn progress;
+    void *user;
+    double last_progress_time;
+    double phase_lo, phase_hi;
+    const char *stage;
+    /* Embree's first error message (set by its error callback) */
+    int embree_failed;
+    char embree_message[256];
+    /* statistics of the preparation */
+    sss_reference_stats stats;
+} ref_ctx;
+
+/* ref_setup.c: everything before the pixels. */
+sss_result ref_camera_init(const sss_camera *c, ref_camera *cam, sss_error *err);
+void ref_camera_ray(const ref_camera *cam, double px, double py, double dir[3]);
+/* Validates the world, builds the Embree scene and the lights, finds the sample spacing of every
+ * subsurface object, generates its samples (with irradiance) and builds its tree. */
+sss_result ref_prepare(ref_ctx *ctx, sss_error *err);
+void ref_ctx_free(ref_ctx *ctx);
+void ref_set_phase(ref_ctx *ctx, double lo, double hi, const char *stage);
+
+/* ref_camera.c-free helpers live in ref_render.c; these are shared: */
+sss_result ref_lights_init(ref_ctx *ctx, sss_error *err);
+void ref_lights_free(ref_ctx *ctx);
+/* T(x) (or E(x) when eta <= 0: diffuse, no Fresnel) at a surface point p with unit geometric normal
+ * ng (the side the light must be on) and unit shading normal ns. camera: use the camera-sample light
+ * sample counts. */
+void ref_irradiance(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3],
+                    double eta, int camera, ref_rng *rng, double out[3]);
+/* Radiance of environment lights seen along unit direction dir (0 without one). */
+void ref_env_radiance(const ref_ctx *ctx, const double dir[3], double out[3]);
+/* Radiance of area light `light` seen from direction dir (unit, travelling towards the light). */
+void ref_area_radiance(const ref_ctx *ctx, unsigned light, const double dir[3], double out[3]);
+
+/* True when the segment from p (already offset) along unit dir up to t_max is blocked. */
+int ref_occluded(const ref_ctx *ctx, const double p[3], const double dir[3], double t_max);
+
+/* Offsets a surface point along its normal for a ray leaving it (scene-scale and precision aware). */
+static inline void ref_offset(const ref_ctx *ctx, const double p[3], const double n[3], double out[3])
+{
+    double m = fmax(fabs(p[0]), fmax(fabs(p[1]), fabs(p[2])));
+    double e = ctx->eps + 4e-6 * m;
+    out[0] = p[0] + e * n[0], out[1] = p[1] + e * n[1], out[2] = p[2] + e * n[2];
+}
+
+/* Surface samples of one object and their irradiance (ref_points.c). */
+sss_result ref_points_generate(ref_ctx *ctx, size_t object, double spacing, sss_error *err);
+/* Number of samples ref_points_generate makes for spacing h. */
+uint64_t ref_points_count(const sss_mesh *mesh, double h);
+
+/* Reports the current phase's fraction (stage NULL: the phase's own); thread-safe, throttled to
+ * ~10 calls per second unless force. */
+void ref_report_progress(ref_ctx *ctx, double fraction, const char *stage, int force);
+
+#endif

@@ -1,0 +1,288 @@
+/* reference/ref_render.c — the pixel loop: camera samples, shading (FACTS.md 1), adaptive
+ * supersampling of edges, and the library entry point for a scene-independent world. */
+#include <omp.h>
+#include <stdlib.h>
+
+#include "reference/ref_internal.h"
+
+typedef struct sample_info {
+    int64_t geom;  /* -1: miss */
+    double n[3];   /* geometric normal facing the camera */
+} sample_info;
+
+/* Extra per-thread counters. */
+typedef struct shade_counters {
+    uint64_t visits, lookups;
+} shade_counters;
+
+/* Closest hit of a ray; returns 0 on a miss. */
+static int intersect(const ref_ctx *ctx, const double org[3], const double dir[3], struct RTCRayHit *rh)
+{
+    struct RTCIntersectContext ic;
+    rtcInitIntersectContext(&ic);
+    memset(rh, 0, sizeof *rh);
+    rh->ray.org_x = (float)org[0], rh->ray.org_y = (float)org[1], rh->ray.org_z = (float)org[2];
+    rh->ray.dir_x = (float)dir[0], rh->ray.dir_y = (float)dir[1], rh->ray.dir_z = (float)dir[2];
+    rh->ray.tnear = 0.0f;
+    rh->ray.tfar = INFINITY;
+    rh->ray.mask = 0xffffffffu;
+    rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(ctx->scene, &ic, rh);
+    return rh->hit.geomID != RTC_INVALID_GEOMETRY_ID;
+}
+
+/* What a mirror ray sees: the environment, or an area light; objects are black (no interreflection). */
+static void mirror_radiance(const ref_ctx *ctx, const double org[3], const double dir[3], double out[3])
+{
+    struct RTCRayHit rh;
+    out[0] = out[1] = out[2] = 0.0;
+    if (!intersect(ctx, org, dir, &rh)) {
+        ref_env_radiance(ctx, dir, out);
+        return;
+    }
+    if (rh.hit.geomID >= ctx->light_geom_base)
+        ref_area_radiance(ctx, ctx->light_of_geom[rh.hit.geomID - ctx->light_geom_base], dir, out);
+}
+
+/* Radiance along one camera ray. */
+static void shade(const ref_ctx *ctx, const double dir[3], ref_rng *rng, double L[3], sample_info *info,
+                  shade_counters *cnt)
+{
+    struct RTCRayHit rh;
+    L[0] = L[1] = L[2] = 0.0;
+    info->geom = -1;
+    if (!intersect(ctx, ctx->cam.origin, dir, &rh)) {
+        if (ctx->has_env) ref_env_radiance(ctx, dir, L);
+        return;
+    }
+    unsigned g = rh.hit.geomID;
+    info->geom = g;
+    if (g >= ctx->light_geom_base) {
+        ref_area_radiance(ctx, ctx->light_of_geom[g - ctx->light_geom_base], dir, L);
+        memset(info->n, 0, sizeof info->n);
+        return;
+    }
+    const ref_object *obj = &ctx->objects[g];
+    const sss_mesh *m = obj->src->mesh;
+    const uint32_t *idx = m->indices + 3 * (size_t)rh.hit.primID;
+    const float *fa = m->positions + 3 * (size_t)idx[0], *fb = m->positions + 3 * (size_t)idx[1],
+                *fc = m->positions + 3 * (size_t)idx[2];
+    double u = rh.hit.u, v = rh.hit.v, w0 = 1.0 - u - v;
+    double p[3], e1[3], e2[3], ng[3], ns[3], wo[3] = {-dir[0], -dir[1], -dir[2]};
+    for (int c = 0; c < 3; c++) {
+        /* Barycentric position: more precise than org + t dir far from the camera. */
+        p[c] = w0 * fa[c] + u * fb[c] + v * fc[c];
+        e1[c] = (double)fb[c] - fa[c];
+        e2[c] = (double)fc[c] - fa[c];
+    }
+    v3_cross(e1, e2, ng);
+    if (!(v3_normalize(ng) > 0.0)) memcpy(ng, wo, sizeof ng);
+    if (m->normals) {
+        const float *na = m->normals + 3 * (size_t)idx[0], *nb = m->normals + 3 * (size_t)idx[1],
+                    *nc = m->normals + 3 * (size_t)idx[2];
+        for (int c = 0; c < 3; c++) ns[c] = w0 * na[c] + u * nb[c] + v * nc[c];
+        if (!(v3_normalize(ns) > 0.0)) memcpy(ns, ng, sizeof ns);
+    } else {
+        memcpy(ns, ng, sizeof ns);
+    }
+    if (v3_dot(ng, wo) < 0.0) {
+        /* Seen from behind (open meshes): shade that side. */
+        for (int c = 0; c < 3; c++) ng[c] = -ng[c], ns[c] = -ns[c];
+    }
+    memcpy(info->n, ng, sizeof info->n);
+    const sss_reference_object *src = obj->src;
+    if (!obj->subsurface) {
+        double E[3];
+        ref_irradiance(ctx, p, ng, ns, 0.0, 1, rng, E);
+        for (int c = 0; c < 3; c++) L[c] = src->reflectance[c] / REF_PI * E[c];
+        return;
+    }
+    /* FACTS.md 1: L = F_t(x_o) / (pi c) * [T(x_o) near(R0) + sum_i T_i A_i S_far(|x_i - x_o|)]. */
+    double T[3], far[3] = {0, 0, 0};
+    ref_irradiance(ctx, p, ng, ns, obj->eta, 1, rng, T);
+    if (obj->tree.point_count > 0) {
+        float xo[3] = {(float)p[0], (float)p[1], (float)p[2]};
+        if (ctx->desc.exact)
+            ref_brute_sum(&obj->tree, &obj->prof, xo, far, &cnt->visits);
+        else
+            ref_tree_sum(&obj->tree, &obj->prof, xo, far, &cnt->visits);
+        cnt->lookups++;
+    }
+    double cos_o = fabs(v3_dot(ns, wo));
+    double fr = sss_fresnel_dielectric(cos_o, 1.0, obj->eta);
+    double k = (1.0 - fr) / (REF_PI * obj->c_norm);
+    for (int c = 0; c < 3; c++) L[c] = k * (T[c] * obj->prof.near[c] + far[c]);
+    if (ctx->desc.specular) {
+        /* Smooth dielectric interface: F_r times what the mirror direction sees. */
+        double r[3], d = v3_dot(dir, ns);
+        for (int c = 0; c < 3; c++) r[c] = dir[c] - 2.0 * d * ns[c];
+        if (!(v3_dot(r, ng) > 0.0)) {
+            d = v3_dot(dir, ng);
+            for (int c = 0; c < 3; c++) r[c] = dir[c] - 2.0 * d * ng[c];
+        }
+        v3_normalize(r);
+        double po[3], Lr[3];
+        ref_offset(ctx, p, ng, po);
+        mirror_radiance(ctx, po, r, Lr);
+        for (int c = 0; c < 3; c++) L[c] += fr * Lr[c];
+    }
+}
+
+static int tone8(double x, double scale)
+{
+    double v = x * scale;
+    v = v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0;
+    return (int)lround(255.0 * sss_srgb_encode(v));
+}
+
+/* Whether a pixel's base samples agree (same surface, similar normals, close 8-bit values). */
+static int samples_agree(const double (*L)[3], const sample_info *info, int n, double scale)
+{
+    for (int s = 1; s < n; s++) {
+        if (info[s].geom != info[0].geom) return 0;
+        if (info[0].geom >= 0 && v3_dot(info[s].n, info[0].n) < 0.9) return 0;
+        for (int c = 0; c < 3; c++)
+            if (abs(tone8(L[s][c], scale) - tone8(L[0][c], scale)) > 2) return 0;
+    }
+    return 1;
+}
+
+#define MAX_BASE_SIDE 64
+
+sss_result sss_reference_render_world(const sss_reference_world *world, const sss_reference_desc *desc,
+                                      sss_image *out, sss_reference_progress_fn progress, void *user,
+                                      sss_reference_stats *stats, sss_error *err)
+{
+    if (!out) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "reference: output image is NULL");
+    memset(out, 0, sizeof *out);
+    if (!world) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "reference: world is NULL");
+    double t_start = sss_time_seconds();
+    ref_ctx ctx;
+    memset(&ctx, 0, sizeof ctx);
+    ctx.world = world;
+    if (desc) ctx.desc = *desc;
+    if (ctx.desc.spp < 0 || ctx.desc.threads < 0 || !(ctx.desc.density >= 0.0) || !isfinite(ctx.desc.density) ||
+        ctx.desc.light_samples < 0 || !isfinite(ctx.desc.time))
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "reference: spp, threads, density and light_samples must be >= 0");
+    ctx.progress = progress;
+    ctx.user = user;
+    ctx.last_progress_time = -1e30;
+    int draft = ctx.desc.quality == SSS_REFERENCE_DRAFT;
+    int ls = ctx.desc.light_samples > 0 ? ctx.desc.light_samples : 1;
+    ctx.area_samples_point = (draft ? 4 : 16) * ls;
+    ctx.area_samples_camera = (draft ? 16 : 64) * ls;
+    ctx.env_samples_point = (draft ? 16 : 64) * ls;
+    ctx.env_samples_camera = (draft ? 64 : 256) * ls;
+    int saved_threads = omp_get_max_threads();
+    if (ctx.desc.threads > 0) omp_set_num_threads(ctx.desc.threads);
+
+    sss_result r = ref_prepare(&ctx, err);
+    if (r == SSS_OK) r = sss_image_create(out, ctx.cam.width, ctx.cam.height, err);
+    if (r != SSS_OK) {
+        ref_ctx_free(&ctx);
+        sss_image_free(out);
+        omp_set_num_threads(saved_threads);
+        return r;
+    }
+
+    double t_pixels = sss_time_seconds();
+    ref_set_phase(&ctx, 0.3, 1.0, "pixels");
+    int spp = ctx.desc.spp > 0 ? ctx.desc.spp : (draft ? 1 : 4);
+    int kb = (int)ceil(sqrt((double)spp));
+    if (kb > MAX_BASE_SIDE) kb = MAX_BASE_SIDE;
+    int ka = 2 * kb; /* the extra samples: 4 x spp */
+    const int W = ctx.cam.width, H = ctx.cam.height;
+    const double scale = exp2(isfinite(world->exposure) ? world->exposure : 0.0);
+    uint64_t visits = 0, lookups = 0, camera_samples = 0, adaptive = 0, nonfinite = 0;
+    int rows_done = 0, alloc_failed = 0;
+#pragma omp parallel reduction(+ : visits, lookups, camera_samples, adaptive, nonfinite)
+    {
+        double (*L)[3] = malloc(sizeof(double[3]) * (size_t)kb * kb);
+        sample_info *info = malloc(sizeof(sample_info) * (size_t)kb * kb);
+        int ok = L && info;
+#pragma omp for schedule(dynamic, 1)
+        for (int y = 0; y < H; y++) {
+            if (!ok) continue;
+            shade_counters cnt = {0, 0};
+            for (int x = 0; x < W; x++) {
+                ref_rng rng;
+                ref_rng_seed(&rng, ctx.desc.seed, 0x50495845ull, (uint64_t)y * (uint64_t)W + (uint64_t)x);
+                double sum[3] = {0, 0, 0};
+                int n = kb * kb;
+                for (int s = 0; s < n; s++) {
+                    double dir[3];
+                    ref_camera_ray(&ctx.cam, x + (s % kb + ref_rng_uniform(&rng)) / kb,
+                                   y + (s / kb + ref_rng_uniform(&rng)) / kb, dir);
+                    shade(&ctx, dir, &rng, L[s], &info[s], &cnt);
+                    for (int c = 0; c < 3; c++) {
+                        if (!isfinite(L[s][c])) {
+                            nonfinite++;
+                            L[s][c] = 0.0;
+                        }
+                        sum[c] += L[s][c];
+                    }
+                }
+                int total = n;
+                if (!ctx.desc.no_adaptive && n > 1 && !samples_agree((const double(*)[3])L, info, n, scale)) {
+                    adaptive++;
+                    for (int s = 0; s < ka * ka; s++) {
+                        double dir[3], Ls[3];
+                        sample_info si;
+                        ref_camera_ray(&ctx.cam, x + (s % ka + ref_rng_uniform(&rng)) / ka,
+                                       y + (s / ka + ref_rng_uniform(&rng)) / ka, dir);
+                        shade(&ctx, dir, &rng, Ls, &si, &cnt);
+                        for (int c = 0; c < 3; c++) {
+                            if (!isfinite(Ls[c])) {
+                                nonfinite++;
+                                Ls[c] = 0.0;
+                            }
+                            sum[c] += Ls[c];
+                        }
+                    }
+                    total += ka * ka;
+                }
+                camera_samples += (uint64_t)total;
+                float *px = out->pixels + 3 * ((size_t)y * (size_t)W + (size_t)x);
+                for (int c = 0; c < 3; c++) {
+                    double val = sum[c] / total;
+                    px[c] = isfinite(val) && val > 0.0 ? (float)val : 0.0f;
+                }
+            }
+            visits += cnt.visits;
+            lookups += cnt.lookups;
+            int d;
+#pragma omp atomic capture
+            d = ++rows_done;
+            ref_report_progress(&ctx, (double)d / H, NULL, 0);
+        }
+        free(L);
+        free(info);
+        if (!ok) {
+#pragma omp atomic write
+            alloc_failed = 1;
+        }
+    }
+    omp_set_num_threads(saved_threads);
+    if (alloc_failed) {
+        ref_ctx_free(&ctx);
+        sss_image_free(out);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (pixel samples)");
+    }
+    ref_report_progress(&ctx, 1.0, NULL, 1);
+    ctx.stats.seconds_pixels = sss_time_seconds() - t_pixels;
+    ctx.stats.camera_samples = camera_samples;
+    ctx.stats.adaptive_pixels = adaptive;
+    ctx.stats.lookups = lookups;
+    ctx.stats.nodes_per_lookup = lookups ? (double)visits / (double)lookups : 0.0;
+    ctx.stats.nonfinite_samples = nonfinite;
+    ctx.stats.seconds_total = sss_time_seconds() - t_start;
+    if (stats) *stats = ctx.stats;
+    ref_ctx_free(&ctx);
+    if (sss_image_count_nonfinite(out) != 0) {
+        sss_image_free(out);
+        return sss_error_set(err, SSS_ERROR_NUMERIC, "reference: the image has non-finite values");
+    }
+    return SSS_OK;
+}
