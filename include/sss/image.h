@@ -28,8 +28,13 @@ typedef struct sss_image {
 sss_result sss_image_create(sss_image *img, int width, int height, sss_error *err); /* zero-filled */
 void sss_image_free(sss_image *img);
 
-/* Format by file extension (case-insensitive): .png, .hdr, .pfm, .exr. Errors name the path. */
+/* Format by file extension (case-insensitive): .png, .hdr, .pfm, .exr. Errors name the path.
+ * A header that claims more pixels than the file's data could hold (given the format's best
+ * compression) is refused before the image is allocated. */
 sss_result sss_image_read(const char *path, sss_image *out, sss_error *err);
+/* The same from memory (size bytes; for fuzzing and embedded data): the format comes from name's
+ * extension, which also names the input in messages (NULL = "image", which has no format). */
+sss_result sss_image_decode(const void *data, size_t size, const char *name, sss_image *out, sss_error *err);
 /* PNG is tone-mapped with exposure; HDR, PFM and EXR store linear values (exposure ignored).
  * The file is written to a temporary name in the same folder and renamed when complete.
  * Writers REFUSE images holding NaN or Inf (SSS_ERROR_NUMERIC, the message gives the count; see

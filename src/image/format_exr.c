@@ -122,6 +122,156 @@ static exr_result_t decode_chunk(exr_context_t ctx, const exr_chunk_info_t *cinf
     return rv;
 }
 
+/* Largest ratio of decoded to stored bytes that each compression can reach, to refuse a header that
+ * claims far more pixels than the file could hold before the image (12 bytes per pixel) and the
+ * library's chunk buffers are allocated. NONE stores raw data; RLE repeats one byte at most 128 times
+ * per 2 bytes; deflate (ZIPS, ZIP, PXR24, which also packs 32-bit floats into 24 bits) cannot exceed
+ * 1032:1; B44(A) stores 16 half samples (32 bytes) in at least 3 bytes; PIZ's Huffman coder repeats a
+ * value at most 255 times per run code (>= 9 bits); DWA is lossy with no such bound: generous. */
+static double max_expansion(int compression)
+{
+    switch (compression) {
+    case EXR_COMPRESSION_NONE: return 1.0;
+    case EXR_COMPRESSION_RLE: return 64.0;
+    case EXR_COMPRESSION_ZIPS:
+    case EXR_COMPRESSION_ZIP: return 1032.0;
+    case EXR_COMPRESSION_PXR24: return 1032.0 * 4.0 / 3.0;
+    case EXR_COMPRESSION_B44:
+    case EXR_COMPRESSION_B44A: return 32.0 / 3.0;
+    case EXR_COMPRESSION_PIZ: return 1024.0;
+    default: return 65536.0;
+    }
+}
+
+/* The part's chunk grid: scanline blocks, or level-0 tiles. */
+typedef struct exr_grid {
+    int tiled;
+    int32_t lines;     /* scanline: lines per chunk */
+    uint32_t tw, th;   /* tiled: tile size */
+    long nx, ny;       /* chunks along x (1 for scanlines) and y */
+} exr_grid;
+
+static exr_result_t chunk_info(exr_context_t ctx, const exr_grid *g, const exr_attr_box2i_t *dw, long cx, long cy,
+                               exr_chunk_info_t *cinfo)
+{
+    if (g->tiled) return exr_read_tile_chunk_info(ctx, 0, (int)cx, (int)cy, 0, 0, cinfo);
+    return exr_read_scanline_chunk_info(ctx, 0, (int)(dw->min.y + cy * g->lines), cinfo);
+}
+
+/* Reads every chunk's table entry and header before anything large is allocated: all must exist, and
+ * their stored bytes must be able to expand to what the header claims. */
+static sss_result check_chunks(exr_context_t ctx, const char *path, const exr_grid *g, const exr_attr_box2i_t *dw,
+                               long long file_size, sss_error *err)
+{
+    int32_t count = 0;
+    if (exr_get_chunk_count(ctx, 0, &count) != EXR_ERR_SUCCESS || count <= 0)
+        return sss_error_set(err, SSS_ERROR_PARSE, "%s: bad chunk count", path);
+    /* The offset table alone holds 8 bytes per chunk (all levels of a mipmapped file). */
+    if (file_size >= 0 && (long long)count > file_size / 8)
+        return sss_error_set(err, SSS_ERROR_PARSE, "%s: truncated: %d chunks cannot fit in %lld bytes", path, count,
+                             file_size);
+    double packed = 0.0, unpacked = 0.0, bound = 0.0;
+    for (long cy = 0; cy < g->ny; cy++)
+        for (long cx = 0; cx < g->nx; cx++) {
+            exr_chunk_info_t cinfo;
+            exr_result_t rv = chunk_info(ctx, g, dw, cx, cy, &cinfo);
+            if (rv != EXR_ERR_SUCCESS)
+                return sss_error_set(err, SSS_ERROR_PARSE, "%s: bad or missing chunk %ld: %s", path,
+                                     cy * g->nx + cx, exr_detail(rv));
+            packed += (double)cinfo.packed_size;
+            unpacked += (double)cinfo.unpacked_size;
+            bound += (double)cinfo.packed_size * max_expansion(cinfo.compression) + 64.0;
+        }
+    if (unpacked > bound || (file_size >= 0 && packed > (double)file_size))
+        return sss_error_set(err, SSS_ERROR_PARSE,
+                             "%s: truncated or corrupt: %.0f bytes of pixel data cannot hold the %.0f the header claims",
+                             path, packed, unpacked);
+    return SSS_OK;
+}
+
+/* Reads the first part of an open context into out; file_size (or -1) bounds the header's claims. */
+static sss_result read_context(exr_context_t ctx, const char *path, long long file_size, sss_image *out, sss_error *err)
+{
+    sss_result r = SSS_OK;
+    exr_result_t rv = EXR_ERR_SUCCESS;
+    exr_storage_t storage;
+    exr_attr_box2i_t dw;
+    const exr_attr_chlist_t *chlist = NULL;
+    exr_channels ch = {0, 0};
+    if (exr_get_storage(ctx, 0, &storage) != EXR_ERR_SUCCESS || exr_get_data_window(ctx, 0, &dw) != EXR_ERR_SUCCESS ||
+        exr_get_channels(ctx, 0, &chlist) != EXR_ERR_SUCCESS || !chlist)
+        return sss_error_set(err, SSS_ERROR_PARSE, "%s: incomplete OpenEXR header: %s", path,
+                             exr_detail(EXR_ERR_MISSING_REQ_ATTR));
+    if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED)
+        return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "%s: deep OpenEXR images are not supported", path);
+    long w = (long)dw.max.x - dw.min.x + 1, h = (long)dw.max.y - dw.min.y + 1;
+    if ((r = sss_image_check_dims_(path, w, h, err)) != SSS_OK) return r;
+    if ((r = find_channels(path, chlist, &ch, err)) != SSS_OK) return r;
+    exr_grid g = {storage == EXR_STORAGE_TILED, 0, 0, 0, 1, 0};
+    if (g.tiled) {
+        exr_tile_level_mode_t level;
+        exr_tile_round_mode_t round;
+        rv = exr_get_tile_descriptor(ctx, 0, &g.tw, &g.th, &level, &round);
+        if (rv == EXR_ERR_SUCCESS && (g.tw == 0 || g.th == 0)) rv = EXR_ERR_INVALID_ATTR;
+        if (rv != EXR_ERR_SUCCESS)
+            return sss_error_set(err, SSS_ERROR_PARSE, "%s: bad tile description: %s", path, exr_detail(rv));
+        g.nx = (w + (long)g.tw - 1) / (long)g.tw;
+        g.ny = (h + (long)g.th - 1) / (long)g.th;
+    } else {
+        rv = exr_get_scanlines_per_chunk(ctx, 0, &g.lines);
+        if (rv == EXR_ERR_SUCCESS && g.lines <= 0) rv = EXR_ERR_INVALID_ATTR;
+        if (rv != EXR_ERR_SUCCESS) return sss_error_set(err, SSS_ERROR_PARSE, "%s: %s", path, exr_detail(rv));
+        g.ny = (h + g.lines - 1) / g.lines;
+    }
+    if ((r = check_chunks(ctx, path, &g, &dw, file_size, err)) != SSS_OK) return r;
+    if ((r = sss_image_create(out, (int)w, (int)h, err)) != SSS_OK) {
+        sss_error_prefix(err, path);
+        return r;
+    }
+    for (long cy = 0; r == SSS_OK && cy < g.ny; cy++)
+        for (long cx = 0; r == SSS_OK && cx < g.nx; cx++) {
+            exr_chunk_info_t cinfo;
+            rv = chunk_info(ctx, &g, &dw, cx, cy, &cinfo);
+            if (rv == EXR_ERR_SUCCESS) {
+                int x0 = g.tiled ? (int)(cx * (long)g.tw) : cinfo.start_x - dw.min.x;
+                int y0 = g.tiled ? (int)(cy * (long)g.th) : cinfo.start_y - dw.min.y;
+                rv = decode_chunk(ctx, &cinfo, x0, y0, out, ch.grey);
+            }
+            if (rv == EXR_ERR_SUCCESS) continue;
+            if (g.tiled)
+                r = sss_error_set(err, SSS_ERROR_PARSE, "%s: cannot decode tile (%ld, %ld): %s", path, cx, cy,
+                                  exr_detail(rv));
+            else
+                r = sss_error_set(err, SSS_ERROR_PARSE, "%s: cannot decode scanlines from y = %ld: %s", path,
+                                  (long)dw.min.y + cy * g.lines, exr_detail(rv));
+        }
+    if (r == SSS_OK && ch.grey) {
+        size_t n = (size_t)w * (size_t)h;
+        for (size_t i = 0; i < n; i++) out->pixels[3 * i + 1] = out->pixels[3 * i + 2] = out->pixels[3 * i];
+    }
+    if (r != SSS_OK) sss_image_free(out);
+    return r;
+}
+
+static const unsigned char exr_magic[4] = {0x76, 0x2f, 0x31, 0x01};
+
+/* Opens with init (the file path, or a custom reader and path as the name), reads, and always
+ * finishes the context. */
+static sss_result read_with(const char *path, exr_context_initializer_t *init, long long file_size, sss_image *out,
+                            sss_error *err)
+{
+    exr_context_t ctx = NULL;
+    exr_result_t rv = exr_start_read(&ctx, path, init);
+    sss_result r;
+    if (rv != EXR_ERR_SUCCESS)
+        r = sss_error_set(err, rv == EXR_ERR_FILE_ACCESS ? SSS_ERROR_IO : SSS_ERROR_PARSE,
+                          "%s: cannot read OpenEXR header: %s", path, exr_detail(rv));
+    else
+        r = read_context(ctx, path, file_size, out, err);
+    exr_finish(&ctx);
+    return r;
+}
+
 sss_result sss_exr_read_(const char *path, sss_image *out, sss_error *err)
 {
     /* Open it ourselves first for a plain "cannot open" message and a signature check. */
@@ -129,85 +279,51 @@ sss_result sss_exr_read_(const char *path, sss_image *out, sss_error *err)
     if (!f) return sss_error_set(err, SSS_ERROR_IO, "%s: cannot open: %s", path, strerror(errno));
     unsigned char magic[4];
     size_t got = fread(magic, 1, 4, f);
+    long long size = got == 4 ? sss_image_stream_remaining_(f) : -1;
+    if (size >= 0) size += 4;
     fclose(f);
-    static const unsigned char exr_magic[4] = {0x76, 0x2f, 0x31, 0x01};
     if (got != 4 || memcmp(magic, exr_magic, 4) != 0)
         return sss_error_set(err, SSS_ERROR_PARSE, "%s: not an OpenEXR file (%s)", path,
                              got == 0 ? "empty" : "bad signature");
-
     exr_context_initializer_t init = exr_init();
-    exr_context_t ctx = NULL;
-    exr_result_t rv = exr_start_read(&ctx, path, &init);
-    if (rv != EXR_ERR_SUCCESS) {
-        sss_error_set(err, rv == EXR_ERR_FILE_ACCESS ? SSS_ERROR_IO : SSS_ERROR_PARSE, "%s: cannot read OpenEXR header: %s",
-                      path, exr_detail(rv));
-        exr_finish(&ctx);
-        return err ? err->code : SSS_ERROR_PARSE;
-    }
-    sss_result r = SSS_OK;
-    exr_storage_t storage;
-    exr_attr_box2i_t dw;
-    const exr_attr_chlist_t *chlist = NULL;
-    exr_channels ch = {0, 0};
-    if (exr_get_storage(ctx, 0, &storage) != EXR_ERR_SUCCESS || exr_get_data_window(ctx, 0, &dw) != EXR_ERR_SUCCESS ||
-        exr_get_channels(ctx, 0, &chlist) != EXR_ERR_SUCCESS || !chlist) {
-        r = sss_error_set(err, SSS_ERROR_PARSE, "%s: incomplete OpenEXR header: %s", path, exr_detail(EXR_ERR_MISSING_REQ_ATTR));
-        goto done;
-    }
-    if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED) {
-        r = sss_error_set(err, SSS_ERROR_UNSUPPORTED, "%s: deep OpenEXR images are not supported", path);
-        goto done;
-    }
-    long w = (long)dw.max.x - dw.min.x + 1, h = (long)dw.max.y - dw.min.y + 1;
-    if ((r = sss_image_check_dims_(path, w, h, err)) != SSS_OK) goto done;
-    if ((r = find_channels(path, chlist, &ch, err)) != SSS_OK) goto done;
-    if ((r = sss_image_create(out, (int)w, (int)h, err)) != SSS_OK) {
-        sss_error_prefix(err, path);
-        goto done;
-    }
-    if (storage == EXR_STORAGE_SCANLINE) {
-        int32_t lines = 0;
-        rv = exr_get_scanlines_per_chunk(ctx, 0, &lines);
-        if (rv == EXR_ERR_SUCCESS && lines <= 0) rv = EXR_ERR_INVALID_ATTR;
-        for (long y = dw.min.y; rv == EXR_ERR_SUCCESS && y <= dw.max.y; y += lines) {
-            exr_chunk_info_t cinfo;
-            rv = exr_read_scanline_chunk_info(ctx, 0, (int)y, &cinfo);
-            if (rv == EXR_ERR_SUCCESS) rv = decode_chunk(ctx, &cinfo, cinfo.start_x - dw.min.x, cinfo.start_y - dw.min.y, out, ch.grey);
-            if (rv != EXR_ERR_SUCCESS)
-                r = sss_error_set(err, SSS_ERROR_PARSE, "%s: cannot decode scanlines from y = %ld: %s", path, y,
-                                  exr_detail(rv));
-        }
-    } else {
-        uint32_t tw = 0, th = 0;
-        exr_tile_level_mode_t level;
-        exr_tile_round_mode_t round;
-        rv = exr_get_tile_descriptor(ctx, 0, &tw, &th, &level, &round);
-        if (rv == EXR_ERR_SUCCESS && (tw == 0 || th == 0)) rv = EXR_ERR_INVALID_ATTR;
-        long nx = rv == EXR_ERR_SUCCESS ? (w + (long)tw - 1) / (long)tw : 0;
-        long ny = rv == EXR_ERR_SUCCESS ? (h + (long)th - 1) / (long)th : 0;
-        for (long ty = 0; rv == EXR_ERR_SUCCESS && ty < ny; ty++)
-            for (long tx = 0; rv == EXR_ERR_SUCCESS && tx < nx; tx++) {
-                exr_chunk_info_t cinfo;
-                rv = exr_read_tile_chunk_info(ctx, 0, (int)tx, (int)ty, 0, 0, &cinfo);
-                if (rv == EXR_ERR_SUCCESS)
-                    rv = decode_chunk(ctx, &cinfo, (int)(tx * (long)tw), (int)(ty * (long)th), out, ch.grey);
-                if (rv != EXR_ERR_SUCCESS)
-                    r = sss_error_set(err, SSS_ERROR_PARSE, "%s: cannot decode tile (%ld, %ld): %s", path, tx, ty,
-                                      exr_detail(rv));
-            }
-        if (rv != EXR_ERR_SUCCESS && r == SSS_OK)
-            r = sss_error_set(err, SSS_ERROR_PARSE, "%s: bad tile description: %s", path, exr_detail(rv));
-    }
-    if (r == SSS_OK && rv != EXR_ERR_SUCCESS)
-        r = sss_error_set(err, SSS_ERROR_PARSE, "%s: %s", path, exr_detail(rv));
-    if (r == SSS_OK && ch.grey) {
-        size_t n = (size_t)w * (size_t)h;
-        for (size_t i = 0; i < n; i++) out->pixels[3 * i + 1] = out->pixels[3 * i + 2] = out->pixels[3 * i];
-    }
-done:
-    exr_finish(&ctx);
-    if (r != SSS_OK) sss_image_free(out);
-    return r;
+    return read_with(path, &init, size, out, err);
+}
+
+/* The library's custom I/O on a memory buffer (pread semantics: short reads at the end). */
+typedef struct exr_memory {
+    const unsigned char *data;
+    size_t size;
+} exr_memory;
+
+static int64_t memory_read(exr_const_context_t ctxt, void *user, void *buffer, uint64_t sz, uint64_t offset,
+                           exr_stream_error_func_ptr_t error_cb)
+{
+    (void)ctxt;
+    (void)error_cb;
+    const exr_memory *m = user;
+    if (offset >= m->size) return 0;
+    uint64_t n = m->size - offset < sz ? m->size - offset : sz;
+    memcpy(buffer, m->data + offset, (size_t)n);
+    return (int64_t)n;
+}
+
+static int64_t memory_size(exr_const_context_t ctxt, void *user)
+{
+    (void)ctxt;
+    return (int64_t)((const exr_memory *)user)->size;
+}
+
+sss_result sss_exr_decode_(const void *data, size_t size, const char *name, sss_image *out, sss_error *err)
+{
+    if (size < 4 || memcmp(data, exr_magic, 4) != 0)
+        return sss_error_set(err, SSS_ERROR_PARSE, "%s: not an OpenEXR file (%s)", name,
+                             size == 0 ? "empty" : "bad signature");
+    exr_memory m = {data, size};
+    exr_context_initializer_t init = exr_init();
+    init.user_data = &m;
+    init.read_fn = memory_read;
+    init.size_fn = memory_size;
+    return read_with(name, &init, (long long)size, out, err);
 }
 
 /* IEEE 754 binary16 of f, rounded to nearest even; returns 0 when |f| overflows the half range

@@ -88,62 +88,49 @@ static int read_scanline(FILE *f, int w, unsigned char *scan)
     return 0;
 }
 
-sss_result sss_hdr_read_(const char *path, sss_image *out, sss_error *err)
+sss_result sss_hdr_read_(FILE *f, const char *path, sss_image *out, sss_error *err)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) return sss_error_set(err, SSS_ERROR_IO, "%s: cannot open: %s", path, strerror(errno));
     char line[HDR_LINE_MAX];
     int overlong = 0;
     sss_result r = SSS_OK;
-    if (!read_line(f, line, sizeof line, &overlong) || strncmp(line, "#?", 2) != 0) {
-        fclose(f);
+    if (!read_line(f, line, sizeof line, &overlong) || strncmp(line, "#?", 2) != 0)
         return sss_error_set(err, SSS_ERROR_PARSE, "%s: not a Radiance HDR file (no '#?' signature)", path);
-    }
     /* Header variables up to an empty line. */
     for (int n = 0;; n++) {
-        if (n >= HDR_HEADER_LINES_MAX || !read_line(f, line, sizeof line, &overlong)) {
-            fclose(f);
+        if (n >= HDR_HEADER_LINES_MAX || !read_line(f, line, sizeof line, &overlong))
             return sss_error_set(err, SSS_ERROR_PARSE, "%s: %s", path,
                                  overlong ? "header line too long" : "header has no end (truncated?)");
-        }
         if (line[0] == '\0') break;
-        if (strncmp(line, "FORMAT=", 7) == 0 && strcmp(line + 7, "32-bit_rle_rgbe") != 0) {
-            fclose(f);
+        if (strncmp(line, "FORMAT=", 7) == 0 && strcmp(line + 7, "32-bit_rle_rgbe") != 0)
             return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "%s: unsupported pixel format '%s' (only 32-bit_rle_rgbe)",
                                  path, line + 7);
-        }
     }
-    if (!read_line(f, line, sizeof line, &overlong)) {
-        fclose(f);
+    if (!read_line(f, line, sizeof line, &overlong))
         return sss_error_set(err, SSS_ERROR_PARSE, "%s: missing resolution line", path);
-    }
     char ysign = 0, ychar = 0, xsign = 0, xchar = 0;
     long h = 0, w = 0;
     int used = 0;
     if (sscanf(line, "%c%c %ld %c%c %ld%n", &ysign, &ychar, &h, &xsign, &xchar, &w, &used) != 6 ||
-        line[used] != '\0' || (ysign != '-' && ysign != '+') || (xsign != '-' && xsign != '+')) {
-        fclose(f);
+        line[used] != '\0' || (ysign != '-' && ysign != '+') || (xsign != '-' && xsign != '+'))
         return sss_error_set(err, SSS_ERROR_PARSE, "%s: malformed resolution line '%.60s'", path, line);
-    }
-    if (ychar != 'Y' || xchar != 'X' || xsign != '+') {
-        fclose(f);
+    if (ychar != 'Y' || xchar != 'X' || xsign != '+')
         return sss_error_set(err, SSS_ERROR_UNSUPPORTED,
                              "%s: unsupported pixel order '%.60s' (only -Y H +X W and +Y H +X W)", path, line);
-    }
     r = sss_image_check_dims_(path, w, h, err);
-    if (r != SSS_OK) {
-        fclose(f);
-        return r;
-    }
+    if (r != SSS_OK) return r;
+    /* The smallest scanline the format allows: flat 4 bytes per pixel, or for run-length widths the
+     * 4-byte marker and per component one 2-byte run per 127 pixels. Refuse a header that claims more
+     * than the data can hold before allocating the image (12 bytes per pixel). */
+    long long min_scan = w < 8 || w > 0x7fff ? 4LL * w : 4 + 8 * ((w + 126) / 127);
+    long long have = sss_image_stream_remaining_(f);
+    if (have >= 0 && have / h < min_scan)
+        return sss_error_set(err, SSS_ERROR_PARSE, "%s: truncated: %lld bytes of pixel data cannot hold %ldx%ld pixels",
+                             path, have, w, h);
     unsigned char *scan = malloc((size_t)w * 4);
-    if (!scan) {
-        fclose(f);
-        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
-    }
+    if (!scan) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     r = sss_image_create(out, (int)w, (int)h, err);
     if (r != SSS_OK) {
         free(scan);
-        fclose(f);
         sss_error_prefix(err, path);
         return r;
     }
@@ -161,7 +148,6 @@ sss_result sss_hdr_read_(const char *path, sss_image *out, sss_error *err)
         for (long x = 0; x < w; x++) rgbe_to_float(scan + 4 * x, dst + 3 * x);
     }
     free(scan);
-    fclose(f);
     if (r != SSS_OK) sss_image_free(out);
     return r;
 }

@@ -43,53 +43,34 @@ static int parse_int(const char *s, long *out)
     return 1;
 }
 
-sss_result sss_pfm_read_(const char *path, sss_image *out, sss_error *err)
+sss_result sss_pfm_read_(FILE *f, const char *path, sss_image *out, sss_error *err)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) return sss_error_set(err, SSS_ERROR_IO, "%s: cannot open: %s", path, strerror(errno));
     char magic[4], tw[32], th[32], ts[64];
     long w = 0, h = 0;
     sss_result r = SSS_OK;
-    if (!read_token(f, magic, sizeof magic) || (strcmp(magic, "PF") != 0 && strcmp(magic, "Pf") != 0)) {
-        fclose(f);
+    if (!read_token(f, magic, sizeof magic) || (strcmp(magic, "PF") != 0 && strcmp(magic, "Pf") != 0))
         return sss_error_set(err, SSS_ERROR_PARSE, "%s: not a PFM file (expected 'PF' or 'Pf')", path);
-    }
     int channels = magic[1] == 'F' ? 3 : 1;
-    if (!read_token(f, tw, sizeof tw) || !read_token(f, th, sizeof th) || !read_token(f, ts, sizeof ts)) {
-        fclose(f);
+    if (!read_token(f, tw, sizeof tw) || !read_token(f, th, sizeof th) || !read_token(f, ts, sizeof ts))
         return sss_error_set(err, SSS_ERROR_PARSE, "%s: incomplete PFM header", path);
-    }
     char *end = NULL;
     double scale = strtod(ts, &end);
     if (!parse_int(tw, &w) || !parse_int(th, &h) || end == ts || *end != '\0' || !isfinite(scale) ||
-        scale == 0.0) {
-        fclose(f);
+        scale == 0.0)
         return sss_error_set(err, SSS_ERROR_PARSE, "%s: malformed PFM header '%s %s %s %s'", path, magic, tw, th, ts);
-    }
     r = sss_image_check_dims_(path, w, h, err);
-    if (r != SSS_OK) {
-        fclose(f);
-        return r;
-    }
+    if (r != SSS_OK) return r;
     /* Check the data is all there before allocating the image. */
     size_t row_bytes = (size_t)w * (size_t)channels * 4, need = row_bytes * (size_t)h;
-    struct stat st;
-    long here = ftell(f);
-    if (here >= 0 && fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode) &&
-        (uint64_t)st.st_size - (uint64_t)here < (uint64_t)need) {
-        fclose(f);
+    long long have = sss_image_stream_remaining_(f);
+    if (have >= 0 && (uint64_t)have < (uint64_t)need)
         return sss_error_set(err, SSS_ERROR_PARSE, "%s: truncated: %lld bytes of pixel data for %ldx%ld, expected %zu",
-                             path, (long long)st.st_size - here, w, h, need);
-    }
+                             path, have, w, h, need);
     unsigned char *row = malloc(row_bytes);
-    if (!row) {
-        fclose(f);
-        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
-    }
+    if (!row) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     r = sss_image_create(out, (int)w, (int)h, err);
     if (r != SSS_OK) {
         free(row);
-        fclose(f);
         sss_error_prefix(err, path);
         return r;
     }
@@ -115,7 +96,6 @@ sss_result sss_pfm_read_(const char *path, sss_image *out, sss_error *err)
         }
     }
     free(row);
-    fclose(f);
     if (r != SSS_OK) sss_image_free(out);
     return r;
 }

@@ -7,6 +7,7 @@
  * Writing: 8-bit RGB, tone-mapped per SCENE.md render.exposure, via a temporary file and rename. */
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -26,34 +27,70 @@ static const char *stb_reason(void)
 
 static const unsigned char png_signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
 
-sss_result sss_png_read_(const char *path, sss_image *out, sss_error *err)
+static uint32_t be32(const unsigned char *b)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) return sss_error_set(err, SSS_ERROR_IO, "%s: cannot open: %s", path, strerror(errno));
+    return (uint32_t)b[0] << 24 | (uint32_t)b[1] << 16 | (uint32_t)b[2] << 8 | (uint32_t)b[3];
+}
+
+/* Deflate cannot expand data by more than 1032:1 (a 258-byte match in at most 2 bits): the IDAT
+ * chunks must hold at least raw / 1032 bytes. Checked before stb_image, which allocates its whole
+ * inflate buffer from the header's size, so a 100-byte file cannot claim 32768 x 32768 pixels. */
+#define DEFLATE_MAX_RATIO 1032.0
+
+/* Walks the chunk list (f just past the signature) for IHDR's size and the total IDAT length.
+ * Returns 0 when it cannot tell (no IHDR first, unknown colour type): stb then reports the error. */
+static int png_survey(FILE *f, uint32_t *w, uint32_t *h, double *raw_bytes, unsigned long long *idat)
+{
+    unsigned char hd[8], ihdr[13];
+    *idat = 0;
+    if (fread(hd, 1, 8, f) != 8 || memcmp(hd + 4, "IHDR", 4) != 0 || be32(hd) != 13 || fread(ihdr, 1, 13, f) != 13)
+        return 0;
+    *w = be32(ihdr);
+    *h = be32(ihdr + 4);
+    int depth = ihdr[8], type = ihdr[9];
+    int samples = type == 0 ? 1 : type == 2 ? 3 : type == 3 ? 1 : type == 4 ? 2 : type == 6 ? 4 : 0;
+    if (!samples || depth < 1 || depth > 16) return 0;
+    /* Non-interlaced size (interlacing only adds filter bytes): one filter byte per row. */
+    *raw_bytes = (double)*h * (1.0 + ceil((double)*w * samples * depth / 8.0));
+    if (fseek(f, 4, SEEK_CUR) != 0) return 0; /* IHDR's CRC */
+    for (;;) {
+        if (fread(hd, 1, 8, f) != 8) break; /* missing IEND: stb decides */
+        uint32_t len = be32(hd);
+        if (memcmp(hd + 4, "IEND", 4) == 0) break;
+        if (memcmp(hd + 4, "IDAT", 4) == 0) *idat += len;
+        if (len > 0x7fffffffu || fseek(f, (long)len + 4, SEEK_CUR) != 0) break;
+    }
+    return 1;
+}
+
+sss_result sss_png_read_(FILE *f, const char *path, sss_image *out, sss_error *err)
+{
     unsigned char sig[8];
     size_t got = fread(sig, 1, sizeof sig, f);
-    if (got != sizeof sig || memcmp(sig, png_signature, sizeof sig) != 0) {
-        fclose(f);
-        return sss_error_set(err, SSS_ERROR_PARSE, "%s: not a PNG file (%s)", path,
-                             got == 0 ? "empty" : "bad signature");
+    if (got != sizeof sig || memcmp(sig, png_signature, sizeof sig) != 0)
+        return sss_error_set(err, SSS_ERROR_PARSE, "%s: not a PNG file (%s)", path, got == 0 ? "empty" : "bad signature");
+    uint32_t sw = 0, sh = 0;
+    double raw = 0.0;
+    unsigned long long idat = 0;
+    if (png_survey(f, &sw, &sh, &raw, &idat)) {
+        sss_result r = sss_image_check_dims_(path, sw, sh, err);
+        if (r != SSS_OK) return r;
+        if ((double)idat * DEFLATE_MAX_RATIO + 64.0 < raw)
+            return sss_error_set(err, SSS_ERROR_PARSE,
+                                 "%s: truncated or corrupt: %llu bytes of compressed pixel data cannot hold %ux%u pixels",
+                                 path, idat, sw, sh);
     }
     rewind(f);
     int w = 0, h = 0, comp = 0;
-    if (!stbi_info_from_file(f, &w, &h, &comp)) {
-        fclose(f);
+    if (!stbi_info_from_file(f, &w, &h, &comp))
         return sss_error_set(err, SSS_ERROR_PARSE, "%s: malformed PNG header (%s)", path, stb_reason());
-    }
     sss_result r = sss_image_check_dims_(path, w, h, err);
-    if (r != SSS_OK) {
-        fclose(f);
-        return r;
-    }
+    if (r != SSS_OK) return r;
     /* Another part of a program may have asked stb to flip images globally; rows stay top first here. */
     stbi_set_flip_vertically_on_load_thread(0);
     int is16 = stbi_is_16_bit_from_file(f);
     void *data = is16 ? (void *)stbi_load_from_file_16(f, &w, &h, &comp, 3)
                       : (void *)stbi_load_from_file(f, &w, &h, &comp, 3);
-    fclose(f);
     if (!data) return sss_error_set(err, SSS_ERROR_PARSE, "%s: cannot decode PNG (%s)", path, stb_reason());
     r = sss_image_create(out, w, h, err);
     if (r != SSS_OK) {

@@ -2,6 +2,7 @@
  * format dispatch by file extension. */
 #include "image/image_internal.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -110,6 +111,32 @@ sss_result sss_image_check_writable_(const char *path, const sss_image *img, sss
     return SSS_OK;
 }
 
+long long sss_image_stream_remaining_(FILE *f)
+{
+    long here = ftell(f);
+    if (here < 0 || fseek(f, 0, SEEK_END) != 0) return -1;
+    long end = ftell(f);
+    if (fseek(f, here, SEEK_SET) != 0 || end < here) return -1;
+    return (long long)end - here;
+}
+
+typedef sss_result (*stream_reader)(FILE *f, const char *path, sss_image *out, sss_error *err);
+
+/* The stream reader of an extension (NULL for exr, which has its own I/O, and unknown ones). */
+static stream_reader reader_for(const char *ext)
+{
+    if (strcmp(ext, "png") == 0) return sss_png_read_;
+    if (strcmp(ext, "hdr") == 0) return sss_hdr_read_;
+    if (strcmp(ext, "pfm") == 0) return sss_pfm_read_;
+    return NULL;
+}
+
+static sss_result unknown_format(const char *path, sss_error *err)
+{
+    return sss_error_set(err, SSS_ERROR_UNSUPPORTED,
+                         "%s: unknown image format (expected the extension .png, .hdr, .pfm or .exr)", path);
+}
+
 sss_result sss_image_read(const char *path, sss_image *out, sss_error *err)
 {
     out->width = out->height = 0;
@@ -119,12 +146,36 @@ sss_result sss_image_read(const char *path, sss_image *out, sss_error *err)
         return sss_error_set(err, SSS_ERROR_IO, "%s: is a folder, not an image file", path);
     char ext[8];
     sss_path_extension(path, ext, sizeof ext);
-    if (strcmp(ext, "png") == 0) return sss_png_read_(path, out, err);
-    if (strcmp(ext, "hdr") == 0) return sss_hdr_read_(path, out, err);
-    if (strcmp(ext, "pfm") == 0) return sss_pfm_read_(path, out, err);
     if (strcmp(ext, "exr") == 0) return sss_exr_read_(path, out, err);
-    return sss_error_set(err, SSS_ERROR_UNSUPPORTED,
-                         "%s: unknown image format (expected the extension .png, .hdr, .pfm or .exr)", path);
+    stream_reader read = reader_for(ext);
+    if (!read) return unknown_format(path, err);
+    FILE *f = fopen(path, "rb");
+    if (!f) return sss_error_set(err, SSS_ERROR_IO, "%s: cannot open: %s", path, strerror(errno));
+    sss_result r = read(f, path, out, err);
+    fclose(f);
+    return r;
+}
+
+sss_result sss_image_decode(const void *data, size_t size, const char *name, sss_image *out, sss_error *err)
+{
+    out->width = out->height = 0;
+    out->pixels = NULL;
+    if (!name) name = "image";
+    if (!data && size > 0) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: no data", name);
+    char ext[8];
+    sss_path_extension(name, ext, sizeof ext);
+    if (strcmp(ext, "exr") == 0) return sss_exr_decode_(data, size, name, out, err);
+    stream_reader read = reader_for(ext);
+    if (!read) return unknown_format(name, err);
+    /* The stream readers then serve files and memory alike. fmemopen does not accept an empty
+     * buffer everywhere: an empty input is simply a one-byte stream that ends at once. */
+    static const char empty[1] = {0};
+    FILE *f = fmemopen(size ? (void *)data : (void *)empty, size ? size : 1, "rb");
+    if (!f) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: cannot open a memory stream", name);
+    if (size == 0) (void)getc(f); /* position at the end: the readers see an empty input */
+    sss_result r = read(f, name, out, err);
+    fclose(f);
+    return r;
 }
 
 sss_result sss_image_write(const char *path, const sss_image *img, double exposure, sss_error *err)
@@ -139,6 +190,5 @@ sss_result sss_image_write(const char *path, const sss_image *img, double exposu
     if (strcmp(ext, "hdr") == 0) return sss_hdr_write_(path, img, err);
     if (strcmp(ext, "pfm") == 0) return sss_pfm_write_(path, img, err);
     if (strcmp(ext, "exr") == 0) return sss_image_write_exr(path, img, 0, err);
-    return sss_error_set(err, SSS_ERROR_UNSUPPORTED,
-                         "%s: unknown image format (expected the extension .png, .hdr, .pfm or .exr)", path);
+    return unknown_format(path, err);
 }

@@ -20,13 +20,22 @@ uint8_t sss_srgb8_from_linear_(float linear, float scale);
 /* table[k] = the linear value of 8-bit sRGB code k (the exact inverse curve, rounded to float). */
 void sss_srgb8_decode_table_(float table[256]);
 
-/* Format readers and writers (path names the file in every message). */
-sss_result sss_png_read_(const char *path, sss_image *out, sss_error *err);
-sss_result sss_png_write_(const char *path, const sss_image *img, double exposure, sss_error *err);
-sss_result sss_hdr_read_(const char *path, sss_image *out, sss_error *err);
-sss_result sss_hdr_write_(const char *path, const sss_image *img, sss_error *err);
-sss_result sss_pfm_read_(const char *path, sss_image *out, sss_error *err);
-sss_result sss_pfm_write_(const char *path, const sss_image *img, sss_error *err);
+/* Bytes between the stream's position and its end (regular files and fmemopen streams), or -1 when
+ * the stream cannot seek (a pipe). Readers use it to refuse a header that claims more pixels than
+ * the data could hold before allocating the image. The position is left unchanged. */
+long long sss_image_stream_remaining_(FILE *f);
+
+/* Format readers on an open stream positioned at the start of the data (a file, or fmemopen for
+ * sss_image_decode); path names the input in every message. They do not close f. */
+sss_result sss_png_read_(FILE *f, const char *path, sss_image *out, sss_error *err);
+sss_result sss_hdr_read_(FILE *f, const char *path, sss_image *out, sss_error *err);
+sss_result sss_pfm_read_(FILE *f, const char *path, sss_image *out, sss_error *err);
+/* OpenEXR reads through the library's own I/O: from a file, or from memory (data, size). */
 sss_result sss_exr_read_(const char *path, sss_image *out, sss_error *err);
+sss_result sss_exr_decode_(const void *data, size_t size, const char *name, sss_image *out, sss_error *err);
+
+sss_result sss_png_write_(const char *path, const sss_image *img, double exposure, sss_error *err);
+sss_result sss_hdr_write_(const char *path, const sss_image *img, sss_error *err);
+sss_result sss_pfm_write_(const char *path, const sss_image *img, sss_error *err);
 
 #endif
