@@ -206,6 +206,25 @@ double sss_mesh_signed_volume(const sss_mesh *mesh)
     return sum / 6.0;
 }
 
+int mesh_triangle_degenerate(const float *positions, uint32_t a, uint32_t b, uint32_t c)
+{
+    if (a == b || b == c || a == c) return 1;
+    const float *p[3] = {positions + 3 * (size_t)a, positions + 3 * (size_t)b, positions + 3 * (size_t)c};
+    double e[3][3], longest = 0.0;
+    for (int k = 0; k < 3; k++) {
+        double d2 = 0.0;
+        for (int j = 0; j < 3; j++) {
+            e[k][j] = (double)p[(k + 1) % 3][j] - p[k][j];
+            d2 += e[k][j] * e[k][j];
+        }
+        if (d2 > longest) longest = d2;
+    }
+    double cx = e[0][1] * e[2][2] - e[0][2] * e[2][1], cy = e[0][2] * e[2][0] - e[0][0] * e[2][2],
+           cz = e[0][0] * e[2][1] - e[0][1] * e[2][0];
+    /* Zero area up to float rounding: the cross product is tiny against the longest edge squared. */
+    return sqrt(cx * cx + cy * cy + cz * cz) <= 1e-10 * longest;
+}
+
 static int cmp_u64(const void *a, const void *b)
 {
     uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
@@ -224,21 +243,11 @@ sss_result sss_mesh_topology_compute(const sss_mesh *mesh, sss_mesh_topology *ou
     if (!edges) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "mesh: out of memory for edges");
     for (uint32_t t = 0; t < mesh->triangle_count; t++) {
         const uint32_t *tri = mesh->indices + 3 * (size_t)t;
-        double c[3], longest = 0.0;
-        tri_cross(mesh, t, c);
         for (int k = 0; k < 3; k++) {
             uint32_t a = tri[k], b = tri[(k + 1) % 3];
-            const float *pa = mesh->positions + 3 * (size_t)a, *pb = mesh->positions + 3 * (size_t)b;
-            double d2 = 0.0;
-            for (int j = 0; j < 3; j++) d2 += ((double)pa[j] - pb[j]) * ((double)pa[j] - pb[j]);
-            if (d2 > longest) longest = d2;
-            if (a == b) continue;
-            edges[n++] = a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
+            if (a != b) edges[n++] = a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
         }
-        /* Zero area up to float rounding: |e1 x e2| tiny compared with the longest edge squared. */
-        double cross = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-        if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || cross <= 1e-10 * longest)
-            out->degenerate_triangles++;
+        if (mesh_triangle_degenerate(mesh->positions, tri[0], tri[1], tri[2])) out->degenerate_triangles++;
     }
     qsort(edges, n, sizeof *edges, cmp_u64);
     for (size_t i = 0; i < n;) {

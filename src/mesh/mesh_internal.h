@@ -25,6 +25,10 @@ sss_result mesh_finish(sss_mesh *m, int file_normals, int file_uvs, const char *
  * without a non-degenerate incident triangle get +y). Returns 0 when out of memory. */
 int mesh_area_weighted_normals(const sss_mesh *m, float *out);
 
+/* 1 when triangle (a, b, c) repeats an index or has zero area up to float rounding:
+ * |e1 x e2| <= 1e-10 * (longest edge)^2. */
+int mesh_triangle_degenerate(const float *positions, uint32_t a, uint32_t b, uint32_t c);
+
 /* Simple open-addressing hash from a 64-bit key to a uint32 value (keys must not be UINT64_MAX). */
 typedef struct mesh_hash {
     uint64_t *keys;

@@ -3,7 +3,7 @@
  * meshopt_simplify collapses edges while keeping the topology; it stops early when borders or
  * attribute seams block further collapses. Then meshopt_simplifySloppy (vertex clustering on a grid,
  * topology not kept) takes over, with a shrinking goal until the count is at most the target.
- * Unused vertices are dropped and normals recomputed (area-weighted); UVs follow their vertices.
+ * Degenerate triangles and unused vertices are dropped and normals recomputed (area-weighted); UVs follow their vertices.
  */
 #include <meshoptimizer.h>
 #include <stdlib.h>
@@ -48,6 +48,15 @@ sss_result sss_mesh_simplify(const sss_mesh *mesh, uint32_t target_triangles, ss
             goal = goal * 3 / 4 / 3 * 3;
         }
     }
+    /* Collapses can leave triangles with collinear corners: they add nothing but trouble (zero-length
+     * face normals downstream), so drop them. */
+    size_t good = 0;
+    for (size_t i = 0; i < n; i += 3)
+        if (!mesh_triangle_degenerate(mesh->positions, dst[i], dst[i + 1], dst[i + 2])) {
+            memmove(dst + good, dst + i, 3 * sizeof *dst);
+            good += 3;
+        }
+    n = good;
     sss_result r = SSS_OK;
     if (n > target)
         r = sss_error_set(err, SSS_ERROR_NUMERIC, "simplify: could not reach %u triangles (best %zu)", target_triangles,

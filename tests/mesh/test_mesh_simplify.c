@@ -29,6 +29,10 @@ static void check_result(const sss_mesh *orig, const sss_mesh *s, uint32_t targe
     for (int k = 0; k < 3; k++) worst = fmax(worst, fmax(fabs(lo[k] - lo0[k]), fabs(hi[k] - hi0[k])));
     CHECK_MSG(worst <= bbox_tol * diag, "%s: bounding box moved by %.3g of the diagonal", label, worst / diag);
     CHECK((s->uvs != NULL) == (orig->uvs != NULL));
+    sss_mesh_topology topo;
+    CHECK(sss_mesh_topology_compute(s, &topo, NULL) == SSS_OK);
+    CHECK_MSG(topo.degenerate_triangles == 0, "%s: %llu degenerate triangles", label,
+              (unsigned long long)topo.degenerate_triangles);
 }
 
 static void test_sphere(void)
