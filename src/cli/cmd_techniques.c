@@ -1,7 +1,49 @@
-/* Placeholder until the techniques command lands (replaced by its module's owner). */
+/* cli/cmd_techniques.c — `sss techniques [--params]`: one line per real-time technique; with --params
+ * also every parameter (type, default, range, description) and the parameters all techniques share. */
+#include <stdio.h>
+#include <string.h>
+
 #include "cli/cli.h"
+#include "sss/gl.h"
+
+#define CMD "techniques"
+
+static const char *type_name(sss_gl_param_type t)
+{
+    return t == SSS_GL_PARAM_BOOL ? "bool" : t == SSS_GL_PARAM_INT ? "int" : "float";
+}
+
+static void print_params(const sss_gl_param_info *p, int count)
+{
+    for (int i = 0; i < count; i++)
+        printf("    %-22s %-5s default %-8g range [%g, %g]  %s\n", p[i].name, type_name(p[i].type),
+               p[i].default_value, p[i].min_value, p[i].max_value, p[i].doc);
+}
+
 int sss_cmd_techniques(int argc, char **argv)
 {
-    (void)argc; (void)argv;
-    return cli_failf("techniques", "not built yet");
+    if (cli_wants_help(argc, argv)) {
+        printf("usage: sss techniques [--params]\n\n"
+               "Lists the real-time techniques of `sss render --technique NAME`, one per line (name, then a\n"
+               "summary). --params also lists each technique's parameters (set them with\n"
+               "`sss render --param NAME=VALUE`) and the parameters shared by all techniques.\n");
+        return CLI_EXIT_OK;
+    }
+    int with_params = 0;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--params") == 0) with_params = 1;
+        else return cli_usage_error(CMD, "unknown option '%s'", argv[i]);
+    }
+    for (int i = 0; i < sss_gl_technique_count(); i++) {
+        const sss_gl_technique_info *t = sss_gl_technique_at(i);
+        printf("%-12s %s\n", t->name, t->summary);
+        if (with_params) print_params(t->params, t->param_count);
+    }
+    if (with_params) {
+        int n = 0;
+        const sss_gl_param_info *sp = sss_gl_shared_params(&n);
+        printf("shared parameters (every technique):\n");
+        print_params(sp, n);
+    }
+    return CLI_EXIT_OK;
 }

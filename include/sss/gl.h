@@ -1,0 +1,179 @@
+/* sss/gl.h — the real-time OpenGL 4.5 renderer: contexts, techniques and their parameters, rendering a
+ * scene to a linear float image with per-pass timings.
+ *
+ * Does: headless contexts through EGL (Mesa's surfaceless platform, then the EGL device platform;
+ * rendering goes to framebuffer objects) or a GLFW window; a registry of techniques selected by name,
+ * each with a parameter table (name, type, default, range, doc); shared passes every technique can use
+ * (G-buffer, shadow maps, illumination with mip chains, low-resolution splat meshes); rendering at a
+ * time t (animated objects deform on the GPU every frame, nothing is precomputed from the geometry).
+ * Does not: load scenes (sss/scene.h does), write files (sss/image.h does), print.
+ *
+ * Threading: a context and everything created with it belong to the thread that created it.
+ * Memory: _create allocates, the matching _destroy frees (NULL is accepted).
+ */
+#ifndef SSS_GL_H
+#define SSS_GL_H
+
+#include <stddef.h>
+
+#include "sss/common.h"
+#include "sss/image.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+struct sss_scene;
+
+/* ---- Contexts -------------------------------------------------------------------------------- */
+
+typedef enum sss_gl_platform {
+    SSS_GL_PLATFORM_HEADLESS = 0, /* EGL surfaceless (Mesa), falling back to the EGL device platform */
+    SSS_GL_PLATFORM_SURFACELESS,  /* EGL_PLATFORM_SURFACELESS_MESA only */
+    SSS_GL_PLATFORM_DEVICE,       /* EGL_PLATFORM_DEVICE_EXT only (device_index) */
+    SSS_GL_PLATFORM_WINDOW        /* a GLFW window (needs a display: DISPLAY or WAYLAND_DISPLAY) */
+} sss_gl_platform;
+
+/* Zero-initialised means: headless, OpenGL 4.5 core, no debug output (debug builds always enable it). */
+typedef struct sss_gl_context_desc {
+    sss_gl_platform platform;
+    int device_index;              /* DEVICE: which EGL device (default 0) */
+    int gl_major, gl_minor;        /* requested core version, at least 4.5 (0 -> 4.5) */
+    int window_width, window_height; /* WINDOW: 0 -> 960 x 540 */
+    const char *window_title;      /* WINDOW: NULL -> "sss" */
+    int debug;                     /* KHR_debug output: errors are reported by the pass that caused them */
+} sss_gl_context_desc;
+
+typedef struct sss_gl_context sss_gl_context;
+
+/* Creates a context and makes it current. Errors name what is missing: an EGL client extension or
+ * platform, EGL_KHR_no_config_context / EGL_KHR_surfaceless_context, the GL version, the display of a
+ * window (with a hint to use `sss render`). Never aborts. */
+sss_result sss_gl_context_create(const sss_gl_context_desc *desc, sss_gl_context **out, sss_error *err);
+void sss_gl_context_destroy(sss_gl_context *ctx);
+
+typedef struct sss_gl_context_info {
+    const char *platform; /* "EGL surfaceless (Mesa)", "EGL device", "GLFW window" */
+    const char *renderer; /* GL_RENDERER */
+    const char *version;  /* GL_VERSION */
+    int software;         /* 1 on llvmpipe/softpipe/SwiftShader: timings use glFinish + a clock */
+} sss_gl_context_info;
+
+/* Strings stay valid while the context lives. */
+void sss_gl_context_get_info(const sss_gl_context *ctx, sss_gl_context_info *out);
+int sss_gl_context_make_current(sss_gl_context *ctx); /* 1 on success */
+
+/* Window helpers (no-ops / 1 on headless contexts). */
+int sss_gl_window_should_close(sss_gl_context *ctx); /* also polls events */
+void sss_gl_window_swap(sss_gl_context *ctx);
+void sss_gl_window_size(sss_gl_context *ctx, int *width, int *height);
+
+/* ---- Techniques and parameters --------------------------------------------------------------- */
+
+typedef enum sss_gl_param_type {
+    SSS_GL_PARAM_BOOL = 0, /* 0 or 1 */
+    SSS_GL_PARAM_INT,
+    SSS_GL_PARAM_FLOAT
+} sss_gl_param_type;
+
+typedef struct sss_gl_param_info {
+    const char *name;      /* e.g. "layers" */
+    sss_gl_param_type type;
+    double default_value;  /* the paper's default where the paper names one */
+    double min_value, max_value; /* inclusive range */
+    const char *doc;       /* one line, citing the paper's section or equation */
+} sss_gl_param_info;
+
+typedef struct sss_gl_technique_info {
+    const char *name;      /* "maisch2020" */
+    const char *summary;   /* one line */
+    const sss_gl_param_info *params;
+    int param_count;
+} sss_gl_technique_info;
+
+/* Registered techniques, in a fixed order. */
+int sss_gl_technique_count(void);
+const sss_gl_technique_info *sss_gl_technique_at(int index);     /* NULL out of range */
+const sss_gl_technique_info *sss_gl_technique_find(const char *name); /* NULL when unknown */
+
+/* Parameters shared by every technique (shadow map sizes, light sampling of area and environment
+ * lights, LUT construction, splat meshes, timing). Accepted by sss_gl_renderer_set_param too. */
+const sss_gl_param_info *sss_gl_shared_params(int *count);
+
+/* ---- Renderer -------------------------------------------------------------------------------- */
+
+typedef struct sss_gl_param_value {
+    const char *name;
+    double value;
+} sss_gl_param_value;
+
+/* Zero-initialised means: the scene's technique at the scene camera's size, default parameters. */
+typedef struct sss_gl_renderer_desc {
+    const char *technique;            /* NULL -> scene->render.technique */
+    int width, height;                /* 0 -> the scene camera's */
+    const sss_gl_param_value *params; /* technique or shared parameters by name */
+    int param_count;
+    int timings;                      /* 1: time every pass (on software GL this adds a glFinish per pass) */
+} sss_gl_renderer_desc;
+
+typedef struct sss_gl_renderer sss_gl_renderer;
+
+/* Uploads the scene (meshes, materials with their LUTs, lights, textures) and creates the technique.
+ * The scene must outlive the renderer. Errors: unknown technique or parameter (the message lists the
+ * known ones), parameter out of range, a resource the GL cannot provide. */
+sss_result sss_gl_renderer_create(sss_gl_context *ctx, const struct sss_scene *scene,
+                                  const sss_gl_renderer_desc *desc, sss_gl_renderer **out, sss_error *err);
+void sss_gl_renderer_destroy(sss_gl_renderer *r);
+
+/* Changes one parameter (takes effect at the next render; may rebuild resources). */
+sss_result sss_gl_renderer_set_param(sss_gl_renderer *r, const char *name, double value, sss_error *err);
+double sss_gl_renderer_get_param(const sss_gl_renderer *r, const char *name); /* NaN when unknown */
+sss_result sss_gl_renderer_resize(sss_gl_renderer *r, int width, int height, sss_error *err);
+void sss_gl_renderer_size(const sss_gl_renderer *r, int *width, int *height);
+
+/* Renders one frame at time t (seconds; animations use it) into the renderer's linear target. */
+sss_result sss_gl_renderer_render(sss_gl_renderer *r, double time, sss_error *err);
+/* Reads the last frame as linear RGB (top row first). out must have been created with the renderer's
+ * size. Non-finite values are reported as SSS_ERROR_NUMERIC (they never reach a file). */
+sss_result sss_gl_renderer_read(sss_gl_renderer *r, sss_image *out, sss_error *err);
+/* Reads a named intermediate buffer for tests and debugging, as linear RGB at its own size (out is
+ * created by the call; free with sss_image_free): "reflected", "irradiance", "translucency",
+ * "translucency_full", "screen", "final". Unknown or unavailable names are errors. */
+sss_result sss_gl_renderer_read_buffer(sss_gl_renderer *r, const char *name, sss_image *out, sss_error *err);
+/* Draws the last frame, tone mapped with the scene's exposure, to the window's back buffer. */
+sss_result sss_gl_renderer_present(sss_gl_renderer *r, sss_error *err);
+
+#define SSS_GL_MAX_PASSES 24
+
+typedef struct sss_gl_pass_timing {
+    const char *name; /* "gbuffer", "shadows", "illumination", ... (static strings) */
+    double ms;
+} sss_gl_pass_timing;
+
+typedef struct sss_gl_timings {
+    int pass_count;
+    sss_gl_pass_timing passes[SSS_GL_MAX_PASSES];
+    double total_ms;    /* sum of the passes */
+    const char *method; /* "glFinish + monotonic clock" or "GL_TIME_ELAPSED queries"; "off" when disabled */
+} sss_gl_timings;
+
+/* Timings of the last frame (pass_count 0 when timing is off). */
+void sss_gl_renderer_timings(const sss_gl_renderer *r, sss_gl_timings *out);
+
+typedef struct sss_gl_stats {
+    size_t texture_bytes;       /* all textures the renderer owns (shared passes + technique) */
+    size_t buffer_bytes;        /* all buffer objects (meshes, splats, uniforms) */
+    size_t per_pixel_bytes;     /* bytes of screen-sized targets per output pixel (mips included) */
+    size_t per_splat_bytes;     /* bytes per splat record (0 when the technique does not splat) */
+    size_t lut_bytes;           /* the kernel LUTs */
+    unsigned splat_total;       /* triangles of the splat meshes */
+    unsigned splat_drawn;       /* splats that survived culling in the last frame */
+    int material_count, light_count, virtual_light_count, object_count;
+} sss_gl_stats;
+
+void sss_gl_renderer_stats(sss_gl_renderer *r, sss_gl_stats *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,42 @@
+#version 450 core
+// Seed 000, pass 4: light transport from a splat to the receiver of this low-resolution pixel,
+// F_t E A R'_d(|x'_i - x_o|, A) (Eq. 6), accumulated by additive blending. x'_i is the point of the
+// splat's disc (radius sqrt(A / pi), oriented along n_i) nearest to the receiver (Eq. 9, section 6.3).
+// Note: Eq. 9 prints x_bar = x_o + n_i ((x_o - x_i) . n_i); the point of the splat's plane nearest
+// to x_o, as the text defines it, is x_o - n_i ((x_o - x_i) . n_i), which is what we use.
+#include "common.glsl"
+
+struct Splat {
+    vec4 centre;
+    vec4 normal;
+    vec4 irradiance;
+};
+layout(std430, binding = 4) readonly buffer SplatBlock { Splat splats[]; };
+
+layout(binding = 0) uniform sampler2D r_receiver;
+
+uniform int u_preintegrated;
+uniform int u_disc_adjust;
+
+flat in int v_splat;
+layout(location = 0) out vec4 o_accum;
+
+void main()
+{
+    vec4 R = texelFetch(r_receiver, ivec2(gl_FragCoord.xy), 0);
+    Splat s = splats[v_splat];
+    if (R.w != s.normal.w) discard;
+    vec3 xo = R.xyz, xi = s.centre.xyz, ni = s.normal.xyz;
+    float area = s.centre.w;
+    vec3 xp = xi;
+    if (u_disc_adjust != 0) {
+        vec3 xbar = xo - ni * dot(xo - xi, ni);
+        vec3 d = xbar - xi;
+        float dl = length(d);
+        if (dl > 0.0) xp = xi + d / dl * min(s.irradiance.w, dl);
+    }
+    float r = length(xp - xo);
+    int mat = int(objects[int(s.normal.w - 0.5)].anim.y);
+    vec3 k = lut_rd(mat, r, u_preintegrated != 0 ? area : 0.0);
+    o_accum = vec4(s.irradiance.rgb * area * k, 0.0);
+}

@@ -1,0 +1,87 @@
+#version 450 core
+// Seed 000, section 5: one splat per triangle of the low-resolution splat mesh, deformed by the
+// animation like the render mesh (no precomputation), carrying its centre, normal, area and the
+// transmitted irradiance F_t E at the centre. Splats are culled here (the paper's geometry shader):
+//  - by irradiance (unlit splats add nothing),
+//  - by the splitting criteria with the view direction v (Eq. 2 and Eq. 8): the splat is kept when it
+//    lies behind x_o, the G-buffer position its centre projects to, ((x_i - x_o) . v < 0) and faces
+//    away or grazes (n_i . v < 0.2). Rule 1 keeps the complement of what the screen-space pass sees
+//    instead (hidden OR grazing), an option for concave objects.
+#include "common.glsl"
+
+layout(local_size_x = 64) in;
+
+struct Splat {
+    vec4 centre;     // xyz; w: area
+    vec4 normal;     // xyz; w: object id + 1
+    vec4 irradiance; // rgb F_t E; w: disc radius sqrt(area / pi) (section 6.3)
+};
+
+layout(std430, binding = 4) writeonly buffer SplatBlock { Splat splats[]; };
+layout(std430, binding = 5) buffer CommandBlock { uint cmd_count, cmd_instances, cmd_first, cmd_base; };
+layout(std430, binding = 6) readonly buffer MeshPos { float mesh_pos[]; };
+layout(std430, binding = 7) readonly buffer MeshIdx { uint mesh_idx[]; };
+
+layout(binding = 0) uniform sampler2D g_pos;
+layout(binding = 1) uniform sampler2D g_nrm;
+
+uniform int u_object;
+uniform uint u_triangles;
+uniform uint u_capacity;
+uniform int u_cull_rule;
+uniform float u_irradiance_cull;
+uniform float u_shadow_offset; // in units of sqrt(triangle area)
+
+void main()
+{
+    uint t = gl_GlobalInvocationID.x;
+    if (t >= u_triangles) return;
+    Object o = objects[u_object];
+    Material m = materials[int(o.anim.y)];
+    vec3 p[3];
+    for (int k = 0; k < 3; k++) {
+        uint i = mesh_idx[3u * t + uint(k)];
+        vec3 op = vec3(mesh_pos[3u * i], mesh_pos[3u * i + 1u], mesh_pos[3u * i + 2u]);
+        vec3 dn = vec3(0.0, 1.0, 0.0);
+        p[k] = (o.model * vec4(anim_deform(o, op, dn, u_camera_pos.w), 1.0)).xyz;
+    }
+    vec3 cr = cross(p[1] - p[0], p[2] - p[0]);
+    float len = length(cr);
+    if (!(len > 0.0)) return;
+    vec3 n = cr / len;
+    float area = 0.5 * len;
+    vec3 c = (p[0] + p[1] + p[2]) / 3.0;
+
+    // Splitting criteria (Eq. 2, Eq. 8) against the G-buffer at the projected centre.
+    vec3 v = normalize(u_camera_pos.xyz - c);
+    bool grazing = dot(n, v) < u_misc.y;
+    bool hidden = true;
+    vec4 clip = u_view_proj * vec4(c, 1.0);
+    if (clip.w > 0.0) {
+        vec2 ndc = clip.xy / clip.w;
+        if (all(greaterThanEqual(ndc, vec2(-1.0))) && all(lessThan(ndc, vec2(1.0)))) {
+            ivec2 px = ivec2((ndc * 0.5 + 0.5) * u_viewport.xy);
+            if (texelFetch(g_nrm, px, 0).w > 0.5) {
+                vec3 xo = texelFetch(g_pos, px, 0).xyz;
+                float tol = u_cull_rule == 0 ? 0.0 : sqrt(area);
+                hidden = dot(c - xo, v) < -tol;
+            }
+        }
+    }
+    bool keep = u_cull_rule == 0 ? (hidden && grazing) : (hidden || grazing);
+    if (!keep) return;
+
+    // Transmitted irradiance at the centre, shadows included. The centre of a chord triangle lies
+    // inside a convex surface; the offset keeps it from shadowing itself.
+    vec3 ps = c + n * u_shadow_offset * sqrt(area);
+    vec3 et = vec3(0.0);
+    for (int i = 0; i < u_counts.y; i++) {
+        vec3 l;
+        vec3 E = light_irradiance(i, ps, n, l);
+        et += (1.0 - fr_dielectric(dot(n, l), 1.0, m.params.x)) * E;
+    }
+    if (max(et.r, max(et.g, et.b)) <= u_irradiance_cull) return;
+    uint slot = atomicAdd(cmd_instances, 1u);
+    if (slot >= u_capacity) return;
+    splats[slot] = Splat(vec4(c, area), vec4(n, float(u_object + 1)), vec4(et, sqrt(area / PI)));
+}

@@ -1,0 +1,348 @@
+/* gl/frame.c — screen-sized shared targets and the shared passes every technique can request:
+ * G-buffer (seed 000 pass 1), illumination (pass 3) and the area-weighted mip chains (end of pass 3).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl/gl_internal.h"
+
+size_t gl_format_bytes(GLenum format)
+{
+    switch (format) {
+    case GL_RGBA32F: return 16;
+    case GL_RGB32F: return 12;
+    case GL_RGBA16F: return 8;
+    case GL_RG32F: return 8;
+    case GL_R32F: return 4;
+    case GL_RGBA8: return 4;
+    case GL_DEPTH_COMPONENT32F: return 4;
+    case GL_DEPTH_COMPONENT24: return 4;
+    default: return 16;
+    }
+}
+
+int gl_mip_levels(int width, int height)
+{
+    int m = width > height ? width : height, levels = 1;
+    while (m > 1) {
+        m >>= 1;
+        levels++;
+    }
+    return levels;
+}
+
+static size_t level_texels(int width, int height, int levels)
+{
+    size_t n = 0;
+    for (int l = 0; l < levels; l++) {
+        n += (size_t)width * (size_t)height;
+        width = width > 1 ? width / 2 : 1;
+        height = height > 1 ? height / 2 : 1;
+    }
+    return n;
+}
+
+GLuint gl_texture_2d(GLenum format, int width, int height, int levels, size_t *bytes)
+{
+    GLuint t = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &t);
+    glTextureStorage2D(t, levels, format, width, height);
+    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    if (bytes) *bytes += gl_format_bytes(format) * level_texels(width, height, levels);
+    return t;
+}
+
+static GLuint make_fbo(const GLuint *color, int count, GLuint depth)
+{
+    GLuint fbo = 0;
+    glCreateFramebuffers(1, &fbo);
+    GLenum bufs[8];
+    for (int i = 0; i < count; i++) {
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + (GLenum)i, color[i], 0);
+        bufs[i] = GL_COLOR_ATTACHMENT0 + (GLenum)i;
+    }
+    glNamedFramebufferDrawBuffers(fbo, count, bufs);
+    if (depth) glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth, 0);
+    return fbo;
+}
+
+sss_result gl_frame_create(gl_frame *f, int width, int height, int normal_mips, sss_error *err)
+{
+    memset(f, 0, sizeof *f);
+    f->width = width;
+    f->height = height;
+    f->levels = gl_mip_levels(width, height);
+    f->normal_mips = normal_mips;
+    f->pos = gl_texture_2d(GL_RGBA32F, width, height, f->levels, &f->bytes);
+    f->nrm = gl_texture_2d(GL_RGBA32F, width, height, normal_mips ? f->levels : 1, &f->bytes);
+    f->albedo = gl_texture_2d(GL_RGBA16F, width, height, 1, &f->bytes);
+    f->depth = gl_texture_2d(GL_DEPTH_COMPONENT32F, width, height, 1, &f->bytes);
+    f->irr = gl_texture_2d(GL_RGBA32F, width, height, f->levels, &f->bytes);
+    /* bilinear within one (premultiplied) level for the wide screen-space samples */
+    GLuint filtered[2] = {f->pos, f->irr};
+    for (int i = 0; i < 2; i++) {
+        glTextureParameteri(filtered[i], GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
+        glTextureParameteri(filtered[i], GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    }
+    f->refl = gl_texture_2d(GL_RGBA16F, width, height, 1, &f->bytes);
+    f->final = gl_texture_2d(GL_RGBA32F, width, height, 1, &f->bytes);
+    GLuint g[3] = {f->pos, f->nrm, f->albedo};
+    f->fbo_gbuffer = make_fbo(g, 3, f->depth);
+    GLuint l[2] = {f->irr, f->refl};
+    f->fbo_light = make_fbo(l, 2, 0);
+    f->fbo_final = make_fbo(&f->final, 1, 0);
+    GLuint fbos[3] = {f->fbo_gbuffer, f->fbo_light, f->fbo_final};
+    for (int i = 0; i < 3; i++) {
+        GLenum st = glCheckNamedFramebufferStatus(fbos[i], GL_FRAMEBUFFER);
+        if (st != GL_FRAMEBUFFER_COMPLETE) {
+            gl_frame_free(f);
+            return sss_error_set(err, SSS_ERROR_UNSUPPORTED,
+                                 "OpenGL: a %dx%d render target is incomplete (status 0x%x)", width, height,
+                                 (unsigned)st);
+        }
+    }
+    return SSS_OK;
+}
+
+void gl_frame_free(gl_frame *f)
+{
+    GLuint fb[3] = {f->fbo_gbuffer, f->fbo_light, f->fbo_final};
+    glDeleteFramebuffers(3, fb);
+    GLuint t[7] = {f->pos, f->nrm, f->albedo, f->depth, f->irr, f->refl, f->final};
+    glDeleteTextures(7, t);
+    memset(f, 0, sizeof *f);
+}
+
+static void to_col_major(const double m[16], float out[16])
+{
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++) out[4 * c + r] = (float)m[4 * r + c];
+}
+
+static void mat_mul_cm(const float a[16], const float b[16], float out[16])
+{
+    float t[16];
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++) {
+            float s = 0.0f;
+            for (int k = 0; k < 4; k++) s += a[4 * k + r] * b[4 * c + k];
+            t[4 * c + r] = s;
+        }
+    memcpy(out, t, sizeof t);
+}
+
+/* General 4x4 inverse (column-major); returns 0 when singular. */
+static int mat_inverse(const float m[16], float out[16])
+{
+    double inv[16], a[16];
+    for (int i = 0; i < 16; i++) a[i] = m[i];
+    inv[0] = a[5] * a[10] * a[15] - a[5] * a[11] * a[14] - a[9] * a[6] * a[15] + a[9] * a[7] * a[14] +
+             a[13] * a[6] * a[11] - a[13] * a[7] * a[10];
+    inv[4] = -a[4] * a[10] * a[15] + a[4] * a[11] * a[14] + a[8] * a[6] * a[15] - a[8] * a[7] * a[14] -
+             a[12] * a[6] * a[11] + a[12] * a[7] * a[10];
+    inv[8] = a[4] * a[9] * a[15] - a[4] * a[11] * a[13] - a[8] * a[5] * a[15] + a[8] * a[7] * a[13] +
+             a[12] * a[5] * a[11] - a[12] * a[7] * a[9];
+    inv[12] = -a[4] * a[9] * a[14] + a[4] * a[10] * a[13] + a[8] * a[5] * a[14] - a[8] * a[6] * a[13] -
+              a[12] * a[5] * a[10] + a[12] * a[6] * a[9];
+    inv[1] = -a[1] * a[10] * a[15] + a[1] * a[11] * a[14] + a[9] * a[2] * a[15] - a[9] * a[3] * a[14] -
+             a[13] * a[2] * a[11] + a[13] * a[3] * a[10];
+    inv[5] = a[0] * a[10] * a[15] - a[0] * a[11] * a[14] - a[8] * a[2] * a[15] + a[8] * a[3] * a[14] +
+             a[12] * a[2] * a[11] - a[12] * a[3] * a[10];
+    inv[9] = -a[0] * a[9] * a[15] + a[0] * a[11] * a[13] + a[8] * a[1] * a[15] - a[8] * a[3] * a[13] -
+             a[12] * a[1] * a[11] + a[12] * a[3] * a[9];
+    inv[13] = a[0] * a[9] * a[14] - a[0] * a[10] * a[13] - a[8] * a[1] * a[14] + a[8] * a[2] * a[13] +
+              a[12] * a[1] * a[10] - a[12] * a[2] * a[9];
+    inv[2] = a[1] * a[6] * a[15] - a[1] * a[7] * a[14] - a[5] * a[2] * a[15] + a[5] * a[3] * a[14] +
+             a[13] * a[2] * a[7] - a[13] * a[3] * a[6];
+    inv[6] = -a[0] * a[6] * a[15] + a[0] * a[7] * a[14] + a[4] * a[2] * a[15] - a[4] * a[3] * a[14] -
+             a[12] * a[2] * a[7] + a[12] * a[3] * a[6];
+    inv[10] = a[0] * a[5] * a[15] - a[0] * a[7] * a[13] - a[4] * a[1] * a[15] + a[4] * a[3] * a[13] +
+              a[12] * a[1] * a[7] - a[12] * a[3] * a[5];
+    inv[14] = -a[0] * a[5] * a[14] + a[0] * a[6] * a[13] + a[4] * a[1] * a[14] - a[4] * a[2] * a[13] -
+              a[12] * a[1] * a[6] + a[12] * a[2] * a[5];
+    inv[3] = -a[1] * a[6] * a[11] + a[1] * a[7] * a[10] + a[5] * a[2] * a[11] - a[5] * a[3] * a[10] -
+             a[9] * a[2] * a[7] + a[9] * a[3] * a[6];
+    inv[7] = a[0] * a[6] * a[11] - a[0] * a[7] * a[10] - a[4] * a[2] * a[11] + a[4] * a[3] * a[10] +
+             a[8] * a[2] * a[7] - a[8] * a[3] * a[6];
+    inv[11] = -a[0] * a[5] * a[11] + a[0] * a[7] * a[9] + a[4] * a[1] * a[11] - a[4] * a[3] * a[9] -
+              a[8] * a[1] * a[7] + a[8] * a[3] * a[5];
+    inv[15] = a[0] * a[5] * a[10] - a[0] * a[6] * a[9] - a[4] * a[1] * a[10] + a[4] * a[2] * a[9] +
+              a[8] * a[1] * a[6] - a[8] * a[2] * a[5];
+    double det = a[0] * inv[0] + a[1] * inv[4] + a[2] * inv[8] + a[3] * inv[12];
+    if (det == 0.0 || !isfinite(det)) return 0;
+    for (int i = 0; i < 16; i++) out[i] = (float)(inv[i] / det);
+    return 1;
+}
+
+typedef struct frame_ubo {
+    float view[16], proj[16], view_proj[16], inv_view_proj[16];
+    float camera_pos[4], camera_fwd[4], viewport[4];
+    int32_t counts[4];
+    float misc[4];
+} frame_ubo;
+
+void gl_update_frame_ubo(sss_gl_renderer *r)
+{
+    sss_camera cam = r->scene->camera;
+    cam.width = r->width;
+    cam.height = r->height;
+    sss_camera_basis b;
+    if (sss_camera_basis_init(&cam, &b, NULL) != SSS_OK) b = r->scene->basis;
+    /* Depth range from the scene bounds (padded for animations): far beyond the farthest corner. */
+    double far_d = 0.0;
+    for (int i = 0; i < 8; i++) {
+        double c[3] = {(i & 1) ? r->gs.bounds_max[0] : r->gs.bounds_min[0],
+                       (i & 2) ? r->gs.bounds_max[1] : r->gs.bounds_min[1],
+                       (i & 4) ? r->gs.bounds_max[2] : r->gs.bounds_min[2]};
+        double d = 0.0;
+        for (int k = 0; k < 3; k++) d += (c[k] - b.origin[k]) * (c[k] - b.origin[k]);
+        if (sqrt(d) > far_d) far_d = sqrt(d);
+    }
+    if (!(far_d > 0.0)) far_d = 1.0;
+    r->far_plane = far_d * 1.05;
+    r->near_plane = r->far_plane * 1e-5;
+    double v[16], p[16];
+    sss_camera_view_matrix(&b, v);
+    sss_camera_projection_matrix(&b, r->near_plane, r->far_plane, p);
+    frame_ubo u;
+    memset(&u, 0, sizeof u);
+    to_col_major(v, u.view);
+    to_col_major(p, u.proj);
+    mat_mul_cm(u.proj, u.view, u.view_proj);
+    if (!mat_inverse(u.view_proj, u.inv_view_proj)) memset(u.inv_view_proj, 0, sizeof u.inv_view_proj);
+    memcpy(r->view, u.view, sizeof r->view);
+    memcpy(r->proj, u.proj, sizeof r->proj);
+    memcpy(r->view_proj, u.view_proj, sizeof r->view_proj);
+    for (int k = 0; k < 3; k++) {
+        u.camera_pos[k] = (float)b.origin[k];
+        u.camera_fwd[k] = (float)b.forward[k];
+    }
+    u.camera_pos[3] = (float)r->time;
+    u.camera_fwd[3] = (float)(2.0 * b.tan_half[1] / r->height);
+    u.viewport[0] = (float)r->width;
+    u.viewport[1] = (float)r->height;
+    u.viewport[2] = 1.0f / (float)r->width;
+    u.viewport[3] = 1.0f / (float)r->height;
+    u.counts[0] = r->gs.object_count;
+    u.counts[1] = r->gs.light_count;
+    u.counts[2] = r->gs.material_count;
+    u.counts[3] = r->frame.levels;
+    u.misc[0] = (float)r->scene->render.exposure;
+    /* Eq. 8 cut-off: the technique's grazing_cutoff parameter when it has one, else seed 000's 0.2 */
+    double cutoff = sss_gl_renderer_get_param(r, "grazing_cutoff");
+    u.misc[1] = (float)(isnan(cutoff) ? 0.2 : cutoff);
+    u.misc[2] = (float)r->shared[GL_P_SHADOW_BIAS];
+    u.misc[3] = (float)r->near_plane;
+    glNamedBufferSubData(r->ubo_frame, 0, sizeof u, &u);
+    glBindBufferBase(GL_UNIFORM_BUFFER, GL_UBO_FRAME, r->ubo_frame);
+}
+
+void gl_draw_objects(sss_gl_renderer *r, GLint object_uniform, int subsurface_only)
+{
+    for (int i = 0; i < r->gs.object_count; i++) {
+        const gl_object *o = &r->gs.objects[i];
+        if (subsurface_only && !o->subsurface) continue;
+        glUniform1i(object_uniform, i);
+        glBindVertexArray(o->vao);
+        glDrawElements(GL_TRIANGLES, (GLsizei)(3 * o->triangle_count), GL_UNSIGNED_INT, NULL);
+    }
+    glBindVertexArray(0);
+}
+
+void gl_draw_fullscreen(sss_gl_renderer *r)
+{
+    glBindVertexArray(r->vao_empty);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+}
+
+sss_result gl_pass_gbuffer(sss_gl_renderer *r, sss_error *err)
+{
+    gl_frame *f = &r->frame;
+    glBindFramebuffer(GL_FRAMEBUFFER, f->fbo_gbuffer);
+    glViewport(0, 0, f->width, f->height);
+    const float zero[4] = {0, 0, 0, 0};
+    const float one = 1.0f;
+    for (int i = 0; i < 3; i++) glClearBufferfv(GL_COLOR, i, zero);
+    glClearBufferfv(GL_DEPTH, 0, &one);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE); /* open meshes (planes) are visible from both sides */
+    glUseProgram(r->prog_gbuffer);
+    gl_draw_objects(r, glGetUniformLocation(r->prog_gbuffer, "u_object"), 0);
+    glDisable(GL_DEPTH_TEST);
+    return gl_check(r->ctx, "the G-buffer pass", err);
+}
+
+sss_result gl_pass_illumination(sss_gl_renderer *r, sss_error *err)
+{
+    gl_frame *f = &r->frame;
+    glBindFramebuffer(GL_FRAMEBUFFER, f->fbo_light);
+    glViewport(0, 0, f->width, f->height);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glUseProgram(r->prog_illum);
+    glBindTextureUnit(0, f->pos);
+    glBindTextureUnit(1, f->nrm);
+    glBindTextureUnit(2, f->albedo);
+    glUniform1i(glGetUniformLocation(r->prog_illum, "u_has_env"), r->gs.env_tex != 0);
+    glUniform1f(glGetUniformLocation(r->prog_illum, "u_env_rotate"), r->gs.env_rotate_y);
+    glUniform3fv(glGetUniformLocation(r->prog_illum, "u_env_scale"), 1, r->gs.env_scale);
+    gl_draw_fullscreen(r);
+    return gl_check(r->ctx, "the illumination pass", err);
+}
+
+sss_result gl_pass_mipmaps(sss_gl_renderer *r, sss_error *err)
+{
+    gl_frame *f = &r->frame;
+    glUseProgram(r->prog_reduce);
+    GLint u_pre = glGetUniformLocation(r->prog_reduce, "u_src_premultiplied");
+    int w = f->width, h = f->height;
+    for (int l = 1; l < f->levels; l++) {
+        int dw = w > 1 ? w / 2 : 1, dh = h > 1 ? h / 2 : 1;
+        glBindImageTexture(0, f->pos, l - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+        glBindImageTexture(1, f->irr, l - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+        glBindImageTexture(2, f->pos, l, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindImageTexture(3, f->irr, l, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        if (f->normal_mips) {
+            glBindImageTexture(4, f->nrm, l - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+            glBindImageTexture(5, f->nrm, l, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        }
+        glUniform1i(u_pre, l > 1);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        glDispatchCompute((GLuint)(dw + 7) / 8, (GLuint)(dh + 7) / 8, 1);
+        w = dw;
+        h = dh;
+    }
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    return gl_check(r->ctx, "the mip-chain pass", err);
+}
+
+sss_result gl_read_texture_rgb(GLuint tex, int level, int width, int height, sss_image *out, sss_error *err)
+{
+    memset(out, 0, sizeof *out);
+    sss_result res = sss_image_create(out, width, height, err);
+    if (res != SSS_OK) return res;
+    size_t n = (size_t)width * (size_t)height;
+    float *rgba = malloc(n * 4 * sizeof(float));
+    if (!rgba) {
+        sss_image_free(out);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (read-back of %dx%d)", width, height);
+    }
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(tex, level, GL_RGBA, GL_FLOAT, (GLsizei)(n * 4 * sizeof(float)), rgba);
+    /* GL rows run bottom-up; images are stored top row first. */
+    for (int y = 0; y < height; y++) {
+        const float *src = rgba + (size_t)(height - 1 - y) * (size_t)width * 4;
+        float *dst = out->pixels + (size_t)y * (size_t)width * 3;
+        for (int x = 0; x < width; x++)
+            for (int c = 0; c < 3; c++) dst[3 * x + c] = src[4 * x + c];
+    }
+    free(rgba);
+    return SSS_OK;
+}

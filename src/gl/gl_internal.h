@@ -1,0 +1,276 @@
+/* gl/gl_internal.h — internals of the OpenGL renderer shared by its files and techniques.
+ *
+ * Frame structure (every technique): [animation happens in the vertex/compute shaders]
+ *   shared passes, run by the renderer when the technique asks for them (gl_technique.needs):
+ *     "gbuffer"      positions + projected pixel area, normals + object id, albedo + eta, depth
+ *     "shadows"      cube maps (point lights, area-light VPLs), 2D maps (spot, directional, environment)
+ *     "illumination" reflected radiance of the visible surface and transmitted irradiance F_t E
+ *     "mipmaps"      area-weighted mip chains of positions/areas, irradiance/ids (and normals on request)
+ *   then the technique's own passes, ending with a pass that writes the linear target frame.final.
+ * Binding points are fixed (GL_UBO_*, GL_SSBO_*, GL_UNIT_*) so shaders and C agree; see common.glsl.
+ */
+#ifndef SSS_GL_INTERNAL_H
+#define SSS_GL_INTERNAL_H
+
+#include <stdint.h>
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+
+#include "sss/gl.h"
+#include "sss/kernel.h"
+#include "sss/scene.h"
+
+struct GLFWwindow;
+
+struct sss_gl_context {
+    const char *platform;
+    char renderer[256], version[256];
+    int software, debug, max_texture_size;
+    char debug_message[512]; /* first KHR_debug error since the last gl_check */
+    EGLDisplay egl_display;
+    EGLContext egl_context;
+    struct GLFWwindow *window;
+    int glfw_initialised;
+};
+
+/* Reports a pending GL error (or KHR_debug message) as an error naming `what`. */
+sss_result gl_check(sss_gl_context *ctx, const char *what, sss_error *err);
+
+/* ---- Shader programs (shader.c) ------------------------------------------------------------- */
+
+typedef struct gl_shader_stage {
+    GLenum stage;
+    const char *name; /* embedded file name, or the name of `text` */
+    const char *text; /* NULL: the embedded file; else this source (tests) */
+} gl_shader_stage;
+
+/* Compiles and links; errors name the stage, the shader file and line ("x.glsl:12(5): error ..."). */
+sss_result gl_program_build(const gl_shader_stage *stages, int count, const char *defines, GLuint *out,
+                            sss_error *err);
+sss_result gl_program_vf(const char *vert, const char *frag, const char *defines, GLuint *out, sss_error *err);
+sss_result gl_program_compute(const char *comp, const char *defines, GLuint *out, sss_error *err);
+
+/* ---- Timing (timing.c) ---------------------------------------------------------------------- */
+
+typedef struct gl_timer {
+    int enabled, use_queries;
+    int count;
+    const char *names[SSS_GL_MAX_PASSES];
+    double ms[SSS_GL_MAX_PASSES];
+    GLuint queries[SSS_GL_MAX_PASSES];
+    double t0;
+    int open; /* index of the pass being timed, -1 when none */
+} gl_timer;
+
+void gl_timer_init(gl_timer *t, int enabled, int software);
+void gl_timer_free(gl_timer *t);
+void gl_timer_frame_begin(gl_timer *t);
+void gl_timer_begin(gl_timer *t, const char *name);
+void gl_timer_end(gl_timer *t);
+void gl_timer_frame_end(gl_timer *t); /* collects query results */
+
+/* ---- Binding points ------------------------------------------------------------------------- */
+
+enum {
+    GL_UBO_FRAME = 0,
+    GL_SSBO_OBJECTS = 1,
+    GL_SSBO_MATERIALS = 2,
+    GL_SSBO_LIGHTS = 3,
+    GL_SSBO_SPLATS = 4,
+    GL_SSBO_SPLAT_COUNT = 5,
+    GL_SSBO_MESH_POS = 6,
+    GL_SSBO_MESH_IDX = 7,
+    GL_SSBO_MESH_UV = 8
+};
+enum {
+    GL_UNIT_LUT = 8,          /* sampler2DArray of the materials' LUTs */
+    GL_UNIT_SHADOW_CUBE = 9,  /* samplerCubeArrayShadow */
+    GL_UNIT_SHADOW_2D = 10,   /* sampler2DArrayShadow */
+    GL_UNIT_ALBEDO = 11,      /* sampler2DArray of albedo textures */
+    GL_UNIT_ENV = 12          /* sampler2D environment map */
+};
+
+/* ---- GPU scene (scene_gpu.c, lights.c) -------------------------------------------------------- */
+
+enum { GL_LIGHT_POINT = 0, GL_LIGHT_SPOT = 1, GL_LIGHT_DIRECTIONAL = 2, GL_LIGHT_VPL = 3 };
+enum { GL_SHADOW_NONE = 0, GL_SHADOW_CUBE = 1, GL_SHADOW_2D = 2 };
+
+/* std430 records; layouts mirror common.glsl. */
+typedef struct gl_object_record {
+    float model[16];         /* column-major */
+    float normal_matrix[16]; /* column-major, upper 3x3 used */
+    float bounds_min[4];     /* w: animation type */
+    float bounds_max[4];     /* w: amplitude */
+    float anim[4];           /* x: period, y: material index, z: subsurface (1/0), w: has uv */
+} gl_object_record;
+
+typedef struct gl_material_record {
+    float albedo[4]; /* rgb: diffuse reflectance, display albedo or emitted radiance; w: 0 subsurface,
+                        1 diffuse, 2 emitter (spec.x: two-sided) */
+    float params[4]; /* x: eta, y: c = 1 - 2 FM1(1/eta), z: LUT layer, w: albedo texture layer or -1 */
+    float lut[4];    /* x: r_max, y: a_max, z: axes (0 linear, 1 sqrt), w: LUT size */
+    float spec[4];   /* x: has specular, y: roughness */
+} gl_material_record;
+
+typedef struct gl_light_record {
+    float position[4];  /* xyz; w: type */
+    float direction[4]; /* spot axis / direction travelled / VPL normal; w: two-sided (VPL) */
+    float color[4];     /* intensity (W/sr) or radiance (directional: irradiance at normal incidence) */
+    float spot[4];      /* x: cos total width, y: cos falloff start, z: shadow kind, w: shadow layer */
+    float shadow_matrix[16]; /* 2D maps: world -> light clip space, column-major */
+    float shadow[4];    /* x: near, y: far (cube: distances), z: world texel size at distance 1 (or
+                           absolute for orthographic), w: 1 orthographic */
+} gl_light_record;
+
+typedef struct gl_object {
+    GLuint vao, pos, nrm, uv, idx;
+    uint32_t vertex_count, triangle_count;
+    int has_uv;
+    GLuint splat_pos, splat_idx, splat_uv; /* the low-resolution splat mesh (object space, rest pose) */
+    uint32_t splat_vertex_count, splat_triangle_count;
+    int subsurface, material, animated;
+    int emitter; /* an area light's visible rectangle (no shadows, no scattering) */
+} gl_object;
+
+typedef struct gl_material {
+    int subsurface, lut_layer;
+    double r_max, a_max;
+    sss_lut_axes axes;
+} gl_material;
+
+typedef struct gl_scene {
+    int object_count, material_count, light_count, vpl_count;
+    gl_object *objects;
+    gl_material *materials;
+    gl_light_record *lights;      /* light_count records (VPLs included) */
+    int shadow_cube_count, shadow_2d_count;
+    GLuint ssbo_objects, ssbo_materials, ssbo_lights;
+    GLuint lut_array;             /* 2D array texture, RGB32F, one layer per subsurface material */
+    int lut_size, lut_layers;
+    GLuint albedo_array;          /* RGBA8 2D array with mips, or 0 */
+    GLuint shadow_cube, shadow_2d;/* depth cube-map array / 2D array */
+    int shadow_cube_size, shadow_2d_size;
+    GLuint shadow_fbo;
+    float bounds_min[3], bounds_max[3]; /* world bounds of all objects at rest */
+    GLuint env_tex;               /* the first environment map (RGB32F), background of camera rays */
+    float env_rotate_y, env_scale[3];
+    size_t texture_bytes, buffer_bytes, lut_bytes;
+    unsigned splat_total;
+    int splats_ready;
+} gl_scene;
+
+/* ---- Screen-sized shared targets (frame.c) ---------------------------------------------------- */
+
+typedef struct gl_frame {
+    int width, height, levels;
+    GLuint pos;      /* RGBA32F, mips: xyz world position (area-weighted mean), w: projected area (sum) */
+    GLuint nrm;      /* RGBA16F: xyz normal, w: object id + 1 (0: background); mips when needed */
+    GLuint albedo;   /* RGBA16F: rgb albedo (texture), a: eta */
+    GLuint depth;    /* DEPTH_COMPONENT32F */
+    GLuint irr;      /* RGBA32F, mips: level 0 rgb F_t E (sqrt albedo applied), w: object id + 1 */
+    GLuint refl;     /* RGBA16F: directly reflected radiance */
+    GLuint final;    /* RGBA32F: linear result */
+    GLuint fbo_gbuffer, fbo_light, fbo_final;
+    size_t bytes;    /* all of the above */
+    int normal_mips;
+} gl_frame;
+
+/* ---- Techniques ------------------------------------------------------------------------------- */
+
+#define GL_NEED_GBUFFER 1u
+#define GL_NEED_SHADOWS 2u
+#define GL_NEED_ILLUMINATION 4u
+#define GL_NEED_MIPS 8u
+#define GL_NEED_NORMAL_MIPS 16u
+#define GL_NEED_SPLAT_MESHES 32u
+
+#define GL_MAX_PARAMS 48
+
+typedef struct gl_technique {
+    sss_gl_technique_info info;
+    unsigned needs;
+    size_t state_size; /* zeroed state passed to every callback */
+    sss_result (*create)(sss_gl_renderer *r, void *state, sss_error *err);
+    sss_result (*resize)(sss_gl_renderer *r, void *state, sss_error *err); /* after frame targets change */
+    sss_result (*render)(sss_gl_renderer *r, void *state, sss_error *err); /* writes frame.final */
+    void (*destroy)(sss_gl_renderer *r, void *state);
+    /* optional: intermediate buffers by name (sss_gl_renderer_read_buffer), statistics */
+    GLuint (*buffer)(sss_gl_renderer *r, void *state, const char *name);
+    void (*stats)(sss_gl_renderer *r, void *state, sss_gl_stats *out);
+} gl_technique;
+
+/* The registry (registry.c). */
+const gl_technique *gl_technique_lookup(const char *name);
+
+/* Shared parameter indices (params.c); values in r->shared[]. */
+enum {
+    GL_P_SHADOW_2D_SIZE = 0,
+    GL_P_SHADOW_CUBE_SIZE,
+    GL_P_SHADOW_VPL_SIZE,
+    GL_P_SHADOW_BIAS,
+    GL_P_AREA_SAMPLES,
+    GL_P_ENV_LIGHTS,
+    GL_P_LUT_SIZE,
+    GL_P_LUT_AXES,
+    GL_P_LUT_CUTOFF,
+    GL_P_LUT_ENERGY,
+    GL_P_SPLAT_TRIANGLES,
+    GL_P_SHARED_COUNT
+};
+
+struct sss_gl_renderer {
+    sss_gl_context *ctx;
+    const sss_scene *scene;
+    const gl_technique *tech;
+    void *tech_state;
+    double params[GL_MAX_PARAMS];  /* technique parameters, in info.params order */
+    double shared[GL_P_SHARED_COUNT];
+    int width, height;
+    double time;
+    gl_scene gs;
+    gl_frame frame;
+    gl_timer timer;
+    GLuint ubo_frame;
+    GLuint prog_gbuffer, prog_shadow, prog_illum, prog_reduce, prog_present, vao_empty;
+    int frame_rendered;
+    int scene_dirty;    /* parameters changed that rebuild scene resources */
+    float view[16], proj[16], view_proj[16];
+    double near_plane, far_plane;
+    unsigned splat_drawn;
+};
+
+/* Technique parameter by index (as declared in the technique's table). */
+static inline double gl_param(const sss_gl_renderer *r, int i) { return r->params[i]; }
+
+/* scene_gpu.c */
+sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err);
+sss_result gl_scene_prepare_splats(sss_gl_renderer *r, sss_error *err); /* splat meshes on demand */
+void gl_scene_free(gl_scene *gs);
+/* textures.c: albedo textures as one RGBA16F array (common size, bilinear resampling, mipmapped);
+ * count 0 makes a 1x1 white layer so the sampler is always complete. */
+sss_result gl_albedo_upload(gl_scene *gs, const char *const *paths, int count, sss_error *err);
+void gl_bind_scene(const sss_gl_renderer *r); /* SSBOs, LUT, shadow and albedo samplers */
+/* lights.c */
+sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err);
+sss_result gl_shadows_render(sss_gl_renderer *r, sss_error *err);
+/* frame.c */
+sss_result gl_frame_create(gl_frame *f, int width, int height, int normal_mips, sss_error *err);
+void gl_frame_free(gl_frame *f);
+sss_result gl_pass_gbuffer(sss_gl_renderer *r, sss_error *err);
+sss_result gl_pass_illumination(sss_gl_renderer *r, sss_error *err);
+sss_result gl_pass_mipmaps(sss_gl_renderer *r, sss_error *err);
+void gl_update_frame_ubo(sss_gl_renderer *r);
+/* Draws every object (G-buffer style vertex stage must be bound); mask: 1 subsurface only, 2 all. */
+void gl_draw_objects(sss_gl_renderer *r, GLint object_uniform, int subsurface_only);
+void gl_draw_fullscreen(sss_gl_renderer *r);
+
+/* Texture helpers: allocate immutable storage, set nearest/clamp sampling, count bytes. */
+GLuint gl_texture_2d(GLenum format, int width, int height, int levels, size_t *bytes);
+size_t gl_format_bytes(GLenum format);
+int gl_mip_levels(int width, int height);
+
+/* Reads an RGBA float texture level into an RGB image (created here). */
+sss_result gl_read_texture_rgb(GLuint tex, int level, int width, int height, sss_image *out, sss_error *err);
+
+#endif

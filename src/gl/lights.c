@@ -1,0 +1,516 @@
+/* gl/lights.c — light records, virtual point lights for area and environment lights, and shadow maps
+ * (seed 000, pass 2): cube maps for point lights and area-light VPLs, 2D maps for spot, directional and
+ * environment lights.
+ *
+ * Documented approximations (the CPU reference integrates these lights with many samples per point):
+ *  - an area light (rectangle center +- u +- v, radiance L) becomes n x n virtual point lights at the
+ *    centres of a regular grid of cells, each a cosine emitter of intensity L * A / n^2 * cos(theta_e)
+ *    (|cos| when two-sided) with its own cube shadow map; exact in the far field, too bright/too
+ *    peaked within about a cell size of the rectangle.
+ *  - an environment map becomes K directional lights by median cut (Debevec 2005): the map is split
+ *    recursively into regions of equal energy (solid-angle weighted luminance), each replaced by one
+ *    directional light at its energy centroid carrying the region's integral of L d(omega) as its
+ *    irradiance at normal incidence, with an orthographic shadow map.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl/gl_internal.h"
+
+#define ENV_MAX_WIDTH 256
+
+typedef struct vec3d {
+    double x, y, z;
+} vec3d;
+
+static vec3d v3(const double *a) { return (vec3d){a[0], a[1], a[2]}; }
+static vec3d vsub(vec3d a, vec3d b) { return (vec3d){a.x - b.x, a.y - b.y, a.z - b.z}; }
+static vec3d vadd(vec3d a, vec3d b) { return (vec3d){a.x + b.x, a.y + b.y, a.z + b.z}; }
+static vec3d vscale(vec3d a, double s) { return (vec3d){a.x * s, a.y * s, a.z * s}; }
+static double vdot(vec3d a, vec3d b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static vec3d vcross(vec3d a, vec3d b)
+{
+    return (vec3d){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+static double vlen(vec3d a) { return sqrt(vdot(a, a)); }
+static vec3d vnorm(vec3d a)
+{
+    double l = vlen(a);
+    return l > 0.0 ? vscale(a, 1.0 / l) : (vec3d){0, 1, 0};
+}
+
+/* Column-major look-at (right-handed, camera looks down -z) and projections. */
+static void look_at(vec3d eye, vec3d target, vec3d up, float m[16])
+{
+    vec3d f = vnorm(vsub(target, eye));
+    if (fabs(vdot(f, vnorm(up))) > 0.999) up = fabs(f.y) < 0.9 ? (vec3d){0, 1, 0} : (vec3d){1, 0, 0};
+    vec3d s = vnorm(vcross(f, up));
+    vec3d u = vcross(s, f);
+    float r[16] = {(float)s.x, (float)u.x, (float)-f.x, 0, (float)s.y, (float)u.y, (float)-f.y, 0,
+                   (float)s.z, (float)u.z, (float)-f.z, 0, (float)-vdot(s, eye), (float)-vdot(u, eye),
+                   (float)vdot(f, eye), 1};
+    memcpy(m, r, sizeof r);
+}
+
+static void perspective(double fovy, double n, double f, float m[16])
+{
+    double t = 1.0 / tan(fovy / 2.0);
+    memset(m, 0, 16 * sizeof(float));
+    m[0] = (float)t;
+    m[5] = (float)t;
+    m[10] = (float)((f + n) / (n - f));
+    m[11] = -1.0f;
+    m[14] = (float)(2.0 * f * n / (n - f));
+}
+
+static void ortho(double half, double n, double f, float m[16])
+{
+    memset(m, 0, 16 * sizeof(float));
+    m[0] = (float)(1.0 / half);
+    m[5] = (float)(1.0 / half);
+    m[10] = (float)(-2.0 / (f - n));
+    m[14] = (float)(-(f + n) / (f - n));
+    m[15] = 1.0f;
+}
+
+static void mul_cm(const float a[16], const float b[16], float out[16])
+{
+    float t[16];
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++) {
+            float s = 0.0f;
+            for (int k = 0; k < 4; k++) s += a[4 * k + r] * b[4 * c + k];
+            t[4 * c + r] = s;
+        }
+    memcpy(out, t, sizeof t);
+}
+
+/* Environment direction of SCENE.md / sss/reference.h: m = (sin t sin p, cos t, -sin t cos p),
+ * p = 2 pi (u - 0.5) - rad(rotate_y), t = pi v (v = 0 the top row). */
+static vec3d env_direction(double u, double v, double rotate_y)
+{
+    double phi = 2.0 * M_PI * (u - 0.5) - rotate_y * M_PI / 180.0, th = M_PI * v;
+    return (vec3d){sin(th) * sin(phi), cos(th), -sin(th) * cos(phi)};
+}
+
+typedef struct env_region {
+    int x0, y0, x1, y1; /* pixel rectangle [x0, x1) x [y0, y1) */
+} env_region;
+
+typedef struct env_map {
+    int w, h;
+    double *lum;   /* solid-angle weighted luminance per pixel */
+    double *rgb;   /* radiance * solid angle per pixel */
+    double *sum;   /* summed-area table of lum, (w + 1) x (h + 1) */
+} env_map;
+
+static double region_energy(const env_map *e, env_region r)
+{
+    size_t W = (size_t)e->w + 1;
+    return e->sum[(size_t)r.y1 * W + (size_t)r.x1] - e->sum[(size_t)r.y0 * W + (size_t)r.x1] -
+           e->sum[(size_t)r.y1 * W + (size_t)r.x0] + e->sum[(size_t)r.y0 * W + (size_t)r.x0];
+}
+
+/* Splits along the longer side (angular width: columns shrink by sin(theta)) at the energy median. */
+static int split_region(const env_map *e, env_region r, env_region *a, env_region *b)
+{
+    double th = M_PI * 0.5 * (r.y0 + r.y1) / e->h;
+    double wx = (r.x1 - r.x0) * sin(th) * 2.0, wy = (r.y1 - r.y0); /* u spans 2 pi, v spans pi */
+    double total = region_energy(e, r);
+    *a = *b = r;
+    if ((wx >= wy && r.x1 - r.x0 > 1) || r.y1 - r.y0 <= 1) {
+        if (r.x1 - r.x0 <= 1) return 0;
+        int best = r.x0 + 1;
+        for (int x = r.x0 + 1; x < r.x1; x++) {
+            env_region t = r;
+            t.x1 = x;
+            best = x;
+            if (region_energy(e, t) >= 0.5 * total) break;
+        }
+        a->x1 = best;
+        b->x0 = best;
+    } else {
+        int best = r.y0 + 1;
+        for (int y = r.y0 + 1; y < r.y1; y++) {
+            env_region t = r;
+            t.y1 = y;
+            best = y;
+            if (region_energy(e, t) >= 0.5 * total) break;
+        }
+        a->y1 = best;
+        b->y0 = best;
+    }
+    return 1;
+}
+
+/* Reads and downsamples (box filter) the map; lum and rgb include the pixel's solid angle. */
+static sss_result env_load(const sss_light *L, env_map *e, sss_error *err)
+{
+    sss_image img;
+    sss_result res = sss_image_read(L->file, &img, err);
+    if (res != SSS_OK) return res;
+    int f = 1;
+    while (img.width / f > ENV_MAX_WIDTH) f *= 2;
+    e->w = img.width / f > 0 ? img.width / f : 1;
+    e->h = img.height / f > 0 ? img.height / f : 1;
+    e->lum = calloc((size_t)e->w * e->h, sizeof *e->lum);
+    e->rgb = calloc((size_t)e->w * e->h * 3, sizeof *e->rgb);
+    e->sum = calloc(((size_t)e->w + 1) * ((size_t)e->h + 1), sizeof *e->sum);
+    if (!e->lum || !e->rgb || !e->sum) {
+        sss_image_free(&img);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (environment map)");
+    }
+    for (int y = 0; y < e->h; y++) {
+        double th0 = M_PI * y / e->h, th1 = M_PI * (y + 1) / e->h;
+        double domega = (cos(th0) - cos(th1)) * 2.0 * M_PI / e->w; /* exact solid angle of the cell */
+        for (int x = 0; x < e->w; x++) {
+            double c[3] = {0, 0, 0};
+            int n = 0;
+            for (int j = 0; j < f; j++)
+                for (int i = 0; i < f; i++) {
+                    int sx = x * f + i, sy = y * f + j;
+                    if (sx >= img.width || sy >= img.height) continue;
+                    const float *p = img.pixels + 3 * ((size_t)sy * img.width + sx);
+                    for (int k = 0; k < 3; k++) c[k] += isfinite(p[k]) && p[k] > 0.0f ? p[k] : 0.0;
+                    n++;
+                }
+            size_t idx = (size_t)y * e->w + x;
+            for (int k = 0; k < 3; k++) e->rgb[3 * idx + k] = c[k] / (n ? n : 1) * L->scale[k] * domega;
+            e->lum[idx] = 0.2126 * e->rgb[3 * idx] + 0.7152 * e->rgb[3 * idx + 1] + 0.0722 * e->rgb[3 * idx + 2];
+        }
+    }
+    sss_image_free(&img);
+    size_t W = (size_t)e->w + 1;
+    for (int y = 0; y < e->h; y++)
+        for (int x = 0; x < e->w; x++)
+            e->sum[(size_t)(y + 1) * W + x + 1] = e->lum[(size_t)y * e->w + x] + e->sum[(size_t)y * W + x + 1] +
+                                                  e->sum[(size_t)(y + 1) * W + x] - e->sum[(size_t)y * W + x];
+    return SSS_OK;
+}
+
+/* The first environment map at full resolution, for camera rays that miss (sss/reference.h). */
+static sss_result env_upload(gl_scene *gs, const sss_light *L, sss_error *err)
+{
+    sss_image img;
+    sss_result res = sss_image_read(L->file, &img, err);
+    if (res != SSS_OK) return res;
+    for (size_t i = 0; i < (size_t)img.width * img.height * 3; i++)
+        if (!isfinite(img.pixels[i]) || img.pixels[i] < 0.0f) img.pixels[i] = 0.0f;
+    glCreateTextures(GL_TEXTURE_2D, 1, &gs->env_tex);
+    glTextureStorage2D(gs->env_tex, 1, GL_RGB32F, img.width, img.height);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    /* row 0 of the texture = the top row of the image (v = 0), so no flip: the shader uses v directly */
+    glTextureSubImage2D(gs->env_tex, 0, 0, 0, img.width, img.height, GL_RGB, GL_FLOAT, img.pixels);
+    glTextureParameteri(gs->env_tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(gs->env_tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(gs->env_tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(gs->env_tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gs->texture_bytes += (size_t)img.width * img.height * 12;
+    gs->env_rotate_y = (float)L->rotate_y;
+    for (int k = 0; k < 3; k++) gs->env_scale[k] = (float)L->scale[k];
+    sss_image_free(&img);
+    return SSS_OK;
+}
+
+static void env_free(env_map *e)
+{
+    free(e->lum);
+    free(e->rgb);
+    free(e->sum);
+    memset(e, 0, sizeof *e);
+}
+
+static int env_light_count(const sss_gl_renderer *r)
+{
+    int k = (int)r->shared[GL_P_ENV_LIGHTS], p = 1;
+    while (p * 2 <= k) p *= 2; /* median cut produces powers of two */
+    return p;
+}
+
+static int area_grid(const sss_gl_renderer *r)
+{
+    int n = (int)floor(sqrt(r->shared[GL_P_AREA_SAMPLES]) + 0.5);
+    return n < 1 ? 1 : n;
+}
+
+sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err)
+{
+    const sss_scene *s = r->scene;
+    gl_scene *gs = &r->gs;
+    int n_area = area_grid(r), n_env = env_light_count(r);
+    size_t cap = 0;
+    for (size_t i = 0; i < s->light_count; i++) {
+        switch (s->lights[i].type) {
+        case SSS_LIGHT_AREA: cap += (size_t)n_area * n_area; break;
+        case SSS_LIGHT_ENVIRONMENT: cap += (size_t)n_env; break;
+        default: cap += 1; break;
+        }
+    }
+    gs->lights = calloc(cap ? cap : 1, sizeof *gs->lights);
+    if (!gs->lights) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (lights)");
+    int n = 0, cubes = 0, maps = 0, cubes_vpl = 0, maps_env = 0;
+    vec3d c = {0.5 * (gs->bounds_min[0] + gs->bounds_max[0]), 0.5 * (gs->bounds_min[1] + gs->bounds_max[1]),
+               0.5 * (gs->bounds_min[2] + gs->bounds_max[2])};
+    vec3d ext = {gs->bounds_max[0] - gs->bounds_min[0], gs->bounds_max[1] - gs->bounds_min[1],
+                 gs->bounds_max[2] - gs->bounds_min[2]};
+    double radius = 0.5 * vlen(ext);
+    if (!(radius > 0.0)) radius = 1.0;
+    for (size_t i = 0; i < s->light_count; i++) {
+        const sss_light *L = &s->lights[i];
+        if (L->type == SSS_LIGHT_AREA) {
+            vec3d u = v3(L->u), v = v3(L->v), ce = v3(L->center);
+            vec3d nrm = vnorm(vcross(u, v));
+            double area = 4.0 * vlen(vcross(u, v));
+            for (int a = 0; a < n_area; a++)
+                for (int b = 0; b < n_area; b++) {
+                    gl_light_record *g = &gs->lights[n++];
+                    double su = 2.0 * (a + 0.5) / n_area - 1.0, sv = 2.0 * (b + 0.5) / n_area - 1.0;
+                    vec3d p = vadd(ce, vadd(vscale(u, su), vscale(v, sv)));
+                    g->position[0] = (float)p.x;
+                    g->position[1] = (float)p.y;
+                    g->position[2] = (float)p.z;
+                    g->position[3] = GL_LIGHT_VPL;
+                    g->direction[0] = (float)nrm.x;
+                    g->direction[1] = (float)nrm.y;
+                    g->direction[2] = (float)nrm.z;
+                    g->direction[3] = L->two_sided ? 1.0f : 0.0f;
+                    for (int k = 0; k < 3; k++) g->color[k] = (float)(L->radiance[k] * area / (n_area * n_area));
+                    g->spot[2] = GL_SHADOW_CUBE;
+                    g->spot[3] = (float)cubes++;
+                    cubes_vpl++;
+                }
+            gs->vpl_count += n_area * n_area;
+            continue;
+        }
+        if (L->type == SSS_LIGHT_ENVIRONMENT) {
+            env_map e;
+            memset(&e, 0, sizeof e);
+            sss_result res = gs->env_tex ? SSS_OK : env_upload(gs, L, err);
+            if (res == SSS_OK) res = env_load(L, &e, err);
+            if (res != SSS_OK) {
+                env_free(&e);
+                return res;
+            }
+            env_region *reg = calloc((size_t)n_env, sizeof *reg), *tmp = calloc((size_t)n_env, sizeof *tmp);
+            if (!reg || !tmp) {
+                free(reg);
+                free(tmp);
+                env_free(&e);
+                return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (environment lights)");
+            }
+            int count = 1;
+            reg[0] = (env_region){0, 0, e.w, e.h};
+            while (count < n_env) {
+                int m = 0;
+                for (int k = 0; k < count; k++) {
+                    env_region a, b;
+                    if (split_region(&e, reg[k], &a, &b)) {
+                        tmp[m++] = a;
+                        tmp[m++] = b;
+                    } else {
+                        tmp[m++] = reg[k];
+                    }
+                }
+                if (m == count) break;
+                memcpy(reg, tmp, sizeof *reg * (size_t)m);
+                count = m;
+            }
+            for (int k = 0; k < count; k++) {
+                double rgb[3] = {0, 0, 0}, wsum = 0.0;
+                vec3d dir = {0, 0, 0};
+                for (int y = reg[k].y0; y < reg[k].y1; y++)
+                    for (int x = reg[k].x0; x < reg[k].x1; x++) {
+                        size_t idx = (size_t)y * e.w + x;
+                        for (int ch = 0; ch < 3; ch++) rgb[ch] += e.rgb[3 * idx + ch];
+                        double w = e.lum[idx];
+                        dir = vadd(dir, vscale(env_direction((x + 0.5) / e.w, (y + 0.5) / e.h, L->rotate_y), w));
+                        wsum += w;
+                    }
+                if (!(wsum > 0.0)) {
+                    /* a dark region: no light (its rgb integral is zero too) */
+                    continue;
+                }
+                vec3d to_light = vnorm(dir);
+                gl_light_record *g = &gs->lights[n++];
+                g->position[3] = GL_LIGHT_DIRECTIONAL;
+                g->direction[0] = (float)-to_light.x;
+                g->direction[1] = (float)-to_light.y;
+                g->direction[2] = (float)-to_light.z;
+                for (int ch = 0; ch < 3; ch++) g->color[ch] = (float)rgb[ch];
+                g->spot[2] = GL_SHADOW_2D;
+                g->spot[3] = (float)maps++;
+                maps_env++;
+                gs->vpl_count++;
+            }
+            free(reg);
+            free(tmp);
+            env_free(&e);
+            continue;
+        }
+        gl_light_record *g = &gs->lights[n++];
+        for (int k = 0; k < 3; k++) {
+            g->position[k] = (float)L->position[k];
+            g->color[k] = (float)(L->type == SSS_LIGHT_DIRECTIONAL ? L->radiance[k] : L->intensity[k]);
+        }
+        if (L->type == SSS_LIGHT_POINT) {
+            g->position[3] = GL_LIGHT_POINT;
+            g->spot[2] = GL_SHADOW_CUBE;
+            g->spot[3] = (float)cubes++;
+        } else if (L->type == SSS_LIGHT_SPOT) {
+            g->position[3] = GL_LIGHT_SPOT;
+            vec3d axis = vnorm(vsub(v3(L->look_at), v3(L->position)));
+            g->direction[0] = (float)axis.x;
+            g->direction[1] = (float)axis.y;
+            g->direction[2] = (float)axis.z;
+            g->spot[0] = (float)cos(L->cone_angle * M_PI / 180.0);
+            g->spot[1] = (float)cos((L->cone_angle - L->cone_delta) * M_PI / 180.0);
+            /* wide cones do not fit one perspective map: use a cube */
+            if (L->cone_angle > 75.0) {
+                g->spot[2] = GL_SHADOW_CUBE;
+                g->spot[3] = (float)cubes++;
+            } else {
+                g->spot[2] = GL_SHADOW_2D;
+                g->spot[3] = (float)maps++;
+            }
+        } else {
+            g->position[3] = GL_LIGHT_DIRECTIONAL;
+            vec3d d = vnorm(v3(L->direction));
+            g->direction[0] = (float)d.x;
+            g->direction[1] = (float)d.y;
+            g->direction[2] = (float)d.z;
+            g->spot[2] = GL_SHADOW_2D;
+            g->spot[3] = (float)maps++;
+        }
+    }
+    gs->light_count = n;
+    /* One size per array: full-size maps when any light needs them, else the VPL size. */
+    gs->shadow_cube_size = cubes > cubes_vpl ? (int)r->shared[GL_P_SHADOW_CUBE_SIZE] : (int)r->shared[GL_P_SHADOW_VPL_SIZE];
+    gs->shadow_2d_size = maps > maps_env ? (int)r->shared[GL_P_SHADOW_2D_SIZE] : (int)r->shared[GL_P_SHADOW_VPL_SIZE];
+    gs->shadow_cube_count = cubes;
+    gs->shadow_2d_count = maps;
+    /* Shadow transforms */
+    for (int i = 0; i < n; i++) {
+        gl_light_record *g = &gs->lights[i];
+        int type = (int)g->position[3];
+        vec3d p = {g->position[0], g->position[1], g->position[2]};
+        double far_d = vlen(vsub(p, c)) + radius;
+        if (g->spot[2] == GL_SHADOW_CUBE) {
+            g->shadow[0] = (float)(far_d * 1e-4);
+            g->shadow[1] = (float)(far_d * 1.01);
+            g->shadow[2] = (float)(2.0 / gs->shadow_cube_size);
+        } else if (type == GL_LIGHT_SPOT) {
+            double cone = acos(g->spot[0]);
+            float V[16], P[16];
+            look_at(p, vadd(p, (vec3d){g->direction[0], g->direction[1], g->direction[2]}), (vec3d){0, 1, 0}, V);
+            perspective(2.0 * cone * 1.02, far_d * 1e-4, far_d * 1.01, P);
+            mul_cm(P, V, g->shadow_matrix);
+            g->shadow[0] = (float)(far_d * 1e-4);
+            g->shadow[1] = (float)(far_d * 1.01);
+            g->shadow[2] = (float)(2.0 * tan(cone * 1.02) / gs->shadow_2d_size);
+        } else { /* directional: orthographic over the scene's bounding sphere */
+            vec3d d = {g->direction[0], g->direction[1], g->direction[2]};
+            vec3d eye = vsub(c, vscale(d, 2.0 * radius));
+            float V[16], P[16];
+            look_at(eye, c, (vec3d){0, 1, 0}, V);
+            ortho(radius * 1.01, radius * 0.9, radius * 3.1, P);
+            mul_cm(P, V, g->shadow_matrix);
+            g->shadow[0] = (float)(radius * 0.9);
+            g->shadow[1] = (float)(radius * 3.1);
+            g->shadow[2] = (float)(2.0 * radius * 1.01 / gs->shadow_2d_size);
+            g->shadow[3] = 1.0f;
+        }
+    }
+    glCreateBuffers(1, &gs->ssbo_lights);
+    glNamedBufferStorage(gs->ssbo_lights, (GLsizeiptr)(sizeof *gs->lights * (size_t)(n ? n : 1)), gs->lights, 0);
+    gs->buffer_bytes += sizeof *gs->lights * (size_t)(n ? n : 1);
+    /* Shadow textures (a 1-layer dummy when unused keeps the samplers complete). */
+    glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &gs->shadow_cube);
+    glTextureStorage3D(gs->shadow_cube, 1, GL_DEPTH_COMPONENT32F, gs->shadow_cube_size, gs->shadow_cube_size,
+                       6 * (cubes ? cubes : 1));
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &gs->shadow_2d);
+    glTextureStorage3D(gs->shadow_2d, 1, GL_DEPTH_COMPONENT32F, gs->shadow_2d_size, gs->shadow_2d_size,
+                       maps ? maps : 1);
+    GLuint t[2] = {gs->shadow_cube, gs->shadow_2d};
+    for (int i = 0; i < 2; i++) {
+        glTextureParameteri(t[i], GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(t[i], GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(t[i], GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(t[i], GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(t[i], GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glTextureParameteri(t[i], GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    }
+    gs->texture_bytes += (size_t)gs->shadow_cube_size * gs->shadow_cube_size * 4 * 6 * (size_t)(cubes ? cubes : 1) +
+                         (size_t)gs->shadow_2d_size * gs->shadow_2d_size * 4 * (size_t)(maps ? maps : 1);
+    glCreateFramebuffers(1, &gs->shadow_fbo);
+    glNamedFramebufferDrawBuffer(gs->shadow_fbo, GL_NONE);
+    glNamedFramebufferReadBuffer(gs->shadow_fbo, GL_NONE);
+    /* Cleared once so that lights without casters read "lit". */
+    return gl_check(r->ctx, "the light setup", err);
+}
+
+sss_result gl_shadows_render(sss_gl_renderer *r, sss_error *err)
+{
+    gl_scene *gs = &r->gs;
+    if (gs->light_count == 0) return SSS_OK;
+    glUseProgram(r->prog_shadow);
+    GLint u_obj = glGetUniformLocation(r->prog_shadow, "u_object");
+    GLint u_vp = glGetUniformLocation(r->prog_shadow, "u_light_view_proj");
+    GLint u_cube = glGetUniformLocation(r->prog_shadow, "u_cube");
+    GLint u_lpos = glGetUniformLocation(r->prog_shadow, "u_light_pos");
+    GLint u_far = glGetUniformLocation(r->prog_shadow, "u_far");
+    glBindFramebuffer(GL_FRAMEBUFFER, gs->shadow_fbo);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    static const double face_dir[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    static const double face_up[6][3] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+    const float one = 1.0f;
+    for (int i = 0; i < gs->light_count; i++) {
+        const gl_light_record *g = &gs->lights[i];
+        int kind = (int)g->spot[2], layer = (int)g->spot[3];
+        if (kind == GL_SHADOW_CUBE) {
+            vec3d p = {g->position[0], g->position[1], g->position[2]};
+            float P[16];
+            perspective(M_PI / 2.0, g->shadow[0], g->shadow[1], P);
+            glViewport(0, 0, gs->shadow_cube_size, gs->shadow_cube_size);
+            glUniform1i(u_cube, 1);
+            glUniform3f(u_lpos, g->position[0], g->position[1], g->position[2]);
+            glUniform1f(u_far, g->shadow[1]);
+            glDisable(GL_POLYGON_OFFSET_FILL);
+            for (int f = 0; f < 6; f++) {
+                float V[16], VP[16];
+                look_at(p, vadd(p, v3(face_dir[f])), v3(face_up[f]), V);
+                mul_cm(P, V, VP);
+                glNamedFramebufferTextureLayer(gs->shadow_fbo, GL_DEPTH_ATTACHMENT, gs->shadow_cube, 0, 6 * layer + f);
+                glClearBufferfv(GL_DEPTH, 0, &one);
+                glUniformMatrix4fv(u_vp, 1, GL_FALSE, VP);
+                for (int o = 0; o < gs->object_count; o++) {
+                    if (gs->objects[o].emitter) continue;
+                    glUniform1i(u_obj, o);
+                    glBindVertexArray(gs->objects[o].vao);
+                    glDrawElements(GL_TRIANGLES, (GLsizei)(3 * gs->objects[o].triangle_count), GL_UNSIGNED_INT, NULL);
+                }
+            }
+        } else if (kind == GL_SHADOW_2D) {
+            glViewport(0, 0, gs->shadow_2d_size, gs->shadow_2d_size);
+            glUniform1i(u_cube, 0);
+            glEnable(GL_POLYGON_OFFSET_FILL);
+            glPolygonOffset(1.5f, 2.0f);
+            glNamedFramebufferTextureLayer(gs->shadow_fbo, GL_DEPTH_ATTACHMENT, gs->shadow_2d, 0, layer);
+            glClearBufferfv(GL_DEPTH, 0, &one);
+            glUniformMatrix4fv(u_vp, 1, GL_FALSE, g->shadow_matrix);
+            for (int o = 0; o < gs->object_count; o++) {
+                if (gs->objects[o].emitter) continue;
+                glUniform1i(u_obj, o);
+                glBindVertexArray(gs->objects[o].vao);
+                glDrawElements(GL_TRIANGLES, (GLsizei)(3 * gs->objects[o].triangle_count), GL_UNSIGNED_INT, NULL);
+            }
+            glDisable(GL_POLYGON_OFFSET_FILL);
+        }
+    }
+    glBindVertexArray(0);
+    glDisable(GL_DEPTH_TEST);
+    return gl_check(r->ctx, "the shadow-map pass", err);
+}

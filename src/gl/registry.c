@@ -1,0 +1,68 @@
+/* gl/registry.c — the techniques, selected by name. A new technique is one file defining a
+ * `const gl_technique gl_technique_<name>` (see gl_internal.h) plus one line in the table below. */
+#include <string.h>
+
+#include "gl/gl_internal.h"
+
+extern const gl_technique gl_technique_maisch2020;
+extern const gl_technique gl_technique_local;
+
+static const gl_technique *const techniques[] = {
+    &gl_technique_maisch2020,
+    &gl_technique_local,
+};
+#define TECHNIQUE_COUNT ((int)(sizeof techniques / sizeof techniques[0]))
+
+int sss_gl_technique_count(void) { return TECHNIQUE_COUNT; }
+
+const sss_gl_technique_info *sss_gl_technique_at(int index)
+{
+    if (index < 0 || index >= TECHNIQUE_COUNT) return NULL;
+    return &techniques[index]->info;
+}
+
+const gl_technique *gl_technique_lookup(const char *name)
+{
+    if (!name) return NULL;
+    for (int i = 0; i < TECHNIQUE_COUNT; i++)
+        if (strcmp(techniques[i]->info.name, name) == 0) return techniques[i];
+    return NULL;
+}
+
+const sss_gl_technique_info *sss_gl_technique_find(const char *name)
+{
+    const gl_technique *t = gl_technique_lookup(name);
+    return t ? &t->info : NULL;
+}
+
+/* Shared parameters; indices are the GL_P_* enum. */
+static const sss_gl_param_info shared_params[GL_P_SHARED_COUNT] = {
+    [GL_P_SHADOW_2D_SIZE] = {"shadow_size", SSS_GL_PARAM_INT, 2048, 16, 16384,
+                             "texels per side of the 2D shadow maps (spot and directional lights)"},
+    [GL_P_SHADOW_CUBE_SIZE] = {"shadow_cube_size", SSS_GL_PARAM_INT, 1024, 16, 8192,
+                               "texels per side of each face of the point lights' cube shadow maps"},
+    [GL_P_SHADOW_VPL_SIZE] = {"shadow_vpl_size", SSS_GL_PARAM_INT, 256, 16, 4096,
+                              "shadow map size of the virtual lights of area and environment lights"},
+    [GL_P_SHADOW_BIAS] = {"shadow_bias", SSS_GL_PARAM_FLOAT, 1.5, 0, 64,
+                          "shadow lookups offset along the normal and in depth, in shadow-map texels"},
+    [GL_P_AREA_SAMPLES] = {"area_samples", SSS_GL_PARAM_INT, 16, 1, 1024,
+                           "virtual point lights per area light (rounded to n x n cell centres)"},
+    [GL_P_ENV_LIGHTS] = {"env_lights", SSS_GL_PARAM_INT, 32, 1, 1024,
+                         "directional lights per environment map (median cut; rounded down to 2^k)"},
+    [GL_P_LUT_SIZE] = {"lut_size", SSS_GL_PARAM_INT, 512, 16, 4096,
+                       "texels per axis of the kernel LUT R'_d(r, A) (seed 000, section 7.1: 512)"},
+    [GL_P_LUT_AXES] = {"lut_sqrt_axes", SSS_GL_PARAM_BOOL, 1, 0, 1,
+                       "1: LUT texels at squares of even steps (dense near r = 0, A = 0); 0: linear (seed 000)"},
+    [GL_P_LUT_CUTOFF] = {"lut_cutoff", SSS_GL_PARAM_FLOAT, 1e-7, 1e-30, 1,
+                         "r_max solves Q(r_max) = alpha' sigma_t' e^(-sigma_t' r_max) = cutoff (seed 000, 7.1)"},
+    [GL_P_LUT_ENERGY] = {"lut_energy", SSS_GL_PARAM_FLOAT, 0, 0, 0.999999,
+                         "if > 0: r_max holds this fraction of R_d's plane integral instead of the Q rule"},
+    [GL_P_SPLAT_TRIANGLES] = {"splat_triangles", SSS_GL_PARAM_INT, 4096, 4, 16777216,
+                              "triangle budget of simplified splat meshes (objects without splat_mesh)"},
+};
+
+const sss_gl_param_info *sss_gl_shared_params(int *count)
+{
+    if (count) *count = GL_P_SHARED_COUNT;
+    return shared_params;
+}

@@ -1,0 +1,379 @@
+/* gl/renderer.c — the renderer object: parameters, shared programs and passes, the frame loop, read
+ * back, timings and statistics. Techniques plug in through gl_technique (gl_internal.h). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl/gl_internal.h"
+
+/* ---- Parameters ----------------------------------------------------------------------------- */
+
+static int find_param(const sss_gl_param_info *params, int count, const char *name)
+{
+    for (int i = 0; i < count; i++)
+        if (strcmp(params[i].name, name) == 0) return i;
+    return -1;
+}
+
+static sss_result check_value(const sss_gl_param_info *p, double v, sss_error *err)
+{
+    if (!isfinite(v) || v < p->min_value || v > p->max_value)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "parameter %s = %g is outside [%g, %g] (%s)", p->name,
+                             v, p->min_value, p->max_value, p->doc);
+    if (p->type != SSS_GL_PARAM_FLOAT && v != floor(v))
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "parameter %s must be %s, got %g", p->name,
+                             p->type == SSS_GL_PARAM_BOOL ? "0 or 1" : "an integer", v);
+    return SSS_OK;
+}
+
+/* Unknown names: the message lists what the technique and the shared table accept. */
+static sss_result unknown_param(const sss_gl_renderer *r, const char *name, sss_error *err)
+{
+    char list[400] = "";
+    size_t at = 0;
+    for (int i = 0; i < r->tech->info.param_count && at < sizeof list; i++)
+        at += (size_t)snprintf(list + at, sizeof list - at, "%s%s", i ? ", " : "", r->tech->info.params[i].name);
+    int n = 0;
+    const sss_gl_param_info *sp = sss_gl_shared_params(&n);
+    for (int i = 0; i < n && at < sizeof list; i++)
+        at += (size_t)snprintf(list + at, sizeof list - at, ", %s", sp[i].name);
+    return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "technique %s has no parameter '%s' (known: %s)",
+                         r->tech->info.name, name, list);
+}
+
+/* Sets a parameter value; *scene_level tells whether scene resources depend on it. */
+static sss_result set_param_value(sss_gl_renderer *r, const char *name, double value, int *scene_level,
+                                  sss_error *err)
+{
+    if (!name) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "parameter name is NULL");
+    int i = find_param(r->tech->info.params, r->tech->info.param_count, name);
+    if (i >= 0) {
+        sss_result res = check_value(&r->tech->info.params[i], value, err);
+        if (res != SSS_OK) return res;
+        r->params[i] = value;
+        if (scene_level) *scene_level = 0;
+        return SSS_OK;
+    }
+    int n = 0;
+    const sss_gl_param_info *sp = sss_gl_shared_params(&n);
+    i = find_param(sp, n, name);
+    if (i < 0) return unknown_param(r, name, err);
+    sss_result res = check_value(&sp[i], value, err);
+    if (res != SSS_OK) return res;
+    r->shared[i] = value;
+    if (scene_level) *scene_level = i != GL_P_SHADOW_BIAS;
+    return SSS_OK;
+}
+
+double sss_gl_renderer_get_param(const sss_gl_renderer *r, const char *name)
+{
+    if (!r || !name) return NAN;
+    int i = find_param(r->tech->info.params, r->tech->info.param_count, name);
+    if (i >= 0) return r->params[i];
+    int n = 0;
+    const sss_gl_param_info *sp = sss_gl_shared_params(&n);
+    i = find_param(sp, n, name);
+    return i >= 0 ? r->shared[i] : NAN;
+}
+
+/* ---- Creation ------------------------------------------------------------------------------- */
+
+static sss_result build_programs(sss_gl_renderer *r, sss_error *err)
+{
+    sss_result res = gl_program_vf("gbuffer.vert.glsl", "gbuffer.frag.glsl", NULL, &r->prog_gbuffer, err);
+    if (res == SSS_OK) res = gl_program_vf("shadow.vert.glsl", "shadow.frag.glsl", NULL, &r->prog_shadow, err);
+    if (res == SSS_OK)
+        res = gl_program_vf("fullscreen.vert.glsl", "illumination.frag.glsl", NULL, &r->prog_illum, err);
+    if (res == SSS_OK)
+        res = gl_program_compute("mip_reduce.comp.glsl",
+                                 (r->tech->needs & GL_NEED_NORMAL_MIPS) ? "#define WITH_NORMALS 1\n" : NULL,
+                                 &r->prog_reduce, err);
+    if (res == SSS_OK)
+        res = gl_program_vf("fullscreen.vert.glsl", "present.frag.glsl", NULL, &r->prog_present, err);
+    return res;
+}
+
+static sss_result build_scene(sss_gl_renderer *r, sss_error *err)
+{
+    sss_result res = gl_scene_upload(r, err);
+    if (res == SSS_OK) res = gl_lights_build(r, err);
+    if (res == SSS_OK && (r->tech->needs & GL_NEED_SPLAT_MESHES)) res = gl_scene_prepare_splats(r, err);
+    return res;
+}
+
+static sss_result create_technique(sss_gl_renderer *r, sss_error *err)
+{
+    r->tech_state = calloc(1, r->tech->state_size ? r->tech->state_size : 1);
+    if (!r->tech_state) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (technique state)");
+    sss_result res = r->tech->create ? r->tech->create(r, r->tech_state, err) : SSS_OK;
+    if (res != SSS_OK) sss_error_prefix(err, r->tech->info.name);
+    return res;
+}
+
+static void destroy_technique(sss_gl_renderer *r)
+{
+    if (r->tech_state && r->tech->destroy) r->tech->destroy(r, r->tech_state);
+    free(r->tech_state);
+    r->tech_state = NULL;
+}
+
+sss_result sss_gl_renderer_create(sss_gl_context *ctx, const sss_scene *scene, const sss_gl_renderer_desc *desc_in,
+                                  sss_gl_renderer **out, sss_error *err)
+{
+    if (!out) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_renderer_create: out is NULL");
+    *out = NULL;
+    if (!ctx || !scene) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_renderer_create: no context or scene");
+    sss_gl_renderer_desc desc;
+    memset(&desc, 0, sizeof desc);
+    if (desc_in) desc = *desc_in;
+    const char *name = desc.technique ? desc.technique : scene->render.technique;
+    if (!name || !name[0]) name = SSS_SCENE_DEFAULT_TECHNIQUE;
+    const gl_technique *tech = gl_technique_lookup(name);
+    if (!tech) {
+        char list[256] = "";
+        size_t at = 0;
+        for (int i = 0; i < sss_gl_technique_count() && at < sizeof list; i++)
+            at += (size_t)snprintf(list + at, sizeof list - at, "%s%s", i ? ", " : "", sss_gl_technique_at(i)->name);
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "unknown technique '%s' (known: %s)", name, list);
+    }
+    int width = desc.width > 0 ? desc.width : scene->camera.width;
+    int height = desc.height > 0 ? desc.height : scene->camera.height;
+    if (width < 1 || height < 1 || width > ctx->max_texture_size || height > ctx->max_texture_size ||
+        width > SSS_SCENE_MAX_IMAGE_SIZE || height > SSS_SCENE_MAX_IMAGE_SIZE)
+        return sss_error_set(err, SSS_ERROR_LIMIT, "image size %dx%d outside 1..%d", width, height,
+                             ctx->max_texture_size < SSS_SCENE_MAX_IMAGE_SIZE ? ctx->max_texture_size
+                                                                             : SSS_SCENE_MAX_IMAGE_SIZE);
+    if (tech->info.param_count > GL_MAX_PARAMS)
+        return sss_error_set(err, SSS_ERROR_LIMIT, "technique %s declares too many parameters", tech->info.name);
+    if (!sss_gl_context_make_current(ctx))
+        return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "cannot make the GL context current");
+    sss_gl_renderer *r = calloc(1, sizeof *r);
+    if (!r) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (renderer)");
+    r->ctx = ctx;
+    r->scene = scene;
+    r->tech = tech;
+    r->width = width;
+    r->height = height;
+    for (int i = 0; i < tech->info.param_count; i++) r->params[i] = tech->info.params[i].default_value;
+    int n = 0;
+    const sss_gl_param_info *sp = sss_gl_shared_params(&n);
+    for (int i = 0; i < n; i++) r->shared[i] = sp[i].default_value;
+    sss_result res = SSS_OK;
+    for (int i = 0; i < desc.param_count && res == SSS_OK; i++)
+        res = set_param_value(r, desc.params[i].name, desc.params[i].value, NULL, err);
+    gl_timer_init(&r->timer, desc.timings, ctx->software);
+    while (glGetError() != GL_NO_ERROR) {}
+    if (res == SSS_OK) res = build_programs(r, err);
+    if (res == SSS_OK) {
+        glCreateBuffers(1, &r->ubo_frame);
+        glNamedBufferStorage(r->ubo_frame, 1024, NULL, GL_DYNAMIC_STORAGE_BIT);
+        glCreateVertexArrays(1, &r->vao_empty);
+        res = build_scene(r, err);
+    }
+    if (res == SSS_OK)
+        res = gl_frame_create(&r->frame, width, height, (tech->needs & GL_NEED_NORMAL_MIPS) != 0, err);
+    if (res == SSS_OK) res = create_technique(r, err);
+    if (res == SSS_OK) res = gl_check(ctx, "renderer creation", err);
+    if (res != SSS_OK) {
+        sss_gl_renderer_destroy(r);
+        return res;
+    }
+    *out = r;
+    return SSS_OK;
+}
+
+void sss_gl_renderer_destroy(sss_gl_renderer *r)
+{
+    if (!r) return;
+    sss_gl_context_make_current(r->ctx);
+    destroy_technique(r);
+    gl_frame_free(&r->frame);
+    gl_scene_free(&r->gs);
+    GLuint progs[5] = {r->prog_gbuffer, r->prog_shadow, r->prog_illum, r->prog_reduce, r->prog_present};
+    for (int i = 0; i < 5; i++)
+        if (progs[i]) glDeleteProgram(progs[i]);
+    if (r->ubo_frame) glDeleteBuffers(1, &r->ubo_frame);
+    if (r->vao_empty) glDeleteVertexArrays(1, &r->vao_empty);
+    gl_timer_free(&r->timer);
+    free(r);
+}
+
+sss_result sss_gl_renderer_set_param(sss_gl_renderer *r, const char *name, double value, sss_error *err)
+{
+    if (!r) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "renderer is NULL");
+    int scene_level = 0;
+    sss_result res = set_param_value(r, name, value, &scene_level, err);
+    if (res != SSS_OK) return res;
+    if (scene_level) r->scene_dirty = 1;
+    else if (r->tech->resize && r->tech_state) {
+        sss_gl_context_make_current(r->ctx);
+        res = r->tech->resize(r, r->tech_state, err);
+    }
+    return res;
+}
+
+sss_result sss_gl_renderer_resize(sss_gl_renderer *r, int width, int height, sss_error *err)
+{
+    if (!r) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "renderer is NULL");
+    if (width < 1 || height < 1 || width > r->ctx->max_texture_size || height > r->ctx->max_texture_size)
+        return sss_error_set(err, SSS_ERROR_LIMIT, "image size %dx%d outside 1..%d", width, height,
+                             r->ctx->max_texture_size);
+    if (width == r->width && height == r->height) return SSS_OK;
+    sss_gl_context_make_current(r->ctx);
+    gl_frame_free(&r->frame);
+    r->width = width;
+    r->height = height;
+    r->frame_rendered = 0;
+    sss_result res = gl_frame_create(&r->frame, width, height, (r->tech->needs & GL_NEED_NORMAL_MIPS) != 0, err);
+    if (res == SSS_OK && r->tech->resize) res = r->tech->resize(r, r->tech_state, err);
+    return res;
+}
+
+void sss_gl_renderer_size(const sss_gl_renderer *r, int *width, int *height)
+{
+    if (width) *width = r ? r->width : 0;
+    if (height) *height = r ? r->height : 0;
+}
+
+/* ---- Frames --------------------------------------------------------------------------------- */
+
+sss_result sss_gl_renderer_render(sss_gl_renderer *r, double time, sss_error *err)
+{
+    if (!r) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "renderer is NULL");
+    if (!isfinite(time)) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "render time %g is not finite", time);
+    sss_gl_context_make_current(r->ctx);
+    sss_result res = SSS_OK;
+    if (r->scene_dirty) {
+        destroy_technique(r);
+        gl_scene_free(&r->gs);
+        r->scene_dirty = 0;
+        res = build_scene(r, err);
+        if (res == SSS_OK) res = create_technique(r, err);
+        if (res != SSS_OK) {
+            r->scene_dirty = 1;
+            return res;
+        }
+    }
+    r->time = time;
+    r->frame_rendered = 0;
+    gl_update_frame_ubo(r);
+    gl_bind_scene(r);
+    gl_timer *t = &r->timer;
+    gl_timer_frame_begin(t);
+    unsigned needs = r->tech->needs;
+    if (needs & GL_NEED_GBUFFER) {
+        gl_timer_begin(t, "gbuffer");
+        res = gl_pass_gbuffer(r, err);
+    }
+    if (res == SSS_OK && (needs & GL_NEED_SHADOWS)) {
+        gl_timer_begin(t, "shadows");
+        res = gl_shadows_render(r, err);
+    }
+    if (res == SSS_OK && (needs & GL_NEED_ILLUMINATION)) {
+        gl_timer_begin(t, "illumination");
+        res = gl_pass_illumination(r, err);
+    }
+    if (res == SSS_OK && (needs & GL_NEED_MIPS)) {
+        gl_timer_begin(t, "mipmaps");
+        res = gl_pass_mipmaps(r, err);
+    }
+    gl_timer_end(t);
+    if (res == SSS_OK) res = r->tech->render(r, r->tech_state, err);
+    gl_timer_frame_end(t);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (res == SSS_OK) res = gl_check(r->ctx, "the end of the frame", err);
+    if (res == SSS_OK) r->frame_rendered = 1;
+    return res;
+}
+
+sss_result sss_gl_renderer_read(sss_gl_renderer *r, sss_image *out, sss_error *err)
+{
+    if (!r || !out || !out->pixels)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_renderer_read: no renderer or image");
+    if (out->width != r->width || out->height != r->height)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "read-back image is %dx%d, the renderer %dx%d",
+                             out->width, out->height, r->width, r->height);
+    if (!r->frame_rendered) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "no frame rendered yet");
+    sss_gl_context_make_current(r->ctx);
+    sss_image tmp;
+    sss_result res = gl_read_texture_rgb(r->frame.final, 0, r->width, r->height, &tmp, err);
+    if (res != SSS_OK) return res;
+    size_t bad = sss_image_count_nonfinite(&tmp);
+    if (bad) {
+        sss_image_free(&tmp);
+        return sss_error_set(err, SSS_ERROR_NUMERIC, "technique %s produced %zu NaN/Inf values",
+                             r->tech->info.name, bad);
+    }
+    memcpy(out->pixels, tmp.pixels, sizeof(float) * 3 * (size_t)r->width * (size_t)r->height);
+    sss_image_free(&tmp);
+    return gl_check(r->ctx, "the read-back", err);
+}
+
+sss_result sss_gl_renderer_read_buffer(sss_gl_renderer *r, const char *name, sss_image *out, sss_error *err)
+{
+    if (out) memset(out, 0, sizeof *out);
+    if (!r || !name || !out) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "read_buffer: bad arguments");
+    if (!r->frame_rendered) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "no frame rendered yet");
+    sss_gl_context_make_current(r->ctx);
+    GLuint tex = 0;
+    if (strcmp(name, "final") == 0) tex = r->frame.final;
+    else if (strcmp(name, "reflected") == 0) tex = r->frame.refl;
+    else if (strcmp(name, "irradiance") == 0) tex = r->frame.irr;
+    else if (r->tech->buffer) tex = r->tech->buffer(r, r->tech_state, name);
+    if (!tex)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "technique %s has no buffer '%s'", r->tech->info.name,
+                             name);
+    GLint w = 0, h = 0;
+    glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_WIDTH, &w);
+    glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_HEIGHT, &h);
+    return gl_read_texture_rgb(tex, 0, w, h, out, err);
+}
+
+sss_result sss_gl_renderer_present(sss_gl_renderer *r, sss_error *err)
+{
+    if (!r) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "renderer is NULL");
+    if (!r->ctx->window) return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "present needs a window context");
+    int w = 0, h = 0;
+    sss_gl_window_size(r->ctx, &w, &h);
+    if (w < 1 || h < 1) return SSS_OK;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, w, h);
+    glUseProgram(r->prog_present);
+    glBindTextureUnit(0, r->frame.final);
+    glUniform2f(glGetUniformLocation(r->prog_present, "u_scale"), (float)r->width / w, (float)r->height / h);
+    gl_draw_fullscreen(r);
+    return gl_check(r->ctx, "present", err);
+}
+
+void sss_gl_renderer_timings(const sss_gl_renderer *r, sss_gl_timings *out)
+{
+    if (!out) return;
+    memset(out, 0, sizeof *out);
+    out->method = "off";
+    if (!r || !r->timer.enabled) return;
+    out->method = r->timer.use_queries ? "GL_TIME_ELAPSED queries" : "glFinish + monotonic clock";
+    out->pass_count = r->timer.count;
+    for (int i = 0; i < r->timer.count; i++) {
+        out->passes[i].name = r->timer.names[i];
+        out->passes[i].ms = r->timer.ms[i];
+        out->total_ms += r->timer.ms[i];
+    }
+}
+
+void sss_gl_renderer_stats(sss_gl_renderer *r, sss_gl_stats *out)
+{
+    if (!out) return;
+    memset(out, 0, sizeof *out);
+    if (!r) return;
+    out->texture_bytes = r->gs.texture_bytes + r->frame.bytes;
+    out->buffer_bytes = r->gs.buffer_bytes;
+    out->lut_bytes = r->gs.lut_bytes;
+    out->per_pixel_bytes = r->frame.bytes / ((size_t)r->width * (size_t)r->height);
+    out->splat_total = r->gs.splat_total;
+    out->material_count = r->gs.material_count;
+    out->light_count = r->gs.light_count;
+    out->virtual_light_count = r->gs.vpl_count;
+    out->object_count = (int)r->scene->object_count;
+    if (r->tech->stats && r->tech_state) r->tech->stats(r, r->tech_state, out);
+}

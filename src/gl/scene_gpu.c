@@ -1,0 +1,384 @@
+/* gl/scene_gpu.c — uploads a scene: meshes (rest pose; animation runs in the shaders), one material
+ * record per distinct material with its kernel LUT (one layer of a 2D array texture each, seed 000
+ * section 7.1), albedo textures, and the low-resolution splat meshes (on demand).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl/gl_internal.h"
+#include "sss/profile.h"
+
+static GLuint make_buffer(const void *data, size_t bytes, size_t *counter)
+{
+    GLuint b = 0;
+    glCreateBuffers(1, &b);
+    glNamedBufferStorage(b, (GLsizeiptr)(bytes ? bytes : 4), data, 0);
+    if (counter) *counter += bytes;
+    return b;
+}
+
+static void upload_mesh(gl_scene *gs, gl_object *o, const sss_mesh *m)
+{
+    o->vertex_count = m->vertex_count;
+    o->triangle_count = m->triangle_count;
+    o->has_uv = m->uvs != NULL;
+    o->pos = make_buffer(m->positions, sizeof(float) * 3 * m->vertex_count, &gs->buffer_bytes);
+    o->nrm = make_buffer(m->normals, sizeof(float) * 3 * m->vertex_count, &gs->buffer_bytes);
+    o->idx = make_buffer(m->indices, sizeof(uint32_t) * 3 * m->triangle_count, &gs->buffer_bytes);
+    if (m->uvs) o->uv = make_buffer(m->uvs, sizeof(float) * 2 * m->vertex_count, &gs->buffer_bytes);
+    glCreateVertexArrays(1, &o->vao);
+    glVertexArrayVertexBuffer(o->vao, 0, o->pos, 0, 3 * sizeof(float));
+    glVertexArrayAttribFormat(o->vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(o->vao, 0, 0);
+    glEnableVertexArrayAttrib(o->vao, 0);
+    glVertexArrayVertexBuffer(o->vao, 1, o->nrm, 0, 3 * sizeof(float));
+    glVertexArrayAttribFormat(o->vao, 1, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(o->vao, 1, 1);
+    glEnableVertexArrayAttrib(o->vao, 1);
+    if (o->uv) {
+        glVertexArrayVertexBuffer(o->vao, 2, o->uv, 0, 2 * sizeof(float));
+        glVertexArrayAttribFormat(o->vao, 2, 2, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(o->vao, 2, 2);
+        glEnableVertexArrayAttrib(o->vao, 2);
+    }
+    glVertexArrayElementBuffer(o->vao, o->idx);
+}
+
+/* Two subsurface materials share a LUT when their optics and profile agree exactly. */
+static int same_material(const sss_scene_material *a, const sss_scene_material *b)
+{
+    if (a->type != b->type) return 0;
+    if (a->type == SSS_SCENE_MATERIAL_DIFFUSE)
+        return memcmp(a->albedo, b->albedo, sizeof a->albedo) == 0;
+    return memcmp(&a->optical, &b->optical, sizeof a->optical) == 0 && a->profile == b->profile &&
+           (a->texture == NULL) == (b->texture == NULL) && (!a->texture || strcmp(a->texture, b->texture) == 0) &&
+           a->has_specular == b->has_specular && a->roughness == b->roughness;
+}
+
+static void col_major_from_rows(const double m[16], float out[16])
+{
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++) out[4 * c + r] = (float)m[4 * r + c];
+}
+
+/* Object-space bounds grown by what the animation can add (conservative). */
+static void animated_bounds(const sss_scene_object *so, float lo[3], float hi[3])
+{
+    double diag = 0.0;
+    for (int k = 0; k < 3; k++) {
+        lo[k] = so->bounds_min[k];
+        hi[k] = so->bounds_max[k];
+        diag += (double)(hi[k] - lo[k]) * (hi[k] - lo[k]);
+    }
+    diag = sqrt(diag);
+    double pad = 0.0;
+    if (so->animation.type == SSS_ANIMATION_TWIST || so->animation.type == SSS_ANIMATION_BEND) pad = diag;
+    if (so->animation.type == SSS_ANIMATION_WAVE) pad = fabs(so->animation.amplitude);
+    for (int k = 0; k < 3; k++) {
+        lo[k] -= (float)pad;
+        hi[k] += (float)pad;
+    }
+}
+
+static sss_result build_lut(sss_gl_renderer *r, const sss_scene_material *m, sss_lut *lut, sss_error *err)
+{
+    sss_profile prof;
+    sss_result res = sss_profile_init(&prof, sss_scene_material_profile_model(m), &m->optical, m->table, err);
+    if (res != SSS_OK) return res;
+    sss_lut_desc d;
+    memset(&d, 0, sizeof d);
+    d.size = (int)r->shared[GL_P_LUT_SIZE];
+    d.axes = (int)r->shared[GL_P_LUT_AXES] ? SSS_LUT_AXES_SQRT : SSS_LUT_AXES_LINEAR;
+    d.source_cutoff = r->shared[GL_P_LUT_CUTOFF];
+    double energy = r->shared[GL_P_LUT_ENERGY];
+    if (energy > 0.0) {
+        /* Alternative cut-off: the radius holding this fraction of each channel's plane integral. */
+        double rm = 0.0;
+        for (int c = 0; c < 3; c++) {
+            double x = sss_profile_radius_for_fraction(&prof, c, energy);
+            if (isfinite(x) && x > rm) rm = x;
+        }
+        d.r_max = rm;
+    }
+    return sss_lut_build(&prof, &d, lut, err);
+}
+
+sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err)
+{
+    const sss_scene *s = r->scene;
+    gl_scene *gs = &r->gs;
+    if (s->object_count == 0 || s->object_count > 65535)
+        return sss_error_set(err, SSS_ERROR_LIMIT, "%s: %zu objects (the GL renderer takes 1..65535)",
+                             s->name ? s->name : "scene", s->object_count);
+    size_t n_area = 0;
+    for (size_t i = 0; i < s->light_count; i++) n_area += s->lights[i].type == SSS_LIGHT_AREA;
+    size_t n_obj = s->object_count + n_area; /* area lights are visible rectangles (sss/reference.h) */
+    gs->object_count = (int)n_obj;
+    gs->objects = calloc(n_obj, sizeof *gs->objects);
+    gs->materials = calloc(n_obj, sizeof *gs->materials);
+    gl_object_record *orec = calloc(n_obj, sizeof *orec);
+    gl_material_record *mrec = calloc(n_obj, sizeof *mrec);
+    const sss_scene_material **mref = calloc(s->object_count, sizeof *mref);
+    sss_lut *luts = calloc(s->object_count, sizeof *luts);
+    if (!gs->objects || !gs->materials || !orec || !mrec || !mref || !luts) {
+        free(orec); free(mrec); free(mref); free(luts);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene upload)");
+    }
+    const char **tex_paths = calloc(s->object_count, sizeof *tex_paths);
+    int tex_count = 0;
+    if (!tex_paths) {
+        free(orec); free(mrec); free(mref); free(luts);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene upload)");
+    }
+    sss_result res = SSS_OK;
+    int lut_layers = 0;
+    for (int k = 0; k < 3; k++) {
+        gs->bounds_min[k] = INFINITY;
+        gs->bounds_max[k] = -INFINITY;
+    }
+    for (size_t i = 0; i < s->object_count && res == SSS_OK; i++) {
+        const sss_scene_object *so = &s->objects[i];
+        gl_object *o = &gs->objects[i];
+        if (so->mesh.vertex_count == 0 || so->mesh.triangle_count == 0 || !so->mesh.normals) {
+            res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: objects[%zu] has no mesh loaded",
+                                s->name ? s->name : "scene", i);
+            break;
+        }
+        upload_mesh(gs, o, &so->mesh);
+        /* material: reuse an identical one */
+        const sss_scene_material *sm = &so->material;
+        int mi = -1;
+        for (int k = 0; k < gs->material_count; k++)
+            if (same_material(mref[k], sm)) mi = k;
+        if (mi < 0) {
+            mi = gs->material_count++;
+            mref[mi] = sm;
+            gl_material *gm = &gs->materials[mi];
+            gl_material_record *rec = &mrec[mi];
+            gm->subsurface = sm->type == SSS_SCENE_MATERIAL_SUBSURFACE;
+            for (int c = 0; c < 3; c++) rec->albedo[c] = (float)sm->albedo[c];
+            rec->albedo[3] = gm->subsurface ? 0.0f : 1.0f;
+            rec->params[2] = -1.0f;
+            rec->params[3] = -1.0f;
+            if (gm->subsurface) {
+                rec->params[0] = (float)sm->optical.eta;
+                rec->params[1] = (float)sss_bssrdf_normalization(sm->optical.eta);
+                res = build_lut(r, sm, &luts[lut_layers], err);
+                if (res != SSS_OK) {
+                    sss_error_prefix(err, "kernel LUT");
+                    break;
+                }
+                gm->lut_layer = lut_layers++;
+                gm->r_max = luts[gm->lut_layer].r_max;
+                gm->a_max = luts[gm->lut_layer].a_max;
+                gm->axes = luts[gm->lut_layer].axes;
+                rec->params[2] = (float)gm->lut_layer;
+                rec->lut[0] = (float)gm->r_max;
+                rec->lut[1] = (float)gm->a_max;
+                rec->lut[2] = gm->axes == SSS_LUT_AXES_SQRT ? 1.0f : 0.0f;
+                rec->lut[3] = (float)luts[gm->lut_layer].size;
+                rec->spec[0] = sm->has_specular ? 1.0f : 0.0f;
+                rec->spec[1] = (float)sm->roughness;
+                if (sm->texture) {
+                    int t = 0;
+                    while (t < tex_count && strcmp(tex_paths[t], sm->texture) != 0) t++;
+                    if (t == tex_count) tex_paths[tex_count++] = sm->texture;
+                    rec->params[3] = (float)t;
+                }
+            }
+        }
+        o->material = mi;
+        o->subsurface = gs->materials[mi].subsurface;
+        o->animated = so->animation.type != SSS_ANIMATION_NONE;
+        gl_object_record *rec = &orec[i];
+        col_major_from_rows(so->transform.matrix, rec->model);
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) rec->normal_matrix[4 * b + a] = (float)so->transform.normal_matrix[3 * a + b];
+        rec->normal_matrix[15] = 1.0f;
+        for (int k = 0; k < 3; k++) {
+            rec->bounds_min[k] = so->bounds_min[k];
+            rec->bounds_max[k] = so->bounds_max[k];
+        }
+        rec->bounds_min[3] = (float)so->animation.type;
+        rec->bounds_max[3] = (float)so->animation.amplitude;
+        rec->anim[0] = so->animation.period > 0.0 ? (float)so->animation.period : 1.0f;
+        rec->anim[1] = (float)mi;
+        rec->anim[2] = o->subsurface ? 1.0f : 0.0f;
+        rec->anim[3] = o->has_uv ? 1.0f : 0.0f;
+        float lo[3], hi[3];
+        animated_bounds(so, lo, hi);
+        for (int c = 0; c < 8; c++) {
+            double p[3] = {(c & 1) ? hi[0] : lo[0], (c & 2) ? hi[1] : lo[1], (c & 4) ? hi[2] : lo[2]}, w[3];
+            sss_transform_point(so->transform.matrix, p, w);
+            for (int k = 0; k < 3; k++) {
+                if ((float)w[k] < gs->bounds_min[k]) gs->bounds_min[k] = (float)w[k];
+                if ((float)w[k] > gs->bounds_max[k]) gs->bounds_max[k] = (float)w[k];
+            }
+        }
+    }
+    /* Emitters: one quad per area light, emitting its radiance towards u x v (or both sides). */
+    size_t e = s->object_count;
+    for (size_t i = 0; i < s->light_count && res == SSS_OK; i++) {
+        const sss_light *L = &s->lights[i];
+        if (L->type != SSS_LIGHT_AREA) continue;
+        float pos[12], nrm[12];
+        uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
+        double n[3] = {L->u[1] * L->v[2] - L->u[2] * L->v[1], L->u[2] * L->v[0] - L->u[0] * L->v[2],
+                       L->u[0] * L->v[1] - L->u[1] * L->v[0]};
+        double nl = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        static const double su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
+        for (int c = 0; c < 4; c++)
+            for (int k = 0; k < 3; k++) {
+                pos[3 * c + k] = (float)(L->center[k] + su[c] * L->u[k] + sv[c] * L->v[k]);
+                nrm[3 * c + k] = (float)(nl > 0.0 ? n[k] / nl : 0.0);
+            }
+        sss_mesh quad;
+        memset(&quad, 0, sizeof quad);
+        quad.vertex_count = 4;
+        quad.triangle_count = 2;
+        quad.positions = pos;
+        quad.normals = nrm;
+        quad.indices = idx;
+        gl_object *o = &gs->objects[e];
+        upload_mesh(gs, o, &quad);
+        o->emitter = 1;
+        int mi = gs->material_count++;
+        o->material = mi;
+        gl_material_record *m = &mrec[mi];
+        for (int c = 0; c < 3; c++) m->albedo[c] = (float)L->radiance[c];
+        m->albedo[3] = 2.0f;
+        m->params[0] = 1.0f;
+        m->params[2] = m->params[3] = -1.0f;
+        m->spec[0] = L->two_sided ? 1.0f : 0.0f;
+        gl_object_record *rec = &orec[e];
+        for (int k = 0; k < 4; k++) rec->model[5 * k] = rec->normal_matrix[5 * k] = 1.0f;
+        rec->anim[0] = 1.0f;
+        rec->anim[1] = (float)mi;
+        for (int c = 0; c < 4; c++)
+            for (int k = 0; k < 3; k++) {
+                if (pos[3 * c + k] < gs->bounds_min[k]) gs->bounds_min[k] = pos[3 * c + k];
+                if (pos[3 * c + k] > gs->bounds_max[k]) gs->bounds_max[k] = pos[3 * c + k];
+            }
+        e++;
+    }
+    if (res == SSS_OK) res = gl_albedo_upload(gs, tex_paths, tex_count, err);
+    if (res == SSS_OK) {
+        gs->ssbo_objects = make_buffer(orec, sizeof *orec * n_obj, &gs->buffer_bytes);
+        gs->ssbo_materials = make_buffer(mrec, sizeof *mrec * (size_t)gs->material_count, &gs->buffer_bytes);
+        /* LUT array: a 1x1 zero layer when no material scatters, so the sampler is always complete. */
+        int size = lut_layers ? luts[0].size : 1;
+        gs->lut_size = size;
+        gs->lut_layers = lut_layers ? lut_layers : 1;
+        glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &gs->lut_array);
+        glTextureStorage3D(gs->lut_array, 1, GL_RGB32F, size, size, gs->lut_layers);
+        glTextureParameteri(gs->lut_array, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(gs->lut_array, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(gs->lut_array, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(gs->lut_array, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        gs->lut_bytes = (size_t)size * size * 12 * (size_t)gs->lut_layers;
+        gs->texture_bytes += gs->lut_bytes;
+        if (!lut_layers) {
+            float z[3] = {0, 0, 0};
+            glTextureSubImage3D(gs->lut_array, 0, 0, 0, 0, 1, 1, 1, GL_RGB, GL_FLOAT, z);
+        }
+        for (int l = 0; l < lut_layers; l++) {
+            if (luts[l].size != size) {
+                res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "kernel LUTs of different sizes");
+                break;
+            }
+            glTextureSubImage3D(gs->lut_array, 0, 0, 0, l, size, size, 1, GL_RGB, GL_FLOAT, luts[l].texels);
+        }
+    }
+    for (int l = 0; l < lut_layers; l++) sss_lut_free(&luts[l]);
+    free(orec);
+    free(mrec);
+    free(mref);
+    free(luts);
+    free(tex_paths);
+    if (res != SSS_OK) return res;
+    return gl_check(r->ctx, "the scene upload", err);
+}
+
+sss_result gl_scene_prepare_splats(sss_gl_renderer *r, sss_error *err)
+{
+    gl_scene *gs = &r->gs;
+    if (gs->splats_ready) return SSS_OK;
+    gs->splat_total = 0;
+    for (int i = 0; i < gs->object_count; i++) {
+        gl_object *o = &gs->objects[i];
+        if (!o->subsurface) continue;
+        const sss_scene_object *so = &r->scene->objects[i];
+        const sss_mesh *m = &so->mesh;
+        sss_mesh simplified;
+        memset(&simplified, 0, sizeof simplified);
+        if (so->splat_mesh.triangle_count > 0) {
+            m = &so->splat_mesh;
+        } else {
+            uint32_t budget = so->splat_triangles ? so->splat_triangles : (uint32_t)r->shared[GL_P_SPLAT_TRIANGLES];
+            if (m->triangle_count > budget) {
+                sss_result res = sss_mesh_simplify(m, budget, &simplified, err);
+                if (res != SSS_OK) {
+                    sss_error_prefix(err, "splat mesh (simplification)");
+                    return res;
+                }
+                m = &simplified;
+            }
+        }
+        o->splat_vertex_count = m->vertex_count;
+        o->splat_triangle_count = m->triangle_count;
+        o->splat_pos = make_buffer(m->positions, sizeof(float) * 3 * m->vertex_count, &gs->buffer_bytes);
+        o->splat_idx = make_buffer(m->indices, sizeof(uint32_t) * 3 * m->triangle_count, &gs->buffer_bytes);
+        if (m->uvs) o->splat_uv = make_buffer(m->uvs, sizeof(float) * 2 * m->vertex_count, &gs->buffer_bytes);
+        gs->splat_total += m->triangle_count;
+        sss_mesh_free(&simplified);
+    }
+    gs->splats_ready = 1;
+    return gl_check(r->ctx, "the splat mesh upload", err);
+}
+
+static void delete_buffer(GLuint *b)
+{
+    if (*b) glDeleteBuffers(1, b);
+    *b = 0;
+}
+
+void gl_scene_free(gl_scene *gs)
+{
+    for (int i = 0; gs->objects && i < gs->object_count; i++) {
+        gl_object *o = &gs->objects[i];
+        if (o->vao) glDeleteVertexArrays(1, &o->vao);
+        delete_buffer(&o->pos);
+        delete_buffer(&o->nrm);
+        delete_buffer(&o->uv);
+        delete_buffer(&o->idx);
+        delete_buffer(&o->splat_pos);
+        delete_buffer(&o->splat_idx);
+        delete_buffer(&o->splat_uv);
+    }
+    free(gs->objects);
+    free(gs->materials);
+    free(gs->lights);
+    delete_buffer(&gs->ssbo_objects);
+    delete_buffer(&gs->ssbo_materials);
+    delete_buffer(&gs->ssbo_lights);
+    GLuint t[5] = {gs->lut_array, gs->albedo_array, gs->shadow_cube, gs->shadow_2d, gs->env_tex};
+    for (int i = 0; i < 5; i++)
+        if (t[i]) glDeleteTextures(1, &t[i]);
+    if (gs->shadow_fbo) glDeleteFramebuffers(1, &gs->shadow_fbo);
+    memset(gs, 0, sizeof *gs);
+}
+
+void gl_bind_scene(const sss_gl_renderer *r)
+{
+    const gl_scene *gs = &r->gs;
+    glBindBufferBase(GL_UNIFORM_BUFFER, GL_UBO_FRAME, r->ubo_frame);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_OBJECTS, gs->ssbo_objects);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_MATERIALS, gs->ssbo_materials);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_LIGHTS, gs->ssbo_lights);
+    glBindTextureUnit(GL_UNIT_LUT, gs->lut_array);
+    glBindTextureUnit(GL_UNIT_SHADOW_CUBE, gs->shadow_cube);
+    glBindTextureUnit(GL_UNIT_SHADOW_2D, gs->shadow_2d);
+    glBindTextureUnit(GL_UNIT_ALBEDO, gs->albedo_array);
+    glBindTextureUnit(GL_UNIT_ENV, gs->env_tex);
+}

@@ -1,0 +1,307 @@
+/* gl/tech_maisch2020.c — Maisch & Ropinski 2020 (seed 000): screen-space subsurface scattering with
+ * the layered pattern (section 4) plus quarter-resolution splatting translucency (section 5), both
+ * with the disc-integrated kernel R'_d(r, A) (section 3.2).
+ *
+ * The seven passes of section 3.3: (1) G-buffer, (2) shadow maps, (3) illumination + mip chains (the
+ * renderer's shared passes), then here: (4) translucency = splat generation/culling (compute) +
+ * receivers + additive splatting at 1/divisor resolution, (5) bicubic upsampling, (6) screen-space
+ * pattern, (7) combination. */
+#include <string.h>
+
+#include "gl/gl_internal.h"
+
+enum {
+    P_N = 0,
+    P_NL,
+    P_LAYERS,
+    P_BRIGHTENING,
+    P_PREINTEGRATED,
+    P_SCREEN,
+    P_TRANSLUCENCY,
+    P_DIVISOR,
+    P_GRAZING,
+    P_CULL_RULE,
+    P_IRRADIANCE_CULL,
+    P_DISC,
+    P_BICUBIC,
+    P_SHADOW_OFFSET,
+    P_FILTERED,
+    P_COUNT
+};
+
+static const sss_gl_param_info params[P_COUNT] = {
+    [P_N] = {"n", SSS_GL_PARAM_INT, 2, 0, 32, "inner kernel of (2n+1)^2 full-resolution samples (seed 000, 4.2)"},
+    [P_NL] = {"n_l", SSS_GL_PARAM_INT, 5, 3, 33, "layer width in samples: 4(n_l - 1) samples per layer (Eq. 7)"},
+    [P_LAYERS] = {"layers", SSS_GL_PARAM_INT, 10, 0, 64, "outer layers of the screen-space pattern (4.2: 10)"},
+    [P_BRIGHTENING] = {"brightening", SSS_GL_PARAM_BOOL, 1, 0, 1, "multiply layer i by sqrt(i) (section 6.1)"},
+    [P_PREINTEGRATED] = {"preintegrated", SSS_GL_PARAM_BOOL, 1, 0, 1,
+                         "1: disc-integrated kernel R'_d(r, A) (Eq. 5-6); 0: naive centre sample R_d(r) (Fig. 2)"},
+    [P_SCREEN] = {"screen_space", SSS_GL_PARAM_BOOL, 1, 0, 1, "include the screen-space part (section 4)"},
+    [P_TRANSLUCENCY] = {"translucency", SSS_GL_PARAM_BOOL, 1, 0, 1, "include the splatted translucency (section 5)"},
+    [P_DIVISOR] = {"translucency_divisor", SSS_GL_PARAM_INT, 4, 1, 16,
+                   "translucency at width/d x height/d (section 5: a quarter of the resolution)"},
+    [P_GRAZING] = {"grazing_cutoff", SSS_GL_PARAM_FLOAT, 0.2, 0, 1,
+                   "n.v below which pixels leave the screen-space sum and splats are kept (Eq. 8, 6.2)"},
+    [P_CULL_RULE] = {"cull_rule", SSS_GL_PARAM_INT, 0, 0, 1,
+                     "splats kept: 0 behind x_o AND n.v < cutoff (Eq. 2 and 8); 1: behind OR grazing"},
+    [P_IRRADIANCE_CULL] = {"irradiance_cull", SSS_GL_PARAM_FLOAT, 0, 0, 1e30,
+                           "splats whose largest F_t E channel is at most this are culled (section 5)"},
+    [P_DISC] = {"disc_adjust", SSS_GL_PARAM_BOOL, 1, 0, 1, "distance from the disc-adjusted position (Eq. 9)"},
+    [P_BICUBIC] = {"bicubic", SSS_GL_PARAM_BOOL, 1, 0, 1,
+                   "bicubic B-spline upsampling (Sigg & Hadwiger, 4 taps); 0: bilinear"},
+    [P_SHADOW_OFFSET] = {"splat_shadow_offset", SSS_GL_PARAM_FLOAT, 0.5, 0, 10,
+                         "splat irradiance looked up this many sqrt(area) above the splat (self-shadowing)"},
+    [P_FILTERED] = {"filtered_layers", SSS_GL_PARAM_BOOL, 1, 0, 1,
+                    "outer samples bilinear within their mip level (1) or texelFetch (0: blocky copies)"},
+};
+
+#define SPLAT_BYTES 48 /* three vec4: centre + area, normal + object, F_t E + disc radius */
+
+typedef struct maisch_state {
+    GLuint prog_gen, prog_recv, prog_splat, prog_up, prog_ss, prog_combine;
+    GLuint splats, cmd;
+    unsigned capacity;
+    int low_w, low_h;
+    GLuint tex_recv, tex_accum, tex_trans, tex_screen;
+    GLuint fbo_recv, fbo_accum, fbo_trans, fbo_screen;
+    size_t bytes;
+} maisch_state;
+
+static void free_targets(maisch_state *s)
+{
+    GLuint f[4] = {s->fbo_recv, s->fbo_accum, s->fbo_trans, s->fbo_screen};
+    GLuint t[4] = {s->tex_recv, s->tex_accum, s->tex_trans, s->tex_screen};
+    for (int i = 0; i < 4; i++) {
+        if (f[i]) glDeleteFramebuffers(1, &f[i]);
+        if (t[i]) glDeleteTextures(1, &t[i]);
+    }
+    s->fbo_recv = s->fbo_accum = s->fbo_trans = s->fbo_screen = 0;
+    s->tex_recv = s->tex_accum = s->tex_trans = s->tex_screen = 0;
+    s->bytes = 0;
+}
+
+static GLuint fbo_for(const GLuint *tex, int count)
+{
+    GLuint fbo;
+    glCreateFramebuffers(1, &fbo);
+    GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    for (int i = 0; i < count; i++) glNamedFramebufferTexture(fbo, bufs[i], tex[i], 0);
+    glNamedFramebufferDrawBuffers(fbo, count, bufs);
+    return fbo;
+}
+
+static sss_result make_targets(sss_gl_renderer *r, maisch_state *s, sss_error *err)
+{
+    free_targets(s);
+    int d = (int)gl_param(r, P_DIVISOR);
+    s->low_w = (r->width + d - 1) / d;
+    s->low_h = (r->height + d - 1) / d;
+    s->tex_recv = gl_texture_2d(GL_RGBA32F, s->low_w, s->low_h, 1, &s->bytes);
+    s->tex_accum = gl_texture_2d(GL_RGBA32F, s->low_w, s->low_h, 1, &s->bytes);
+    glTextureParameteri(s->tex_accum, GL_TEXTURE_MIN_FILTER, GL_LINEAR); /* bilinear taps of the upsampler */
+    glTextureParameteri(s->tex_accum, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    s->tex_trans = gl_texture_2d(GL_RGBA16F, r->width, r->height, 1, &s->bytes);
+    s->tex_screen = gl_texture_2d(GL_RGBA32F, r->width, r->height, 1, &s->bytes);
+    GLuint ra[2] = {s->tex_recv, s->tex_accum};
+    s->fbo_recv = fbo_for(ra, 2);
+    s->fbo_accum = fbo_for(&s->tex_accum, 1);
+    s->fbo_trans = fbo_for(&s->tex_trans, 1);
+    s->fbo_screen = fbo_for(&s->tex_screen, 1);
+    GLuint f[4] = {s->fbo_recv, s->fbo_accum, s->fbo_trans, s->fbo_screen};
+    for (int i = 0; i < 4; i++)
+        if (glCheckNamedFramebufferStatus(f[i], GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "maisch2020: incomplete render target");
+    return gl_check(r->ctx, "maisch2020: targets", err);
+}
+
+static sss_result maisch_create(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    maisch_state *s = state;
+    sss_result res = gl_program_compute("splat_generate.comp.glsl", NULL, &s->prog_gen, err);
+    if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "receivers.frag.glsl", NULL, &s->prog_recv, err);
+    if (res == SSS_OK) res = gl_program_vf("splat.vert.glsl", "splat.frag.glsl", NULL, &s->prog_splat, err);
+    if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "upsample.frag.glsl", NULL, &s->prog_up, err);
+    if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "screen_sss.frag.glsl", NULL, &s->prog_ss, err);
+    if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "combine.frag.glsl", NULL, &s->prog_combine, err);
+    if (res != SSS_OK) return res;
+    s->capacity = r->gs.splat_total;
+    glCreateBuffers(1, &s->splats);
+    glNamedBufferStorage(s->splats, (GLsizeiptr)SPLAT_BYTES * (s->capacity ? s->capacity : 1), NULL, 0);
+    glCreateBuffers(1, &s->cmd);
+    glNamedBufferStorage(s->cmd, 4 * sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
+    return make_targets(r, s, err);
+}
+
+static sss_result maisch_resize(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    maisch_state *s = state;
+    int d = (int)gl_param(r, P_DIVISOR);
+    if (s->tex_screen && s->low_w == (r->width + d - 1) / d && s->low_h == (r->height + d - 1) / d) {
+        GLint w = 0;
+        glGetTextureLevelParameteriv(s->tex_screen, 0, GL_TEXTURE_WIDTH, &w);
+        if (w == r->width) return SSS_OK;
+    }
+    return make_targets(r, s, err);
+}
+
+static void set_i(GLuint prog, const char *name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
+static void set_f(GLuint prog, const char *name, float v) { glUniform1f(glGetUniformLocation(prog, name), v); }
+
+static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, sss_error *err)
+{
+    const GLuint reset[4] = {4, 0, 0, 0}; /* triangle strip of 4 vertices per instance */
+    glNamedBufferSubData(s->cmd, 0, sizeof reset, reset);
+    gl_timer_begin(&r->timer, "splat_cull");
+    glUseProgram(s->prog_gen);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_SPLATS, s->splats);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_SPLAT_COUNT, s->cmd);
+    glBindTextureUnit(0, r->frame.pos);
+    glBindTextureUnit(1, r->frame.nrm);
+    set_i(s->prog_gen, "u_cull_rule", (int)gl_param(r, P_CULL_RULE));
+    set_f(s->prog_gen, "u_irradiance_cull", (float)gl_param(r, P_IRRADIANCE_CULL));
+    set_f(s->prog_gen, "u_shadow_offset", (float)gl_param(r, P_SHADOW_OFFSET));
+    glUniform1ui(glGetUniformLocation(s->prog_gen, "u_capacity"), s->capacity);
+    for (int i = 0; i < r->gs.object_count; i++) {
+        const gl_object *o = &r->gs.objects[i];
+        if (!o->subsurface || o->splat_triangle_count == 0) continue;
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_MESH_POS, o->splat_pos);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_MESH_IDX, o->splat_idx);
+        set_i(s->prog_gen, "u_object", i);
+        glUniform1ui(glGetUniformLocation(s->prog_gen, "u_triangles"), o->splat_triangle_count);
+        glDispatchCompute((o->splat_triangle_count + 63) / 64, 1, 1);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    sss_result res = gl_check(r->ctx, "maisch2020: splat generation", err);
+    if (res != SSS_OK) return res;
+
+    gl_timer_begin(&r->timer, "translucency");
+    glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_recv);
+    glViewport(0, 0, s->low_w, s->low_h);
+    glDisable(GL_BLEND);
+    glUseProgram(s->prog_recv);
+    set_i(s->prog_recv, "u_divisor", (int)gl_param(r, P_DIVISOR));
+    gl_draw_fullscreen(r);
+    /* additive splatting into the accumulation target (float blending, no clamping) */
+    glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_accum);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glUseProgram(s->prog_splat);
+    glBindTextureUnit(0, s->tex_recv);
+    set_i(s->prog_splat, "u_preintegrated", (int)gl_param(r, P_PREINTEGRATED));
+    set_i(s->prog_splat, "u_disc_adjust", (int)gl_param(r, P_DISC));
+    glBindVertexArray(r->vao_empty);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, s->cmd);
+    glDrawArraysIndirect(GL_TRIANGLE_STRIP, NULL);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    glBindVertexArray(0);
+    glDisable(GL_BLEND);
+    res = gl_check(r->ctx, "maisch2020: translucency splatting", err);
+    if (res != SSS_OK) return res;
+
+    gl_timer_begin(&r->timer, "upsample");
+    glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_trans);
+    glViewport(0, 0, r->width, r->height);
+    glUseProgram(s->prog_up);
+    glBindTextureUnit(0, s->tex_accum);
+    set_i(s->prog_up, "u_bicubic", (int)gl_param(r, P_BICUBIC));
+    glUniform2f(glGetUniformLocation(s->prog_up, "u_full_size"), (float)r->width, (float)r->height);
+    gl_draw_fullscreen(r);
+    return gl_check(r->ctx, "maisch2020: upsampling", err);
+}
+
+static sss_result maisch_render(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    maisch_state *s = state;
+    sss_result res = maisch_resize(r, s, err);
+    if (res != SSS_OK) return res;
+    int use_trans = (int)gl_param(r, P_TRANSLUCENCY) && s->capacity > 0;
+    int use_screen = (int)gl_param(r, P_SCREEN);
+    if (use_trans) {
+        res = pass_splats(r, s, err);
+        if (res != SSS_OK) return res;
+    }
+    if (use_screen) {
+        gl_timer_begin(&r->timer, "screen_space");
+        glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_screen);
+        glViewport(0, 0, r->width, r->height);
+        glDisable(GL_BLEND);
+        glUseProgram(s->prog_ss);
+        glBindTextureUnit(0, r->frame.pos);
+        glBindTextureUnit(1, r->frame.irr);
+        set_i(s->prog_ss, "u_n", (int)gl_param(r, P_N));
+        set_i(s->prog_ss, "u_nl", (int)gl_param(r, P_NL));
+        set_i(s->prog_ss, "u_layers", (int)gl_param(r, P_LAYERS));
+        set_i(s->prog_ss, "u_brightening", (int)gl_param(r, P_BRIGHTENING));
+        set_i(s->prog_ss, "u_preintegrated", (int)gl_param(r, P_PREINTEGRATED));
+        set_i(s->prog_ss, "u_filtered", (int)gl_param(r, P_FILTERED));
+        gl_draw_fullscreen(r);
+        res = gl_check(r->ctx, "maisch2020: screen-space pass", err);
+        if (res != SSS_OK) return res;
+    }
+    gl_timer_begin(&r->timer, "combine");
+    glBindFramebuffer(GL_FRAMEBUFFER, r->frame.fbo_final);
+    glViewport(0, 0, r->width, r->height);
+    glUseProgram(s->prog_combine);
+    glBindTextureUnit(0, r->frame.pos);
+    glBindTextureUnit(1, r->frame.nrm);
+    glBindTextureUnit(2, r->frame.albedo);
+    glBindTextureUnit(3, r->frame.refl);
+    glBindTextureUnit(4, s->tex_screen);
+    glBindTextureUnit(5, s->tex_trans);
+    set_i(s->prog_combine, "u_use_screen", use_screen);
+    set_i(s->prog_combine, "u_use_trans", use_trans);
+    gl_draw_fullscreen(r);
+    gl_timer_end(&r->timer);
+    return gl_check(r->ctx, "maisch2020: combination", err);
+}
+
+static void maisch_destroy(sss_gl_renderer *r, void *state)
+{
+    (void)r;
+    maisch_state *s = state;
+    free_targets(s);
+    GLuint p[6] = {s->prog_gen, s->prog_recv, s->prog_splat, s->prog_up, s->prog_ss, s->prog_combine};
+    for (int i = 0; i < 6; i++)
+        if (p[i]) glDeleteProgram(p[i]);
+    if (s->splats) glDeleteBuffers(1, &s->splats);
+    if (s->cmd) glDeleteBuffers(1, &s->cmd);
+}
+
+static GLuint maisch_buffer(sss_gl_renderer *r, void *state, const char *name)
+{
+    (void)r;
+    maisch_state *s = state;
+    if (strcmp(name, "translucency") == 0) return s->tex_accum;
+    if (strcmp(name, "translucency_full") == 0) return s->tex_trans;
+    if (strcmp(name, "screen") == 0) return s->tex_screen;
+    return 0;
+}
+
+static void maisch_stats(sss_gl_renderer *r, void *state, sss_gl_stats *out)
+{
+    maisch_state *s = state;
+    out->texture_bytes += s->bytes;
+    out->buffer_bytes += (size_t)SPLAT_BYTES * s->capacity + 16;
+    out->per_pixel_bytes += s->bytes / ((size_t)r->width * (size_t)r->height);
+    out->per_splat_bytes = SPLAT_BYTES;
+    GLuint cmd[4] = {0, 0, 0, 0};
+    if (s->cmd && r->frame_rendered && gl_param(r, P_TRANSLUCENCY) != 0.0)
+        glGetNamedBufferSubData(s->cmd, 0, sizeof cmd, cmd);
+    out->splat_drawn = cmd[1];
+}
+
+const gl_technique gl_technique_maisch2020 = {
+    .info = {"maisch2020",
+             "Maisch & Ropinski 2020: layered screen-space pattern + quarter-resolution splat translucency, "
+             "disc-integrated kernel",
+             params, P_COUNT},
+    .needs = GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION | GL_NEED_MIPS | GL_NEED_SPLAT_MESHES,
+    .state_size = sizeof(maisch_state),
+    .create = maisch_create,
+    .resize = maisch_resize,
+    .render = maisch_render,
+    .destroy = maisch_destroy,
+    .buffer = maisch_buffer,
+    .stats = maisch_stats,
+};
