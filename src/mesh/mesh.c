@@ -8,7 +8,8 @@
 #include "mesh/mesh_internal.h"
 
 /* Largest mesh file we read into memory (the vertex/triangle limits bind well before this). */
-#define MESH_MAX_FILE_BYTES ((size_t)1 << 32 > (size_t)(SIZE_MAX / 2) ? (size_t)(SIZE_MAX / 2) : (size_t)1 << 32)
+#define MESH_MAX_FILE_BYTES \
+    ((unsigned long long)(SIZE_MAX / 2) < (1ULL << 32) ? (size_t)(SIZE_MAX / 2) : (size_t)(1ULL << 32))
 
 void sss_mesh_free(sss_mesh *mesh)
 {
