@@ -39,7 +39,14 @@ typedef struct sss_mesh {
 void sss_mesh_free(sss_mesh *mesh);
 
 /* Reads .ply (ascii, binary_little_endian, binary_big_endian) or .obj by extension. Rejects: NaN/Inf
- * coordinates, indices out of range, wrong element counts, truncated data, empty meshes. */
+ * coordinates, indices out of range, wrong element counts, truncated data, empty meshes.
+ * PLY: vertex x y z (any scalar type), optional nx ny nz and UVs (u v, s t, texture_u texture_v),
+ * face list vertex_indices or vertex_index (any count/index types); other properties and elements
+ * are skipped. OBJ: v, vt, vn, f (v, v/vt, v//vn, v/vt/vn, negative indices; an index must refer to
+ * data defined before it); every distinct (v, vt, vn) corner becomes one vertex; o g s usemtl mtllib
+ * l and other non-geometry statements are ignored, unknown ones rejected. File normals are normalised;
+ * missing or zero ones are replaced by area-weighted normals. On error *out is zeroed. Messages:
+ * "<file>: line N: ..." (ascii, OBJ, headers), "<file>: face K: ..." / "vertex K" (binary). */
 sss_result sss_mesh_read(const char *path, sss_mesh *out, sss_error *err);
 /* The same from memory (for fuzzing and embedded data); name is used in messages. */
 sss_result sss_mesh_parse_ply(const void *data, size_t size, const char *name, sss_mesh *out,
@@ -49,7 +56,8 @@ sss_result sss_mesh_parse_obj(const void *data, size_t size, const char *name, s
 /* Binary little-endian PLY with positions, normals and (if present) UVs; written atomically. */
 sss_result sss_mesh_write_ply(const char *path, const sss_mesh *mesh, sss_error *err);
 
-/* Area-weighted vertex normals (replaces mesh->normals, allocating them if NULL). */
+/* Area-weighted vertex normals (replaces mesh->normals, allocating them if NULL); a vertex without a
+ * non-degenerate incident triangle gets +y. */
 sss_result sss_mesh_compute_normals(sss_mesh *mesh, sss_error *err);
 /* Per-vertex area: one third of each incident triangle's area. areas holds vertex_count floats. */
 void sss_mesh_vertex_areas(const sss_mesh *mesh, float *areas);
@@ -95,7 +103,9 @@ sss_result sss_mesh_plane(double size, sss_mesh *out, sss_error *err); /* xz squ
 sss_result sss_mesh_box(const double size[3], sss_mesh *out, sss_error *err);
 
 /* Simplifies to at most target_triangles (meshoptimizer; falls back to sloppy simplification when the
- * topology-preserving one cannot reach the target). Normals are recomputed, UVs kept. */
+ * topology-preserving one cannot reach the target). Degenerate triangles and unused vertices are
+ * dropped, normals recomputed (area-weighted), UVs kept. A target at or above the count copies the
+ * mesh. SSS_ERROR_NUMERIC when no non-empty result within the target exists (tiny targets). */
 sss_result sss_mesh_simplify(const sss_mesh *mesh, uint32_t target_triangles, sss_mesh *out,
                              sss_error *err);
 
