@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 sss_result sss_read_file(const char *path, size_t max_size, char **data, size_t *size, sss_error *err)
@@ -12,6 +13,11 @@ sss_result sss_read_file(const char *path, size_t max_size, char **data, size_t 
     *size = 0;
     FILE *f = fopen(path, "rb");
     if (!f) return sss_error_set(err, SSS_ERROR_IO, "%s: cannot open: %s", path, strerror(errno));
+    struct stat st;
+    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
+        fclose(f);
+        return sss_error_set(err, SSS_ERROR_IO, "%s: not a regular file", path);
+    }
     if (fseek(f, 0, SEEK_END) != 0) {
         fclose(f);
         return sss_error_set(err, SSS_ERROR_IO, "%s: cannot seek (not a regular file?)", path);

@@ -32,6 +32,9 @@ int main(void)
     CHECK(sss_read_file("/nonexistent/x.ply", 100, &data, &size, &err) == SSS_ERROR_IO);
     CHECK(strstr(err.message, "/nonexistent/x.ply") != NULL);
 
+    CHECK(sss_read_file(dir, 100, &data, &size, &err) == SSS_ERROR_IO); /* a folder is not a file */
+    CHECK_MSG(strstr(err.message, "not a regular file") != NULL, "%s", err.message);
+
     /* Writing into a missing folder fails with the path named and leaves nothing. */
     CHECK(sss_atomic_open("/nonexistent/dir/x.png", tmp, sizeof tmp, &err) == NULL);
     CHECK(strstr(err.message, "/nonexistent/dir/x.png") != NULL);
