@@ -8,6 +8,8 @@
  * per distinct (eta, g) of the subsurface materials (shared; PBRT needs it for kdsubsurface).
  * Does not: render, load textures or environment maps (only their paths are resolved and checked),
  * validate technique names (the renderer does; the loader keeps the string).
+ * Threads: loading different scenes concurrently is safe except for cJSON's global "last error"
+ * pointer, which this loader does not use.
  *
  * Conventions: right-handed world, y up. Matrices are double[16], ROW-major (m[4 * row + col]) and
  * act on column vectors: p' = M p (upload to GL with transpose = GL_TRUE). Times are in seconds.
@@ -27,6 +29,8 @@
  *  - Spot lights: `cone_angle` is the half-angle of the cone in (0, 90] degrees and `cone_delta` the
  *    width of the falloff in [0, cone_angle] (PBRT-v3's coneangle / conedelta).
  *  - `splat_mesh` and `splat_triangles` are mutually exclusive; splat_triangles >= 1.
+ *  - `texture` needs UVs (SCENE.md): when meshes are loaded, a mesh without UVs is an error naming
+ *    objects[i].material.texture (of the procedural shapes only plane and box have UVs).
  *  - Duplicate keys in one JSON object are an error. Trailing text after the JSON value is an error.
  *  - A negative scale (mirror) is allowed; sss_scene_object_world_mesh then flips the triangle winding
  *    so that triangles stay counter-clockwise seen from outside.
@@ -215,7 +219,7 @@ typedef struct sss_scene_material {
     const sss_pbd_table *table;        /* borrowed from the scene's cache, built for (eta, g) */
     sss_scene_profile profile;
     sss_artist_params artist;          /* ARTIST: s in scene units */
-    char *texture;                     /* resolved path of `texture`, or NULL */
+    char *texture;                     /* resolved path of `texture` (checked readable), or NULL */
     int has_specular;
     double roughness;                  /* specular.roughness in [0, 1] when has_specular */
 } sss_scene_material;

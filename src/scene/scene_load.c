@@ -263,6 +263,14 @@ static sss_result load_object(scene_ctx *c, sss_scene *s, sss_scene_object *o)
     else res = build_procedural(&o->procedural, &o->mesh, r->err);
     if (res != SSS_OK) return jr_prefix(r, o->mesh_path ? "mesh" : "procedural", res);
     sss_mesh_bounds(&o->mesh, o->bounds_min, o->bounds_max);
+    /* SCENE.md: a texture needs UVs in the mesh. */
+    if (o->material.texture && !o->mesh.uvs) {
+        size_t mark = jr_enter_key(r, "material");
+        res = jr_fail_key(r, "texture", SSS_ERROR_INVALID_ARGUMENT, "needs UVs, but the %s has none",
+                          o->mesh_path ? "mesh file" : "procedural shape");
+        jr_leave(r, mark);
+        return res;
+    }
     if (o->splat_mesh_path && (res = sss_mesh_read(o->splat_mesh_path, &o->splat_mesh, r->err)) != SSS_OK)
         return jr_prefix(r, "splat_mesh", res);
     return SSS_OK;

@@ -98,6 +98,15 @@ static void test_defaults(void)
     CHECK(s.lights[3].type == SSS_LIGHT_SPOT && s.lights[3].cone_angle == 30 && s.lights[3].cone_delta == 5);
     CHECK(s.objects[0].procedural.subdivisions == 4);
     sss_scene_free(&s);
+
+    /* A texture on a shape with UVs (the plane) loads. */
+    const char *tex = "{\"camera\": {\"position\": [0, 3, 3], \"look_at\": [0, 0, 0]},"
+                      " \"objects\": [{\"procedural\": {\"shape\": \"plane\", \"size\": 2},"
+                      "   \"material\": {\"type\": \"subsurface\", \"medium\": \"Skin1\", \"texture\": \"assets/albedo.png\"}}]}";
+    res = sss_scene_parse(tex, strlen(tex), SCENES, "tex.json", NULL, &s, &err);
+    CHECK_MSG(res == SSS_OK, "%s", err.message);
+    if (res == SSS_OK) CHECK(s.objects[0].mesh.uvs != NULL && strstr(s.objects[0].material.texture, "albedo.png"));
+    sss_scene_free(&s);
 }
 
 /* ---- Bad scenes ------------------------------------------------------------------------------ */
@@ -182,6 +191,9 @@ static const bad_case bad_cases[] = {
     {SSS_OBJ("\"medium\": \"Skin1\", \"profile\": \"gauss\""), "objects[0].material.profile: unknown profile"},
     {SSS_OBJ("\"medium\": \"Skin1\", \"profile\": {\"artist\": {\"s\": 0}}"), "objects[0].material.profile.artist.s"},
     {SSS_OBJ("\"medium\": \"Skin1\", \"specular\": {\"roughness\": 1.5}"), "objects[0].material.specular.roughness"},
+    {SCENE_OBJS("{\"mesh\": \"assets/dragon.ply\", \"material\": {\"type\": \"subsurface\", \"medium\": \"Skin1\", "
+                "\"texture\": \"assets/albedo.png\"}}"),
+     "objects[0].material.texture: needs UVs, but the mesh file has none"},
     {SSS_OBJ("\"medium\": \"Skin1\", \"texture\": \"nothere.png\""),
      "objects[0].material.texture: nothere.png: cannot open"},
     {SCENE_OBJS("{" SPHERE ", \"material\": {\"type\": \"glass\"}}"), "objects[0].material.type: unknown material type"},
