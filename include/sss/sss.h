@@ -8,4 +8,5 @@
 #include "sss/kernel.h"
 #include "sss/image.h"
 #include "sss/mesh.h"
+#include "sss/scene.h"
 #endif

@@ -125,12 +125,16 @@ static sss_result parse_subsurface(scene_ctx *c, const cJSON *obj, sss_scene_mat
         if (jr_get(obj, "scale"))
             return jr_fail_key(r, "scale", SSS_ERROR_INVALID_ARGUMENT,
                                "not used with reflectance + mfp (mfp is in scene units)");
+        /* SCENE.md lists reflectance, mfp and eta for this form (PBRT's kdsubsurface without g). */
+        if (jr_get(obj, "g"))
+            return jr_fail_key(r, "g", SSS_ERROR_INVALID_ARGUMENT,
+                               "not allowed with reflectance + mfp (SCENE.md: only explicit coefficients take g)");
     }
     if (m->source != SSS_SUBSURFACE_REFLECTANCE) {
         if ((res = jr_number(r, obj, "scale", 0, 1, &m->scale)) != SSS_OK) return res;
         if ((res = jr_range(r, "scale", m->scale, 0, 1, INFINITY, 0)) != SSS_OK) return res;
     }
-    if (m->source != SSS_SUBSURFACE_MEDIUM) {
+    if (m->source == SSS_SUBSURFACE_COEFFICIENTS) {
         if ((res = jr_number(r, obj, "g", 0, 0, &g)) != SSS_OK) return res;
         if ((res = jr_range(r, "g", g, -1, 1, 1, 1)) != SSS_OK) return res;
     }
