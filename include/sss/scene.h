@@ -21,9 +21,9 @@
  *    material and material.type. Optional: lights (default none), render (defaults).
  *  - A subsurface material needs exactly one parameterisation: `medium` | `sigma_a` + `sigma_s` |
  *    `reflectance` + `mfp` (also with an artist profile: every renderer, the CPU reference included,
- *    must be able to render it). `g` is accepted with the explicit coefficients and with
- *    reflectance + mfp (PBRT's kdsubsurface has g too), and rejected with `medium` (measured media are
- *    reduced coefficients, g = 0); `scale` is rejected with reflectance + mfp (mfp is in scene units).
+ *    must be able to render it). `g` is accepted only with the explicit coefficients, as SCENE.md
+ *    lists it (measured media are reduced coefficients, g = 0; SCENE.md's reflectance + mfp form has
+ *    no g); `scale` is rejected with reflectance + mfp (mfp is in scene units).
  *  - Profile "artist": `s` (> 0, scene units) required; `near`, `far` ((0, 1] each) and `w` ([0, 1])
  *    default to seed 002's "production" preset (FACTS.md 2.4).
  *  - Spot lights: `cone_angle` is the half-angle of the cone in (0, 90] degrees and `cone_delta` the
@@ -193,7 +193,7 @@ typedef enum sss_scene_material_type {
 typedef enum sss_subsurface_source {
     SSS_SUBSURFACE_MEDIUM = 0,   /* `medium` (+ scale, eta): PBRT subsurface "name" */
     SSS_SUBSURFACE_COEFFICIENTS, /* `sigma_a`, `sigma_s` (+ scale, eta, g): PBRT subsurface */
-    SSS_SUBSURFACE_REFLECTANCE   /* `reflectance`, `mfp` (+ eta, g): PBRT kdsubsurface */
+    SSS_SUBSURFACE_REFLECTANCE   /* `reflectance`, `mfp` (+ eta): PBRT kdsubsurface */
 } sss_subsurface_source;
 
 typedef enum sss_scene_profile {
