@@ -36,6 +36,10 @@ void main()
         if (dl > 0.0) xp = xi + d / dl * min(s.irradiance.w, dl);
     }
     float r = length(xp - xo);
+    // Mode 2: R'_d is the mean over a COPLANAR disc of area A centred at distance r; a disc whose
+    // nearest point is r' away is centred at r' + r_disk, not at r' (Eq. 9 taken with R'(r', A) counts
+    // the kernel's peak at distance |r' - r_disk| that no point of the splat is that close to).
+    if (u_disc_adjust == 2) r += s.irradiance.w;
     int mat = int(objects[int(s.normal.w - 0.5)].anim.y);
     vec3 k = lut_rd(mat, r, u_preintegrated != 0 ? area : 0.0);
     o_accum = vec4(s.irradiance.rgb * area * k, 0.0);

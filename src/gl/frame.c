@@ -208,6 +208,12 @@ void gl_update_frame_ubo(sss_gl_renderer *r)
     double v[16], p[16];
     sss_camera_view_matrix(&b, v);
     sss_camera_projection_matrix(&b, r->near_plane, r->far_plane, p);
+    /* Reversed-Z with an infinite far plane (depth = near / distance along the view axis, used with
+     * glClipControl(ZERO_TO_ONE), a GREATER test and a 32-bit float depth buffer): nearly uniform
+     * relative precision. The standard mapping with near = 1e-5 far resolves only ~0.1% of the
+     * distance and let the inner and outer layers of thin shells fight. */
+    p[10] = 0.0;
+    p[11] = r->near_plane;
     frame_ubo u;
     memset(&u, 0, sizeof u);
     to_col_major(v, u.view);
@@ -266,16 +272,18 @@ sss_result gl_pass_gbuffer(sss_gl_renderer *r, sss_error *err)
     glBindFramebuffer(GL_FRAMEBUFFER, f->fbo_gbuffer);
     glViewport(0, 0, f->width, f->height);
     const float zero[4] = {0, 0, 0, 0};
-    const float one = 1.0f;
     for (int i = 0; i < 3; i++) glClearBufferfv(GL_COLOR, i, zero);
-    glClearBufferfv(GL_DEPTH, 0, &one);
+    glClearBufferfv(GL_DEPTH, 0, zero); /* reversed Z: 0 is infinitely far */
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
+    glDepthFunc(GL_GREATER);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE); /* open meshes (planes) are visible from both sides */
     glUseProgram(r->prog_gbuffer);
     gl_draw_objects(r, glGetUniformLocation(r->prog_gbuffer, "u_object"), 0);
     glDisable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
     return gl_check(r->ctx, "the G-buffer pass", err);
 }
 

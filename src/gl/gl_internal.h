@@ -8,6 +8,9 @@
  *     "mipmaps"      area-weighted mip chains of positions/areas, irradiance/ids (and normals on request)
  *   then the technique's own passes, ending with a pass that writes the linear target frame.final.
  * Binding points are fixed (GL_UBO_*, GL_SSBO_*, GL_UNIT_*) so shaders and C agree; see common.glsl.
+ * The camera projection (u_proj) is reversed-Z with an infinite far plane: passes that rasterise with
+ * it set glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), clear depth to 0, test GL_GREATER, and restore
+ * GL_NEGATIVE_ONE_TO_ONE afterwards (shadow maps use the standard convention).
  */
 #ifndef SSS_GL_INTERNAL_H
 #define SSS_GL_INTERNAL_H

@@ -26,6 +26,7 @@ enum {
     P_BICUBIC,
     P_SHADOW_OFFSET,
     P_FILTERED,
+    P_SPLAT_PREINTEGRATED,
     P_COUNT
 };
 
@@ -46,13 +47,17 @@ static const sss_gl_param_info params[P_COUNT] = {
                      "splats kept: 0 behind x_o AND n.v < cutoff (Eq. 2 and 8); 1: behind OR grazing"},
     [P_IRRADIANCE_CULL] = {"irradiance_cull", SSS_GL_PARAM_FLOAT, 0, 0, 1e30,
                            "splats whose largest F_t E channel is at most this are culled (section 5)"},
-    [P_DISC] = {"disc_adjust", SSS_GL_PARAM_BOOL, 1, 0, 1, "distance from the disc-adjusted position (Eq. 9)"},
+    [P_DISC] = {"disc_adjust", SSS_GL_PARAM_INT, 2, 0, 2,
+                "splat distance: 1 from the disc-adjusted position x'_i (Eq. 9); 0 from the centre x_i; "
+                "2 Eq. 9 + disc radius (the coplanar disc whose nearest point is x'_i)"},
     [P_BICUBIC] = {"bicubic", SSS_GL_PARAM_BOOL, 1, 0, 1,
                    "bicubic B-spline upsampling (Sigg & Hadwiger, 4 taps); 0: bilinear"},
     [P_SHADOW_OFFSET] = {"splat_shadow_offset", SSS_GL_PARAM_FLOAT, 0.5, 0, 10,
                          "splat irradiance looked up this many sqrt(area) above the splat (self-shadowing)"},
     [P_FILTERED] = {"filtered_layers", SSS_GL_PARAM_BOOL, 1, 0, 1,
                     "outer samples bilinear within their mip level (1) or texelFetch (0: blocky copies)"},
+    [P_SPLAT_PREINTEGRATED] = {"splat_preintegrated", SSS_GL_PARAM_BOOL, 1, 0, 1,
+                               "splats read R'_d(r', A) (1, seed 000) or R_d(r') at the disc-adjusted distance"},
 };
 
 #define SPLAT_BYTES 48 /* three vec4: centre + area, normal + object, F_t E + disc radius */
@@ -188,7 +193,8 @@ static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, sss_error *er
     glBlendFunc(GL_ONE, GL_ONE);
     glUseProgram(s->prog_splat);
     glBindTextureUnit(0, s->tex_recv);
-    set_i(s->prog_splat, "u_preintegrated", (int)gl_param(r, P_PREINTEGRATED));
+    set_i(s->prog_splat, "u_preintegrated",
+          (int)gl_param(r, P_PREINTEGRATED) && (int)gl_param(r, P_SPLAT_PREINTEGRATED));
     set_i(s->prog_splat, "u_disc_adjust", (int)gl_param(r, P_DISC));
     glBindVertexArray(r->vao_empty);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, s->cmd);
