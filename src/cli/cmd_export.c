@@ -1,7 +1,64 @@
-/* Placeholder until the export command lands (replaced by its module's owner). */
+/* sss export pbrt SCENE.json -o OUT.pbrt [--time T] [--spp N] */
+#include <stdio.h>
+#include <string.h>
+
 #include "cli/cli.h"
+#include "sss/export.h"
+
+static const char usage[] =
+    "usage: sss export pbrt SCENE.json -o OUT.pbrt [--time T] [--spp N]\n"
+    "\n"
+    "Writes the scene for PBRT-v3: OUT.pbrt plus one binary PLY per object beside it\n"
+    "(OUT_objN.ply, world space, posed at --time). Materials map to PBRT's subsurface\n"
+    "(measured media and coefficients), kdsubsurface (reflectance + mfp) and matte;\n"
+    "lights to point, spot, distant, diffuse area (two triangles) and infinite.\n"
+    "The integrator is path with maxdepth 1, the single-bounce subsurface integral that\n"
+    "`sss reference` computes. Render it with `pbrt OUT.pbrt`.\n"
+    "\n"
+    "  -o FILE      the .pbrt file to write (required)\n"
+    "  --time T     pose of animated objects, seconds (default 0)\n"
+    "  --spp N      PBRT's pixel samples (default 256)\n";
+
 int sss_cmd_export(int argc, char **argv)
 {
-    (void)argc; (void)argv;
-    return cli_failf("export", "not built yet");
+    const char *cmd = "export";
+    if (cli_wants_help(argc, argv)) {
+        fputs(usage, stdout);
+        return CLI_EXIT_OK;
+    }
+    if (argc < 2) return cli_usage_error(cmd, "missing the format (pbrt)");
+    if (strcmp(argv[1], "pbrt") != 0) return cli_usage_error(cmd, "unknown format '%s' (known: pbrt)", argv[1]);
+
+    const char *scene_path = NULL, *out = NULL;
+    sss_export_pbrt_desc desc = {0};
+    for (int i = 2; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "-o") == 0) {
+            if (!(out = cli_option_value(cmd, argc, argv, &i))) return CLI_EXIT_USAGE;
+        } else if (strcmp(a, "--time") == 0) {
+            const char *v = cli_option_value(cmd, argc, argv, &i);
+            if (!v || !cli_parse_double(cmd, "--time", v, &desc.time)) return CLI_EXIT_USAGE;
+        } else if (strcmp(a, "--spp") == 0) {
+            const char *v = cli_option_value(cmd, argc, argv, &i);
+            if (!v || !cli_parse_int(cmd, "--spp", v, &desc.pixel_samples)) return CLI_EXIT_USAGE;
+            if (desc.pixel_samples < 1) return cli_usage_error(cmd, "--spp must be at least 1");
+        } else if (a[0] == '-' && a[1] != '\0') {
+            return cli_usage_error(cmd, "unknown option '%s'", a);
+        } else if (!scene_path) {
+            scene_path = a;
+        } else {
+            return cli_usage_error(cmd, "unexpected argument '%s'", a);
+        }
+    }
+    if (!scene_path) return cli_usage_error(cmd, "missing the scene file");
+    if (!out) return cli_usage_error(cmd, "missing -o OUT.pbrt");
+
+    sss_scene scene = {0};
+    sss_error err = {0};
+    if (sss_scene_load(scene_path, NULL, &scene, &err) != SSS_OK) return cli_fail(cmd, &err);
+    sss_result res = sss_export_pbrt(&scene, &desc, out, &err);
+    sss_scene_free(&scene);
+    if (res != SSS_OK) return cli_fail(cmd, &err);
+    printf("wrote %s\n", out);
+    return CLI_EXIT_OK;
 }

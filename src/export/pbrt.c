@@ -1,0 +1,229 @@
+/* export/pbrt.c — a scene of SCENE.md as PBRT-v3 input (see sss/export.h for the mapping). */
+#include "sss/export.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/file_util.h"
+
+#define PATH_CAP 4096
+
+static void rgb(FILE *f, const char *type_name, const double v[3])
+{
+    fprintf(f, " \"rgb %s\" [%.9g %.9g %.9g]", type_name, v[0], v[1], v[2]);
+}
+
+static void point(FILE *f, const char *name, const double v[3])
+{
+    fprintf(f, " \"point %s\" [%.9g %.9g %.9g]", name, v[0], v[1], v[2]);
+}
+
+void sss_export_pbrt_env_light_to_world(double rotate_y_degrees, double m[16])
+{
+    /* World-to-light W = Rz(rot) M with M d = (d.z, -d.x, d.y): PBRT's phi = atan2(L.y, L.x) then
+     * equals 2 pi u of SCENE.md's map (u = 0.5 + (atan2(d.x, -d.z) + rot) / 2 pi) and its theta,
+     * measured from +z, equals the angle from +y. M is a reflection (det -1): PBRT's spherical
+     * parameterisation runs the other way round than SCENE.md's. Light-to-world = W^T. */
+    double c = cos(rotate_y_degrees * M_PI / 180.0), s = sin(rotate_y_degrees * M_PI / 180.0);
+    const double M[3][3] = {{0, 0, 1}, {-1, 0, 0}, {0, 1, 0}};
+    const double Rz[3][3] = {{c, -s, 0}, {s, c, 0}, {0, 0, 1}};
+    double W[3][3];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) W[i][j] = Rz[i][0] * M[0][j] + Rz[i][1] * M[1][j] + Rz[i][2] * M[2][j];
+    memset(m, 0, 16 * sizeof(double));
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) m[4 * i + j] = W[j][i];
+    m[15] = 1.0;
+}
+
+/* PBRT's Transform directive takes the matrix column by column. */
+static void transform_directive(FILE *f, const double m[16])
+{
+    fprintf(f, "    Transform [");
+    for (int col = 0; col < 4; col++)
+        for (int row = 0; row < 4; row++) fprintf(f, " %.9g", m[4 * row + col]);
+    fprintf(f, " ]\n");
+}
+
+static void write_camera(FILE *f, const sss_scene *scene, const char *image_name, int spp)
+{
+    const sss_camera *c = &scene->camera;
+    double exposure_scale = pow(2.0, scene->render.exposure);
+    fprintf(f, "# PBRT-v3's camera space is left-handed; the mirror keeps the image as SCENE.md has it.\n");
+    fprintf(f, "Scale -1 1 1\n");
+    fprintf(f, "LookAt %.9g %.9g %.9g  %.9g %.9g %.9g  %.9g %.9g %.9g\n", c->position[0], c->position[1],
+            c->position[2], c->look_at[0], c->look_at[1], c->look_at[2], c->up[0], c->up[1], c->up[2]);
+    fprintf(f, "Camera \"perspective\" \"float fov\" [%.9g]\n", c->fov);
+    fprintf(f, "Film \"image\" \"integer xresolution\" [%d] \"integer yresolution\" [%d]\n"
+               "    \"string filename\" [\"%s\"] \"float scale\" [%.9g]\n",
+            c->width, c->height, image_name, exposure_scale);
+    fprintf(f, "Sampler \"halton\" \"integer pixelsamples\" [%d]\n", spp);
+    fprintf(f, "# maxdepth 1: refraction at the camera hit, BSSRDF probe, direct light at the entry point\n"
+               "# (the single-bounce subsurface integral that sss reference evaluates).\n");
+    fprintf(f, "Integrator \"path\" \"integer maxdepth\" [1]\n\n");
+}
+
+static void write_material(FILE *f, const sss_scene_material *m)
+{
+    if (m->type == SSS_SCENE_MATERIAL_DIFFUSE) {
+        fprintf(f, "    Material \"matte\"");
+        rgb(f, "Kd", m->albedo);
+        fprintf(f, "\n");
+        return;
+    }
+    if (m->profile != SSS_SCENE_PROFILE_PBD)
+        fprintf(f, "    # profile \"%s\" has no PBRT equivalent: PBRT uses its photon beam diffusion table\n",
+                sss_scene_profile_name(m->profile));
+    if (m->texture) fprintf(f, "    # texture \"%s\" is not exported\n", m->texture);
+    switch (m->source) {
+    case SSS_SUBSURFACE_MEDIUM:
+        fprintf(f, "    Material \"subsurface\" \"string name\" [\"%s\"] \"float scale\" [%.9g] \"float eta\" [%.9g]\n",
+                m->medium->name, m->scale, m->optical.eta);
+        break;
+    case SSS_SUBSURFACE_COEFFICIENTS:
+        fprintf(f, "    Material \"subsurface\"");
+        rgb(f, "sigma_a", m->input_sigma_a);
+        rgb(f, "sigma_s", m->input_sigma_s);
+        fprintf(f, " \"float scale\" [%.9g] \"float eta\" [%.9g] \"float g\" [%.9g]\n", m->scale,
+                m->optical.eta, m->optical.g);
+        break;
+    case SSS_SUBSURFACE_REFLECTANCE:
+        fprintf(f, "    Material \"kdsubsurface\"");
+        rgb(f, "Kd", m->reflectance);
+        rgb(f, "mfp", m->mfp);
+        fprintf(f, " \"float eta\" [%.9g]\n", m->optical.eta);
+        break;
+    }
+}
+
+static void write_light(FILE *f, const sss_light *l)
+{
+    switch (l->type) {
+    case SSS_LIGHT_POINT:
+        fprintf(f, "LightSource \"point\"");
+        point(f, "from", l->position);
+        rgb(f, "I", l->intensity);
+        fprintf(f, "\n");
+        break;
+    case SSS_LIGHT_SPOT:
+        fprintf(f, "LightSource \"spot\"");
+        point(f, "from", l->position);
+        point(f, "to", l->look_at);
+        fprintf(f, " \"float coneangle\" [%.9g] \"float conedelta\" [%.9g]", l->cone_angle, l->cone_delta);
+        rgb(f, "I", l->intensity);
+        fprintf(f, "\n");
+        break;
+    case SSS_LIGHT_DIRECTIONAL: {
+        /* PBRT's distant light travels from "from" to "to". */
+        const double zero[3] = {0, 0, 0};
+        fprintf(f, "LightSource \"distant\"");
+        point(f, "from", zero);
+        point(f, "to", l->direction);
+        rgb(f, "L", l->radiance);
+        fprintf(f, "\n");
+        break;
+    }
+    case SSS_LIGHT_AREA: {
+        /* Corners counter-clockwise about u x v: PBRT's triangle normal (p0 - p2) x (p1 - p2) is then
+         * u x v, the side SCENE.md's area light emits towards. */
+        double p[4][3];
+        const double su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
+        for (int k = 0; k < 4; k++)
+            for (int i = 0; i < 3; i++) p[k][i] = l->center[i] + su[k] * l->u[i] + sv[k] * l->v[i];
+        fprintf(f, "AttributeBegin\n    AreaLightSource \"diffuse\"");
+        rgb(f, "L", l->radiance);
+        fprintf(f, " \"bool twosided\" [\"%s\"]\n", l->two_sided ? "true" : "false");
+        fprintf(f, "    Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3] \"point P\" [");
+        for (int k = 0; k < 4; k++) fprintf(f, " %.9g %.9g %.9g", p[k][0], p[k][1], p[k][2]);
+        fprintf(f, " ]\nAttributeEnd\n");
+        break;
+    }
+    case SSS_LIGHT_ENVIRONMENT: {
+        double m[16];
+        sss_export_pbrt_env_light_to_world(l->rotate_y, m);
+        fprintf(f, "AttributeBegin\n");
+        transform_directive(f, m);
+        /* PBRT resolves relative names against the .pbrt file's folder: write an absolute path. */
+        char *abs = realpath(l->file, NULL);
+        fprintf(f, "    LightSource \"infinite\" \"string mapname\" [\"%s\"]", abs ? abs : l->file);
+        free(abs);
+        rgb(f, "L", l->scale);
+        fprintf(f, "\nAttributeEnd\n");
+        break;
+    }
+    }
+}
+
+/* "<dir>/<stem>" of out_path, and the file name part of a sibling "<stem><suffix>". */
+static int sibling(const char *out_path, const char *suffix, char *path, size_t cap, const char **name)
+{
+    const char *slash = strrchr(out_path, '/');
+    const char *base = slash ? slash + 1 : out_path;
+    const char *dot = strrchr(base, '.');
+    size_t stem = dot ? (size_t)(dot - out_path) : strlen(out_path);
+    int n = snprintf(path, cap, "%.*s%s", (int)stem, out_path, suffix);
+    if (name) *name = path + (base - out_path);
+    return n > 0 && (size_t)n < cap;
+}
+
+sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *desc, const char *out_path,
+                           sss_error *err)
+{
+    sss_export_pbrt_desc d = desc ? *desc : (sss_export_pbrt_desc){0};
+    if (d.pixel_samples <= 0) d.pixel_samples = 256;
+    if (!isfinite(d.time))
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: export time is not finite", out_path);
+
+    char image_buf[PATH_CAP];
+    const char *image_name = d.image_name;
+    if (!image_name) {
+        if (!sibling(out_path, ".exr", image_buf, sizeof image_buf, &image_name))
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: path too long", out_path);
+    }
+
+    /* Meshes first (each atomic); remember them so a later failure removes them all. */
+    char (*mesh_paths)[PATH_CAP] = calloc(scene->object_count ? scene->object_count : 1, PATH_CAP);
+    if (!mesh_paths) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", out_path);
+    size_t written = 0;
+    sss_result res = SSS_OK;
+    for (size_t i = 0; i < scene->object_count && res == SSS_OK; i++) {
+        char suffix[64];
+        snprintf(suffix, sizeof suffix, "_obj%zu.ply", i);
+        if (!sibling(out_path, suffix, mesh_paths[i], PATH_CAP, NULL)) {
+            res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: path too long", out_path);
+            break;
+        }
+        sss_mesh world = {0};
+        res = sss_scene_object_world_mesh(&scene->objects[i], d.time, &world, err);
+        if (res == SSS_OK) res = sss_mesh_write_ply(mesh_paths[i], &world, err);
+        sss_mesh_free(&world);
+        if (res == SSS_OK) written++;
+    }
+
+    char tmp[PATH_CAP];
+    FILE *f = NULL;
+    if (res == SSS_OK) f = sss_atomic_open(out_path, tmp, sizeof tmp, err);
+    if (res == SSS_OK && !f) res = err ? err->code : SSS_ERROR_IO;
+    if (f) {
+        fprintf(f, "# Written by sss export pbrt from %s (time %.9g s).\n", scene->name ? scene->name : "a scene",
+                d.time);
+        write_camera(f, scene, image_name, d.pixel_samples);
+        fprintf(f, "WorldBegin\n");
+        for (size_t i = 0; i < scene->light_count; i++) write_light(f, &scene->lights[i]);
+        for (size_t i = 0; i < scene->object_count; i++) {
+            const char *slash = strrchr(mesh_paths[i], '/');
+            fprintf(f, "AttributeBegin\n");
+            write_material(f, &scene->objects[i].material);
+            fprintf(f, "    Shape \"plymesh\" \"string filename\" [\"%s\"]\nAttributeEnd\n",
+                    slash ? slash + 1 : mesh_paths[i]);
+        }
+        fprintf(f, "WorldEnd\n");
+        res = sss_atomic_close(f, tmp, out_path, err);
+    }
+    if (res != SSS_OK)
+        for (size_t i = 0; i < written; i++) remove(mesh_paths[i]);
+    free(mesh_paths);
+    return res;
+}
