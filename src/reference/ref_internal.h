@@ -71,6 +71,7 @@ static inline double ref_rng_uniform(ref_rng *r) { return ref_rng_u32(r) * (1.0 
  * [R0 2^k, R0 2^(k+1)) with REF_PROFILE_STEPS steps: entry i is at r = R0 2^(i >> 8) (1 + (i & 255)/256),
  * exactly the bits of the float r / R0 (exponent and top 8 mantissa bits), so a lookup is a bit shift. */
 #define REF_PROFILE_STEPS 256
+#define REF_NEAR_BINS 256
 
 typedef struct ref_profile {
     float r0, inv_r0;  /* split radius R0 */
@@ -80,6 +81,12 @@ typedef struct ref_profile {
     double s0[3];      /* S_r(R0) */
     double near[3];    /* int_0^R0 (S_r(r) - S_r(R0)) 2 pi r dr */
     double total[3];   /* plane integral of S_r */
+    /* The near kernel S_near = S_r - S_r(R0) on [0, R0] in REF_NEAR_BINS bins (edges 0 and
+     * R0 2^(-(REF_NEAR_BINS - j) / 8), j >= 1): per bin and channel its mass int S_near 2 pi r dr,
+     * and the cumulative distribution of the bins' masses summed over channels (|.|), for sampling. */
+    double near_edge[REF_NEAR_BINS + 1];
+    double near_mass[REF_NEAR_BINS][3];
+    double near_cdf[REF_NEAR_BINS + 1];
 } ref_profile;
 
 /* A radial profile to tabulate: the physics module's (PBD or dipole) or the artist mixture. */
@@ -195,6 +202,7 @@ typedef struct ref_light {
 
 typedef struct ref_object {
     const sss_reference_object *src;
+    RTCScene probe_scene; /* the object alone, for the near-part probe rays */
     int subsurface;
     double eta, c_norm;  /* c = 1 - 2 FM1(1/eta) */
     ref_profile_source psrc;
@@ -228,6 +236,7 @@ typedef struct ref_ctx {
     unsigned light_geom_count;
     double eps;               /* ray offset scale (scene units) */
     int area_samples_point, area_samples_camera, env_samples_point, env_samples_camera;
+    int near_probes;          /* probe rays per camera sample for the near part */
     /* progress: a phase maps its own fraction [0, 1] to [phase_lo, phase_hi] of the whole */
     sss_reference_progress_fn progress;
     void *user;
@@ -254,10 +263,10 @@ void ref_set_phase(ref_ctx *ctx, double lo, double hi, const char *stage);
 sss_result ref_lights_init(ref_ctx *ctx, sss_error *err);
 void ref_lights_free(ref_ctx *ctx);
 /* T(x) (or E(x) when eta <= 0: diffuse, no Fresnel) at a surface point p with unit geometric normal
- * ng (the side the light must be on) and unit shading normal ns. camera: use the camera-sample light
- * sample counts. */
+ * ng (the side the light must be on) and unit shading normal ns, with (about) the given numbers of
+ * stratified samples of each area and environment light. */
 void ref_irradiance(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3],
-                    double eta, int camera, ref_rng *rng, double out[3]);
+                    double eta, int area_samples, int env_samples, ref_rng *rng, double out[3]);
 /* Radiance of environment lights seen along unit direction dir (0 without one). */
 void ref_env_radiance(const ref_ctx *ctx, const double dir[3], double out[3]);
 /* Radiance of area light `light` seen from direction dir (unit, travelling towards the light). */

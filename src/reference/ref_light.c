@@ -298,7 +298,7 @@ static void add_sample(const ref_ctx *ctx, const double po[3], const double ng[3
 }
 
 void ref_irradiance(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3],
-                    double eta, int camera, ref_rng *rng, double out[3])
+                    double eta, int area_samples, int env_samples, ref_rng *rng, double out[3])
 {
     out[0] = out[1] = out[2] = 0.0;
     double po[3];
@@ -325,7 +325,7 @@ void ref_irradiance(const ref_ctx *ctx, const double p[3], const double ng[3], c
             add_sample(ctx, po, ng, ns, eta, l->to_light, INFINITY, s->radiance, 1.0, out);
             break;
         case SSS_LIGHT_AREA: {
-            int n = camera ? ctx->area_samples_camera : ctx->area_samples_point;
+            int n = area_samples > 0 ? area_samples : 1;
             int k = (int)ceil(sqrt((double)n));
             double weight = l->area / (double)(k * k);
             for (int a = 0; a < k; a++)
@@ -348,7 +348,7 @@ void ref_irradiance(const ref_ctx *ctx, const double p[3], const double ng[3], c
             break;
         }
         case SSS_LIGHT_ENVIRONMENT: {
-            int n = camera ? ctx->env_samples_camera : ctx->env_samples_point;
+            int n = env_samples > 0 ? env_samples : 1;
             int k = (int)ceil(sqrt((double)n));
             for (int a = 0; a < k; a++)
                 for (int b = 0; b < k; b++) {

@@ -110,19 +110,22 @@ sss_result ref_profile_build(ref_profile *p, const ref_profile_source *src, doub
         p->total[c] = ref_profile_source_total(src, c);
     }
 
-    /* Near part: int_0^R0 (S_r - S_r(R0)) 2 pi r dr over octaves down to R0 2^-64 (S_r is bounded
-     * at 0, so what lies below is below double precision of the sum). */
-    double below_r0[3] = {0, 0, 0}; /* int_0^R0 S_r 2 pi r dr, for the support criterion */
-    for (int k = 0; k < 64; k++) {
-        double hi = ldexp(r0, -k), lo = 0.5 * hi;
-        for (int j = 0; j < SUBSTEPS_PER_OCTAVE / 2; j++) {
-            double a = lo + (hi - lo) * j / (SUBSTEPS_PER_OCTAVE / 2);
-            double b = lo + (hi - lo) * (j + 1) / (SUBSTEPS_PER_OCTAVE / 2);
-            double v[3];
-            gl4(src, a, b, p->s0, v);
-            for (int c = 0; c < 3; c++) p->near[c] += v[c];
+    /* Near part: int_0^R0 (S_r - S_r(R0)) 2 pi r dr in bins of 1/8 octave down to R0 2^-32 (S_r is
+     * bounded at 0, so what lies below is far below double precision of the sum). */
+    p->near_edge[0] = 0.0;
+    for (int j = 1; j <= REF_NEAR_BINS; j++) p->near_edge[j] = r0 * exp2(-(double)(REF_NEAR_BINS - j) / 8.0);
+    p->near_cdf[0] = 0.0;
+    for (int j = 0; j < REF_NEAR_BINS; j++) {
+        double v[3], a = p->near_edge[j], b = p->near_edge[j + 1], w = 0.0;
+        gl4(src, a, b, p->s0, v);
+        for (int c = 0; c < 3; c++) {
+            p->near_mass[j][c] = v[c];
+            p->near[c] += v[c];
+            w += fabs(v[c]);
         }
+        p->near_cdf[j + 1] = p->near_cdf[j] + w;
     }
+    double below_r0[3]; /* int_0^R0 S_r 2 pi r dr, for the support criterion */
     for (int c = 0; c < 3; c++) below_r0[c] = p->near[c] + REF_PI * r0 * r0 * p->s0[c];
 
     /* Far part: cumulative integral on a log grid from R0 to the support, to find where the tail

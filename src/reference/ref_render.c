@@ -51,20 +51,18 @@ typedef struct surface_hit {
     double p[3], ng[3], ns[3];
 } surface_hit;
 
-/* Traces a camera ray: 0 miss, 1 object (hit filled), 2 area light (hit->geom set). */
-static int trace_camera(const ref_ctx *ctx, const double dir[3], surface_hit *hit)
+/* Position and normals of a hit on object g; normals face `facing` (the side the ray came from). */
+static void decode_hit(const ref_ctx *ctx, unsigned g, const struct RTCRayHit *rh, const double facing[3],
+                       surface_hit *hit)
 {
-    struct RTCRayHit rh;
-    if (!intersect(ctx, ctx->cam.origin, dir, &rh)) return 0;
-    unsigned g = rh.hit.geomID;
+    const double *wo = facing;
     hit->geom = g;
-    if (g >= ctx->light_geom_base) return 2;
     const sss_mesh *m = ctx->objects[g].src->mesh;
-    const uint32_t *idx = m->indices + 3 * (size_t)rh.hit.primID;
+    const uint32_t *idx = m->indices + 3 * (size_t)rh->hit.primID;
     const float *fa = m->positions + 3 * (size_t)idx[0], *fb = m->positions + 3 * (size_t)idx[1],
                 *fc = m->positions + 3 * (size_t)idx[2];
-    double u = rh.hit.u, v = rh.hit.v, w0 = 1.0 - u - v;
-    double e1[3], e2[3], wo[3] = {-dir[0], -dir[1], -dir[2]};
+    double u = rh->hit.u, v = rh->hit.v, w0 = 1.0 - u - v;
+    double e1[3], e2[3];
     for (int c = 0; c < 3; c++) {
         /* Barycentric position: more precise than org + t dir far from the camera. */
         hit->p[c] = w0 * fa[c] + u * fb[c] + v * fc[c];
@@ -85,7 +83,116 @@ static int trace_camera(const ref_ctx *ctx, const double dir[3], surface_hit *hi
         /* Seen from behind (open meshes): shade that side. */
         for (int c = 0; c < 3; c++) hit->ng[c] = -hit->ng[c], hit->ns[c] = -hit->ns[c];
     }
+}
+
+/* Traces a camera ray: 0 miss, 1 object (hit filled), 2 area light (hit->geom set). */
+static int trace_camera(const ref_ctx *ctx, const double dir[3], surface_hit *hit)
+{
+    struct RTCRayHit rh;
+    if (!intersect(ctx, ctx->cam.origin, dir, &rh)) return 0;
+    unsigned g = rh.hit.geomID;
+    hit->geom = g;
+    if (g >= ctx->light_geom_base) return 2;
+    double wo[3] = {-dir[0], -dir[1], -dir[2]};
+    decode_hit(ctx, g, &rh, wo, hit);
     return 1;
+}
+
+/* Irradiance T at one probe of the near part: the tangent-plane point at radius r, angle ph around
+ * x_o projected onto the object along -n (only this object is hit), times the surface area per
+ * tangent-plane area; returns 0 when the probe finds no surface. */
+static int probe_irradiance(const ref_ctx *ctx, const ref_object *obj, const surface_hit *x, const double t1[3],
+                            const double t2[3], double r, double ph, int area_n, int env_n, ref_rng *rng,
+                            double val[3])
+{
+    const double *n = x->ns;
+    double r0 = obj->prof.r0, cp = cos(ph), sp = sin(ph), org[3];
+    for (int c = 0; c < 3; c++) org[c] = x->p[c] + r * (cp * t1[c] + sp * t2[c]) + r0 * n[c];
+    struct RTCIntersectContext ic;
+    rtcInitIntersectContext(&ic);
+    struct RTCRayHit rh;
+    memset(&rh, 0, sizeof rh);
+    rh.ray.org_x = (float)org[0], rh.ray.org_y = (float)org[1], rh.ray.org_z = (float)org[2];
+    rh.ray.dir_x = (float)-n[0], rh.ray.dir_y = (float)-n[1], rh.ray.dir_z = (float)-n[2];
+    rh.ray.tfar = (float)(2.0 * r0);
+    rh.ray.mask = 0xffffffffu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(obj->probe_scene, &ic, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return 0;
+    surface_hit y;
+    decode_hit(ctx, x->geom, &rh, n, &y);
+    ref_irradiance(ctx, y.p, y.ng, y.ns, obj->eta, area_n, env_n, rng, val);
+    double jac = 1.0 / fmax(fabs(v3_dot(y.ng, n)), 0.1);
+    for (int c = 0; c < 3; c++) val[c] *= jac;
+    return 1;
+}
+
+/* Near part below R0 (FACTS.md 1): int over the surface within R0 of S_near(|y - x_o|) T(y) dA, by
+ * ctx->near_probes probe rays as PBRT samples its BSSRDF: radii from the binned S_near (stratified),
+ * angles from a randomised Kronecker sequence. Self-normalised, so that a constant T gives exactly
+ * near * T; a probe that finds no surface uses T(x_o). (A probe count that adapts to the first
+ * probes' agreement would be biased: a small lit part missed by them would never be looked for.) */
+static void near_part(const ref_ctx *ctx, const ref_object *obj, const surface_hit *x, ref_rng *rng,
+                      double out[3])
+{
+    const ref_profile *pf = &obj->prof;
+    double total = pf->near_cdf[REF_NEAR_BINS];
+    out[0] = out[1] = out[2] = 0.0;
+    if (!(total > 0.0)) return;
+    const double *n = x->ns;
+    double t1[3], t2[3], a[3] = {1, 0, 0};
+    if (fabs(n[0]) > 0.7) a[0] = 0, a[1] = 1;
+    v3_cross(n, a, t1);
+    v3_normalize(t1);
+    v3_cross(n, t1, t2);
+    int K = ctx->near_probes;
+    int area_n = (ctx->area_samples_camera + K - 1) / K, env_n = (ctx->env_samples_camera + K - 1) / K;
+    double num[3] = {0, 0, 0}, den[3] = {0, 0, 0}, Tx[3] = {0, 0, 0};
+    int have_tx = 0;
+    double phase = ref_rng_uniform(rng);
+    for (int k = 0; k < K; k++) {
+        double u = (k + ref_rng_uniform(rng)) / K * total;
+        int lo = 0, hi = REF_NEAR_BINS - 1;
+        while (lo < hi) { /* the bin j with cdf[j] <= u < cdf[j + 1] */
+            int mid = (lo + hi + 1) / 2;
+            if (pf->near_cdf[mid] <= u)
+                lo = mid;
+            else
+                hi = mid - 1;
+        }
+        int j = lo;
+        double pj = (pf->near_cdf[j + 1] - pf->near_cdf[j]) / total;
+        if (!(pj > 0.0)) continue;
+        double ea = pf->near_edge[j], eb = pf->near_edge[j + 1];
+        double r = sqrt(ea * ea + ref_rng_uniform(rng) * (eb * eb - ea * ea)); /* uniform in area */
+        double ph = 2.0 * REF_PI * fmod(phase + k * 0.6180339887498949, 1.0);
+        double val[3];
+        if (!probe_irradiance(ctx, obj, x, t1, t2, r, ph, area_n, env_n, rng, val)) {
+            if (!have_tx) {
+                ref_irradiance(ctx, x->p, x->ng, x->ns, obj->eta, ctx->area_samples_camera, ctx->env_samples_camera,
+                               rng, Tx);
+                have_tx = 1;
+            }
+            memcpy(val, Tx, sizeof val);
+        }
+        for (int c = 0; c < 3; c++) {
+            double w = pf->near_mass[j][c] / pj;
+            num[c] += w * val[c];
+            den[c] += w;
+        }
+    }
+    for (int c = 0; c < 3; c++) {
+        if (den[c] != 0.0 && fabs(den[c]) > 1e-9 * fabs(pf->near[c])) {
+            out[c] = pf->near[c] * num[c] / den[c];
+        } else {
+            if (!have_tx) {
+                ref_irradiance(ctx, x->p, x->ng, x->ns, obj->eta, ctx->area_samples_camera, ctx->env_samples_camera,
+                               rng, Tx);
+                have_tx = 1;
+            }
+            out[c] = pf->near[c] * Tx[c];
+        }
+    }
 }
 
 /* The sample sum at the pixel centre's hit, shared by the pixel's samples that land on the same
@@ -134,13 +241,13 @@ static void shade(const ref_ctx *ctx, const double dir[3], ref_rng *rng, double 
     const sss_reference_object *src = obj->src;
     if (!obj->subsurface) {
         double E[3];
-        ref_irradiance(ctx, p, ng, ns, 0.0, 1, rng, E);
+        ref_irradiance(ctx, p, ng, ns, 0.0, ctx->area_samples_camera, ctx->env_samples_camera, rng, E);
         for (int c = 0; c < 3; c++) L[c] = src->reflectance[c] / REF_PI * E[c];
         return;
     }
-    /* FACTS.md 1: L = F_t(x_o) / (pi c) * [T(x_o) near(R0) + sum_i T_i A_i S_far(|x_i - x_o|)]. */
-    double T[3], far[3] = {0, 0, 0};
-    ref_irradiance(ctx, p, ng, ns, obj->eta, 1, rng, T);
+    /* FACTS.md 1: L = F_t(x_o) / (pi c) * [near part + sum_i T_i A_i S_far(|x_i - x_o|)]. */
+    double near[3], far[3] = {0, 0, 0};
+    near_part(ctx, obj, &hit, rng, near);
     if (obj->tree.point_count > 0) {
         double d[3] = {p[0] - fc->center.p[0], p[1] - fc->center.p[1], p[2] - fc->center.p[2]};
         if (fc->valid && fc->center.geom == hit.geom && v3_len(d) <= 0.5 * obj->prof.r0 &&
@@ -157,7 +264,7 @@ static void shade(const ref_ctx *ctx, const double dir[3], ref_rng *rng, double 
     double cos_o = fabs(v3_dot(ns, wo));
     double fr = sss_fresnel_dielectric(cos_o, 1.0, obj->eta);
     double k = (1.0 - fr) / (REF_PI * obj->c_norm);
-    for (int c = 0; c < 3; c++) L[c] = k * (T[c] * obj->prof.near[c] + far[c]);
+    for (int c = 0; c < 3; c++) L[c] = k * (near[c] + far[c]);
     if (ctx->desc.specular) {
         /* Smooth dielectric interface: F_r times what the mirror direction sees. */
         double r[3], dd = v3_dot(dir, ns);
@@ -216,10 +323,18 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
     ctx.last_progress_time = -1e30;
     int draft = ctx.desc.quality == SSS_REFERENCE_DRAFT;
     int ls = ctx.desc.light_samples > 0 ? ctx.desc.light_samples : 1;
+    /* Per camera sample: the per-pixel budgets of the quality spread over the pixel's base samples. */
+    int spp = ctx.desc.spp > 0 ? ctx.desc.spp : (draft ? 1 : 16);
+    int kb = (int)ceil(sqrt((double)spp));
+    if (kb > MAX_BASE_SIDE) kb = MAX_BASE_SIDE;
+    int ka = 2 * kb; /* the extra samples: 4 x spp */
+    int nb = kb * kb;
     ctx.area_samples_point = (draft ? 4 : 16) * ls;
-    ctx.area_samples_camera = (draft ? 16 : 64) * ls;
     ctx.env_samples_point = (draft ? 16 : 64) * ls;
-    ctx.env_samples_camera = (draft ? 64 : 256) * ls;
+    ctx.area_samples_camera = ((draft ? 16 : 256) * ls + nb - 1) / nb;
+    ctx.env_samples_camera = ((draft ? 64 : 1024) * ls + nb - 1) / nb;
+    ctx.near_probes = ((draft ? 16 : 128) + nb - 1) / nb;
+    if (ctx.near_probes < 4) ctx.near_probes = 4;
     int saved_threads = omp_get_max_threads();
     if (ctx.desc.threads > 0) omp_set_num_threads(ctx.desc.threads);
 
@@ -234,10 +349,6 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
 
     double t_pixels = sss_time_seconds();
     ref_set_phase(&ctx, 0.3, 1.0, "pixels");
-    int spp = ctx.desc.spp > 0 ? ctx.desc.spp : (draft ? 1 : 4);
-    int kb = (int)ceil(sqrt((double)spp));
-    if (kb > MAX_BASE_SIDE) kb = MAX_BASE_SIDE;
-    int ka = 2 * kb; /* the extra samples: 4 x spp */
     const int W = ctx.cam.width, H = ctx.cam.height;
     const double scale = exp2(isfinite(world->exposure) ? world->exposure : 0.0);
     uint64_t visits = 0, lookups = 0, camera_samples = 0, adaptive = 0, nonfinite = 0;

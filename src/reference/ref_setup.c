@@ -173,6 +173,29 @@ static sss_result build_scene(ref_ctx *ctx, sss_error *err)
         rtcCommitGeometry(g);
         rtcAttachGeometryByID(ctx->scene, g, (unsigned)i);
         rtcReleaseGeometry(g);
+        if (!ctx->objects[i].subsurface) continue;
+        /* The object alone, for the probe rays of its near part (they must not see other objects). */
+        RTCScene ps = rtcNewScene(ctx->device);
+        RTCGeometry pg = rtcNewGeometry(ctx->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        if (!ps || !pg) {
+            if (ps) rtcReleaseScene(ps);
+            if (pg) rtcReleaseGeometry(pg);
+            return embree_fail(ctx, err, "rtcNewScene");
+        }
+        ctx->objects[i].probe_scene = ps;
+        rtcSetSceneFlags(ps, RTC_SCENE_FLAG_ROBUST);
+        vb = rtcSetNewGeometryBuffer(pg, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), m->vertex_count);
+        ib = rtcSetNewGeometryBuffer(pg, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), m->triangle_count);
+        if (!vb || !ib) {
+            rtcReleaseGeometry(pg);
+            return embree_fail(ctx, err, "rtcSetNewGeometryBuffer");
+        }
+        memcpy(vb, m->positions, sizeof(float) * 3 * (size_t)m->vertex_count);
+        memcpy(ib, m->indices, sizeof(unsigned) * 3 * (size_t)m->triangle_count);
+        rtcCommitGeometry(pg);
+        rtcAttachGeometryByID(ps, pg, 0);
+        rtcReleaseGeometry(pg);
+        rtcCommitScene(ps);
     }
     /* Area lights are rectangles in the scene: visible and casting shadows, as in PBRT. */
     ctx->light_geom_base = (unsigned)ctx->object_count;
@@ -385,6 +408,7 @@ void ref_ctx_free(ref_ctx *ctx)
     for (size_t o = 0; ctx->objects && o < ctx->object_count; o++) {
         ref_profile_free(&ctx->objects[o].prof);
         ref_tree_free(&ctx->objects[o].tree);
+        if (ctx->objects[o].probe_scene) rtcReleaseScene(ctx->objects[o].probe_scene);
     }
     free(ctx->objects);
     ctx->objects = NULL;
