@@ -1,13 +1,19 @@
 # Thin wrapper around CMake. The two set-up commands of the README:
 #   make demo    installs missing packages, builds (Release) and renders the default scene
 #   make check   installs missing packages, builds (Release) and runs every test through ctest
-# Also: make build, make sanitize (ASan + UBSan build and unit tests), make bench, make clean.
+# Also: make build, make sanitize (ASan + UBSan build and unit tests), make bench, make clean,
+#   make fuzz [FUZZ_SECONDS=N]  libFuzzer (clang) on every parser, N seconds each (default 60); the
+#                               corpus grows in $(FUZZ_BUILD)/fuzz-corpus from run to run
+#   make fuzz-ci                each target 60 s from the committed seeds; fails on any finding
 BUILD ?= build
 SAN_BUILD ?= build-asan
 JOBS ?= $(shell nproc)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all build demo check sanitize bench clean deps
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 60
+
+.PHONY: all build demo check sanitize bench clean deps fuzz fuzz-ci fuzz-build
 
 all: build
 
@@ -35,5 +41,17 @@ sanitize: deps
 bench: deps build
 	@for b in $(BUILD)/bench/bench_*; do echo "== $$b"; $$b; done
 
+fuzz-build:
+	@scripts/install-deps.sh --dev
+	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
+		-DCMAKE_CXX_COMPILER=clang++ -DSSS_FUZZ=ON
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_all
+
+fuzz: fuzz-build
+	fuzz/run_fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
+
+fuzz-ci: fuzz-build
+	fuzz/run_fuzz.sh --ci $(FUZZ_BUILD) 60
+
 clean:
-	rm -rf $(BUILD) $(SAN_BUILD)
+	rm -rf $(BUILD) $(SAN_BUILD) $(FUZZ_BUILD)

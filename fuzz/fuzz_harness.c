@@ -1,0 +1,355 @@
+/* fuzz/fuzz_harness.c — the checks behind every fuzz target (see fuzz_harness.h). Compiled into each
+ * libFuzzer binary and included by tests/robustness/test_fuzz_regressions.c. */
+#include "fuzz_harness.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sss/image.h"
+#include "sss/mesh.h"
+#include "sss/scene.h"
+
+static char fuzz_message[640];
+
+static const char *broken(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
+static const char *broken(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(fuzz_message, sizeof fuzz_message, fmt, ap);
+    va_end(ap);
+    return fuzz_message;
+}
+
+/* A failed call must say so consistently and name its input (sss/common.h). */
+static const char *check_error(sss_result r, const sss_error *err, const char *name)
+{
+    if (r == SSS_OK) return NULL;
+    if (err->code != r) return broken("returned %d but err.code is %d (%s)", (int)r, (int)err->code, err->message);
+    if (!err->message[0]) return broken("error %d with an empty message", (int)r);
+    if (!strstr(err->message, name)) return broken("error message does not name '%s': %s", name, err->message);
+    if (strlen(err->message) >= SSS_ERROR_MESSAGE_SIZE) return broken("unterminated error message");
+    return NULL;
+}
+
+/* ---- Meshes ------------------------------------------------------------------------------------ */
+
+/* from_file: the mesh came straight from a reader, so source_flags must describe its arrays
+ * (procedural shapes have UVs that no file provided). */
+static const char *check_mesh(const sss_mesh *m, const char *what, int from_file)
+{
+    if (m->vertex_count < 1 || m->vertex_count > SSS_MESH_MAX_VERTICES)
+        return broken("%s: vertex_count %u out of range", what, m->vertex_count);
+    if (m->triangle_count < 1 || m->triangle_count > SSS_MESH_MAX_TRIANGLES)
+        return broken("%s: triangle_count %u out of range", what, m->triangle_count);
+    if (!m->positions || !m->normals || !m->indices) return broken("%s: missing arrays", what);
+    if (from_file && !m->uvs != !(m->source_flags & SSS_MESH_FROM_FILE_UVS))
+        return broken("%s: uvs %s but source_flags 0x%x", what, m->uvs ? "present" : "absent", m->source_flags);
+    for (size_t i = 0; i < 3 * (size_t)m->vertex_count; i++)
+        if (!isfinite(m->positions[i])) return broken("%s: position value %zu is %g", what, i, m->positions[i]);
+    for (uint32_t v = 0; v < m->vertex_count; v++) {
+        const float *n = m->normals + 3 * (size_t)v;
+        double len = sqrt((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]);
+        if (!(fabs(len - 1.0) <= 1e-4)) return broken("%s: normal %u has length %g", what, v, len);
+    }
+    if (m->uvs)
+        for (size_t i = 0; i < 2 * (size_t)m->vertex_count; i++)
+            if (!isfinite(m->uvs[i])) return broken("%s: uv value %zu is %g", what, i, m->uvs[i]);
+    for (size_t i = 0; i < 3 * (size_t)m->triangle_count; i++)
+        if (m->indices[i] >= m->vertex_count)
+            return broken("%s: index %zu = %u, only %u vertices", what, i, m->indices[i], m->vertex_count);
+    return NULL;
+}
+
+static int mesh_is_empty(const sss_mesh *m)
+{
+    return !m->positions && !m->normals && !m->uvs && !m->indices && m->vertex_count == 0 && m->triangle_count == 0;
+}
+
+/* The derived quantities every consumer uses (sss mesh info, the renderers): finite and consistent. */
+static const char *check_mesh_derived(const sss_mesh *m, const char *name)
+{
+    sss_error err = {0};
+    sss_mesh_topology topo;
+    sss_result r = sss_mesh_topology_compute(m, &topo, &err);
+    if (r != SSS_OK) return broken("topology failed on a valid mesh: %s", err.message);
+    if (topo.boundary_edges + topo.nonmanifold_edges > topo.edge_count || topo.edge_count > 3ull * m->triangle_count ||
+        topo.degenerate_triangles > m->triangle_count)
+        return broken("inconsistent topology: %llu edges, %llu boundary, %llu non-manifold, %llu degenerate",
+                      (unsigned long long)topo.edge_count, (unsigned long long)topo.boundary_edges,
+                      (unsigned long long)topo.nonmanifold_edges, (unsigned long long)topo.degenerate_triangles);
+    sss_mesh_adjacency adj = {0};
+    r = sss_mesh_adjacency_build(m, &adj, &err);
+    if (r != SSS_OK) return broken("adjacency failed on a valid mesh: %s", err.message);
+    const char *bad = NULL;
+    if (adj.vertex_count != m->vertex_count || adj.offsets[0] != 0) bad = broken("adjacency header wrong");
+    for (uint32_t v = 0; !bad && v < m->vertex_count; v++) {
+        if (adj.offsets[v + 1] < adj.offsets[v] || adj.offsets[v + 1] - adj.offsets[v] > 6ull * m->triangle_count)
+            bad = broken("adjacency offsets not monotone at %u", v);
+        for (uint32_t k = adj.offsets[v]; !bad && k < adj.offsets[v + 1]; k++) {
+            uint32_t u = adj.neighbors[k];
+            if (u >= m->vertex_count || u == v || (k > adj.offsets[v] && adj.neighbors[k - 1] >= u))
+                bad = broken("adjacency row %u not sorted, unique, in range, without itself", v);
+        }
+    }
+    sss_mesh_adjacency_free(&adj);
+    if (bad) return bad;
+    float lo[3], hi[3];
+    sss_mesh_bounds(m, lo, hi);
+    for (int k = 0; k < 3; k++)
+        if (!isfinite(lo[k]) || !isfinite(hi[k]) || lo[k] > hi[k]) return broken("bad bounds on axis %d", k);
+    double area = sss_mesh_surface_area(m), vol = sss_mesh_signed_volume(m);
+    if (!isfinite(area) || area < 0) return broken("surface area %g", area);
+    if (!isfinite(vol)) return broken("signed volume %g", vol);
+    /* Simplification of small meshes (the splatting techniques' low-resolution meshes). */
+    if (m->triangle_count <= 4096) {
+        uint32_t target = m->triangle_count / 2 ? m->triangle_count / 2 : 1;
+        sss_mesh s = {0};
+        r = sss_mesh_simplify(m, target, &s, &err);
+        if (r == SSS_OK) {
+            bad = check_mesh(&s, "simplified", 0);
+            if (!bad && s.triangle_count > target)
+                bad = broken("simplify to %u gave %u triangles", target, s.triangle_count);
+        } else if (!err.message[0]) {
+            bad = broken("simplify failed without a message");
+        } else if (!mesh_is_empty(&s)) {
+            bad = broken("simplify failed but left data in its output");
+        }
+        sss_mesh_free(&s);
+    }
+    (void)name;
+    return bad;
+}
+
+static const char *fuzz_mesh(const uint8_t *data, size_t size, int ply)
+{
+    const char *name = ply ? "fuzz.ply" : "fuzz.obj";
+    sss_mesh m;
+    memset(&m, 0xa5, sizeof m); /* the reader must initialise its output */
+    sss_error err = {0};
+    sss_result r = ply ? sss_mesh_parse_ply(data, size, name, &m, &err) : sss_mesh_parse_obj(data, size, name, &m, &err);
+    const char *bad = check_error(r, &err, name);
+    if (r != SSS_OK) {
+        if (!bad && !mesh_is_empty(&m)) bad = broken("failed (%s) but the mesh is not empty", err.message);
+        if (mesh_is_empty(&m)) sss_mesh_free(&m);
+        return bad;
+    }
+    bad = check_mesh(&m, name, 1);
+    if (!bad) bad = check_mesh_derived(&m, name);
+    sss_mesh_free(&m);
+    return bad;
+}
+
+const char *sss_fuzz_ply(const uint8_t *data, size_t size) { return fuzz_mesh(data, size, 1); }
+const char *sss_fuzz_obj(const uint8_t *data, size_t size) { return fuzz_mesh(data, size, 0); }
+
+/* ---- Images ------------------------------------------------------------------------------------ */
+
+static const char *fuzz_image(const uint8_t *data, size_t size, const char *name)
+{
+    sss_image img;
+    memset(&img, 0xa5, sizeof img);
+    sss_error err = {0};
+    sss_result r = sss_image_decode(data, size, name, &img, &err);
+    const char *bad = check_error(r, &err, name);
+    if (r != SSS_OK) {
+        if (!bad && (img.pixels || img.width || img.height)) bad = broken("failed (%s) but the image is not empty", err.message);
+        if (!img.pixels) sss_image_free(&img);
+        return bad;
+    }
+    if (img.width < 1 || img.height < 1 || img.width > SSS_IMAGE_MAX_DIM || img.height > SSS_IMAGE_MAX_DIM || !img.pixels)
+        return broken("decoded image is %dx%d (pixels %p)", img.width, img.height, (void *)img.pixels);
+    size_t n = (size_t)img.width * (size_t)img.height * 3, nonfinite = 0;
+    int png = strstr(name, ".png") != NULL, hdr = strstr(name, ".hdr") != NULL;
+    for (size_t i = 0; i < n && !bad; i++) {
+        float v = img.pixels[i];
+        nonfinite += !isfinite(v);
+        /* PNG decodes 8/16-bit codes with the sRGB curve; RGBE holds non-negative finite values. */
+        if (png && !(v >= 0.0f && v <= 1.0f)) bad = broken("PNG sample %zu = %g outside [0, 1]", i, v);
+        if (hdr && !(v >= 0.0f && isfinite(v))) bad = broken("HDR sample %zu = %g", i, v);
+    }
+    if (!bad && sss_image_count_nonfinite(&img) != nonfinite) bad = broken("sss_image_count_nonfinite disagrees");
+    if (!bad && n <= (size_t)1 << 22) {
+        /* The tone map must accept anything a reader returns (NaN maps to 0). */
+        uint8_t *rgb = malloc(n);
+        if (rgb) {
+            sss_image_to_srgb8(&img, 0.0, rgb);
+            free(rgb);
+        }
+    }
+    sss_image_free(&img);
+    return bad;
+}
+
+const char *sss_fuzz_hdr(const uint8_t *data, size_t size) { return fuzz_image(data, size, "fuzz.hdr"); }
+const char *sss_fuzz_pfm(const uint8_t *data, size_t size) { return fuzz_image(data, size, "fuzz.pfm"); }
+const char *sss_fuzz_exr(const uint8_t *data, size_t size) { return fuzz_image(data, size, "fuzz.exr"); }
+const char *sss_fuzz_png(const uint8_t *data, size_t size) { return fuzz_image(data, size, "fuzz.png"); }
+
+/* ---- Scenes ------------------------------------------------------------------------------------ */
+
+static const char *fixtures_dir = ".";
+
+void sss_fuzz_set_fixtures(const char *dir) { fixtures_dir = dir; }
+
+/* Full loads are skipped above this many procedural triangles (the limits allow 2^27 per object:
+ * a legitimate but slow input, not a bug). */
+#define SCENE_TRIANGLE_BUDGET 300000.0
+
+static double procedural_triangles(const sss_procedural *p)
+{
+    switch (p->shape) {
+    case SSS_SHAPE_SPHERE: return 20.0 * pow(4.0, p->subdivisions);
+    case SSS_SHAPE_TORUS: return 2.0 * p->segments * (double)p->segments;
+    case SSS_SHAPE_TREFOIL: return 2.0 * p->segments * (p->segments / 8 > 3 ? p->segments / 8 : 3);
+    default: return 12.0;
+    }
+}
+
+static int finite_n(const double *v, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(v[i])) return 0;
+    return 1;
+}
+
+static int unit3(const double *v)
+{
+    return finite_n(v, 3) && fabs(sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) - 1.0) < 1e-9;
+}
+
+static const char *check_material(const sss_scene *s, const sss_scene_material *m, size_t i)
+{
+    if (!finite_n(m->albedo, 3)) return broken("objects[%zu]: non-finite albedo", i);
+    for (int k = 0; k < 3; k++)
+        if (m->albedo[k] < 0 || m->albedo[k] > 1.05) return broken("objects[%zu]: albedo %g", i, m->albedo[k]);
+    if (m->type == SSS_SCENE_MATERIAL_DIFFUSE) return NULL;
+    if (m->type != SSS_SCENE_MATERIAL_SUBSURFACE) return broken("objects[%zu]: material type %d", i, (int)m->type);
+    const sss_material *o = &m->optical;
+    for (int k = 0; k < 3; k++)
+        if (!isfinite(o->sigma_a[k]) || !isfinite(o->sigma_s[k]) || o->sigma_a[k] < 0 || o->sigma_s[k] < 0 ||
+            !(o->sigma_a[k] + o->sigma_s[k] > 0))
+            return broken("objects[%zu]: coefficients sigma_a %g sigma_s %g", i, o->sigma_a[k], o->sigma_s[k]);
+    if (!(o->eta >= SSS_ETA_MIN && o->eta <= SSS_ETA_MAX) || !(o->g > -1 && o->g < 1))
+        return broken("objects[%zu]: eta %g g %g", i, o->eta, o->g);
+    if (!m->table || m->table->eta != o->eta || m->table->g != o->g || sss_scene_find_table(s, o->eta, o->g) != m->table)
+        return broken("objects[%zu]: PBD table missing or not the one for its eta and g", i);
+    return NULL;
+}
+
+static const char *check_scene(const sss_scene *s, int meshes, double *triangles)
+{
+    if (s->object_count < 1 || s->object_count > SSS_SCENE_MAX_OBJECTS || !s->objects)
+        return broken("object_count %zu", s->object_count);
+    if (s->light_count > SSS_SCENE_MAX_LIGHTS || (s->light_count && !s->lights))
+        return broken("light_count %zu", s->light_count);
+    const sss_camera *c = &s->camera;
+    if (!finite_n(c->position, 3) || !finite_n(c->look_at, 3) || !finite_n(c->up, 3) || !(c->fov > 0 && c->fov < 180) ||
+        c->width < 1 || c->height < 1 || c->width > SSS_SCENE_MAX_IMAGE_SIZE || c->height > SSS_SCENE_MAX_IMAGE_SIZE)
+        return broken("camera out of its documented ranges");
+    const sss_camera_basis *b = &s->basis;
+    if (!unit3(b->right) || !unit3(b->up) || !unit3(b->forward) || !(b->tan_half[0] > 0 && isfinite(b->tan_half[0])) ||
+        !(b->tan_half[1] > 0 && isfinite(b->tan_half[1])))
+        return broken("camera basis not orthonormal/finite");
+    if (!isfinite(s->render.exposure) || !memchr(s->render.technique, 0, sizeof s->render.technique))
+        return broken("render settings");
+    *triangles = 0;
+    for (size_t i = 0; i < s->object_count; i++) {
+        const sss_scene_object *o = &s->objects[i];
+        if (!finite_n(o->transform.matrix, 16) || !finite_n(o->transform.normal_matrix, 9))
+            return broken("objects[%zu]: non-finite transform", i);
+        const char *bad = check_material(s, &o->material, i);
+        if (bad) return bad;
+        if (o->animation.type != SSS_ANIMATION_NONE && (!isfinite(o->animation.amplitude) || !(o->animation.period > 0)))
+            return broken("objects[%zu]: animation", i);
+        if (o->procedural.shape != SSS_SHAPE_MESH) *triangles += procedural_triangles(&o->procedural);
+        else if (!o->mesh_path) return broken("objects[%zu]: mesh object without a path", i);
+        if (!meshes) {
+            if (!mesh_is_empty(&o->mesh)) return broken("objects[%zu]: mesh loaded with SKIP_MESHES", i);
+            continue;
+        }
+        char what[64];
+        snprintf(what, sizeof what, "objects[%zu].mesh", i);
+        if ((bad = check_mesh(&o->mesh, what, o->procedural.shape == SSS_SHAPE_MESH))) return bad;
+        float lo[3], hi[3];
+        sss_mesh_bounds(&o->mesh, lo, hi);
+        if (memcmp(lo, o->bounds_min, sizeof lo) || memcmp(hi, o->bounds_max, sizeof hi))
+            return broken("objects[%zu]: bounds differ from the mesh's", i);
+        if (o->splat_mesh_path) {
+            snprintf(what, sizeof what, "objects[%zu].splat_mesh", i);
+            if ((bad = check_mesh(&o->splat_mesh, what, 1))) return bad;
+        }
+        /* What every renderer does with an object: pose it in the world. */
+        sss_mesh world = {0};
+        sss_error err = {0};
+        sss_result r = sss_scene_object_world_mesh(o, 0.3, &world, &err);
+        if (r == SSS_OK) {
+            snprintf(what, sizeof what, "objects[%zu] world mesh", i);
+            bad = check_mesh(&world, what, 0);
+        } else if (!err.message[0]) {
+            bad = broken("objects[%zu]: world mesh failed without a message", i);
+        }
+        sss_mesh_free(&world);
+        if (bad) return bad;
+    }
+    for (size_t i = 0; i < s->light_count; i++) {
+        const sss_light *l = &s->lights[i];
+        const double *vals[] = {l->position, l->look_at, l->intensity, l->direction, l->radiance, l->center, l->u, l->v, l->scale};
+        for (size_t k = 0; k < sizeof vals / sizeof vals[0]; k++)
+            if (!finite_n(vals[k], 3)) return broken("lights[%zu]: non-finite values", i);
+        if (l->type == SSS_LIGHT_DIRECTIONAL && !unit3(l->direction)) return broken("lights[%zu]: direction not unit", i);
+        if (l->type == SSS_LIGHT_ENVIRONMENT && !l->file) return broken("lights[%zu]: environment without a file", i);
+    }
+    return NULL;
+}
+
+static int scene_is_empty(const sss_scene *s)
+{
+    return !s->name && !s->base_dir && !s->objects && !s->object_count && !s->lights && !s->light_count && !s->tables &&
+           !s->table_count;
+}
+
+static const char *load_scene(const uint8_t *data, size_t size, unsigned flags, int *ok, double *triangles)
+{
+    static const char *const name = "fuzz.json";
+    sss_scene s;
+    memset(&s, 0xa5, sizeof s);
+    sss_scene_load_desc desc = {flags};
+    sss_error err = {0};
+    sss_result r = sss_scene_parse((const char *)data, size, fixtures_dir, name, &desc, &s, &err);
+    const char *bad = check_error(r, &err, name);
+    *ok = r == SSS_OK;
+    if (r != SSS_OK) {
+        if (!scene_is_empty(&s)) return bad ? bad : broken("failed (%s) but the scene is not empty", err.message);
+        sss_scene_free(&s);
+        return bad;
+    }
+    bad = check_scene(&s, !(flags & SSS_SCENE_SKIP_MESHES), triangles);
+    sss_scene_free(&s);
+    return bad;
+}
+
+const char *sss_fuzz_scene(const uint8_t *data, size_t size)
+{
+    int ok = 0;
+    double triangles = 0;
+    /* Validation alone first (fast); then the full load (meshes read from the fixtures, shapes
+     * generated) when its size is reasonable. */
+    const char *bad = load_scene(data, size, SSS_SCENE_SKIP_MESHES, &ok, &triangles);
+    if (bad || !ok || triangles > SCENE_TRIANGLE_BUDGET) return bad;
+    return load_scene(data, size, 0, &ok, &triangles);
+}
+
+const sss_fuzz_target sss_fuzz_targets[] = {
+    {"ply", sss_fuzz_ply}, {"obj", sss_fuzz_obj}, {"scene", sss_fuzz_scene}, {"hdr", sss_fuzz_hdr},
+    {"pfm", sss_fuzz_pfm}, {"exr", sss_fuzz_exr}, {"png", sss_fuzz_png},
+};
+const size_t sss_fuzz_target_count = sizeof sss_fuzz_targets / sizeof sss_fuzz_targets[0];

@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# Runs every libFuzzer target of fuzz/ for a fixed time and prints one line per target.
+#   fuzz/run_fuzz.sh [--ci] BUILD_DIR SECONDS [TARGET...]
+# Seeds: fuzz/corpus/<t>/ and tests/data/fuzz-regressions/<t>/ (read only). Without --ci the working
+# corpus grows in BUILD_DIR/fuzz-corpus/<t>/ from run to run; with --ci each run starts from the
+# committed seeds alone (reproducible). Findings (crash, leak, timeout, out-of-memory, broken promise)
+# are saved in BUILD_DIR/fuzz-artifacts/<t>/; turn each into a regression: copy it to
+# tests/data/fuzz-regressions/<t>/ (tests/robustness/test_fuzz_regressions replays them).
+# Exit status: 0 no finding, 1 a finding, 2 usage or build problem.
+set -u
+ci=0
+if [ "${1:-}" = --ci ]; then ci=1; shift; fi
+if [ $# -lt 2 ]; then
+    echo "usage: fuzz/run_fuzz.sh [--ci] BUILD_DIR SECONDS [TARGET...]" >&2
+    exit 2
+fi
+build=$1
+seconds=$2
+shift 2
+root=$(cd "$(dirname "$0")/.." && pwd)
+targets=${*:-ply obj scene hdr pfm exr png}
+case "$seconds" in '' | *[!0-9]*) echo "run_fuzz.sh: SECONDS must be a whole number" >&2; exit 2 ;; esac
+
+findings=0
+printf '%-6s %10s %9s %8s  %s\n' target execs "exec/s" corpus result
+for t in $targets; do
+    bin=$build/fuzz/fuzz_$t
+    if [ ! -x "$bin" ]; then
+        echo "run_fuzz.sh: $bin not built (cmake -DSSS_FUZZ=ON, target fuzz_all)" >&2
+        exit 2
+    fi
+    if [ $ci -eq 1 ]; then
+        corpus=$(mktemp -d)
+    else
+        corpus=$build/fuzz-corpus/$t
+        mkdir -p "$corpus"
+    fi
+    artifacts=$build/fuzz-artifacts/$t
+    mkdir -p "$artifacts"
+    log=$build/fuzz-artifacts/$t.log
+    seeds=("$root/fuzz/corpus/$t")
+    [ -d "$root/tests/data/fuzz-regressions/$t" ] && seeds+=("$root/tests/data/fuzz-regressions/$t")
+    dict=()
+    [ -f "$root/fuzz/dict/$t.dict" ] && dict=(-dict="$root/fuzz/dict/$t.dict")
+    # -timeout: an input taking 25 s is a finding (the readers are linear in their input);
+    # -rss_limit_mb: the harness's inputs are small, so 2.5 GB means an allocation the header
+    # should have refused. Leak detection is on (ASan + libFuzzer default).
+    "$bin" -max_total_time="$seconds" -timeout=25 -rss_limit_mb=2560 -max_len=16384 -print_final_stats=1 \
+        "${dict[@]}" -artifact_prefix="$artifacts/" "$corpus" "${seeds[@]}" >"$log" 2>&1
+    rc=$?
+    execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+    rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
+    units=$(find "$corpus" -type f | wc -l)
+    if [ $rc -eq 0 ]; then
+        result=ok
+    else
+        findings=$((findings + 1))
+        what=$(grep -m1 -oE 'ERROR: [A-Za-z]+: [a-z-]+|ERROR: libFuzzer: [a-z-]+|broken promise: .*|runtime error: .*' "$log")
+        result="FINDING (${what:-exit $rc}): see $log, input in $artifacts/"
+    fi
+    printf '%-6s %10s %9s %8s  %s\n' "$t" "${execs:-?}" "${rate:-?}" "$units" "$result"
+    [ $ci -eq 1 ] && rm -rf "$corpus"
+done
+if [ $findings -gt 0 ]; then
+    echo "run_fuzz.sh: $findings target(s) with findings" >&2
+    exit 1
+fi
+exit 0
