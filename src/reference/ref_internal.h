@@ -264,9 +264,11 @@ sss_result ref_lights_init(ref_ctx *ctx, sss_error *err);
 void ref_lights_free(ref_ctx *ctx);
 /* T(x) (or E(x) when eta <= 0: diffuse, no Fresnel) at a surface point p with unit geometric normal
  * ng (the side the light must be on) and unit shading normal ns, with (about) the given numbers of
- * stratified samples of each area and environment light. */
+ * stratified samples of each area and environment light; stratum/strata (a square) interleave the
+ * light samples of a pixel's camera samples (0, 1: on its own). */
 void ref_irradiance(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3],
-                    double eta, int area_samples, int env_samples, ref_rng *rng, double out[3]);
+                    double eta, int area_samples, int env_samples, int stratum, int strata, ref_rng *rng,
+                    double out[3]);
 /* Radiance of environment lights seen along unit direction dir (0 without one). */
 void ref_env_radiance(const ref_ctx *ctx, const double dir[3], double out[3]);
 /* Radiance of area light `light` seen from direction dir (unit, travelling towards the light). */

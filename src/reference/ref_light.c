@@ -298,8 +298,15 @@ static void add_sample(const ref_ctx *ctx, const double po[3], const double ng[3
 }
 
 void ref_irradiance(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3],
-                    double eta, int area_samples, int env_samples, ref_rng *rng, double out[3])
+                    double eta, int area_samples, int env_samples, int stratum, int strata, ref_rng *rng,
+                    double out[3])
 {
+    /* The light samples of the pixel's camera samples interleave: sample `stratum` of `strata` takes
+     * sub-cell (stratum % m, stratum / m) of every cell of its k x k grid, m = sqrt(strata), so that
+     * the pixel as a whole gets a (k m) x (k m) stratified set. */
+    int m = strata > 1 ? (int)lround(sqrt((double)strata)) : 1;
+    if (m < 1) m = 1;
+    int si = stratum % m, sj = (stratum / m) % m;
     out[0] = out[1] = out[2] = 0.0;
     double po[3];
     ref_offset(ctx, p, ng, po);
@@ -330,8 +337,8 @@ void ref_irradiance(const ref_ctx *ctx, const double p[3], const double ng[3], c
             double weight = l->area / (double)(k * k);
             for (int a = 0; a < k; a++)
                 for (int b = 0; b < k; b++) {
-                    double su = 2.0 * (a + ref_rng_uniform(rng)) / k - 1.0;
-                    double sv = 2.0 * (b + ref_rng_uniform(rng)) / k - 1.0;
+                    double su = 2.0 * (a + (si + ref_rng_uniform(rng)) / m) / k - 1.0;
+                    double sv = 2.0 * (b + (sj + ref_rng_uniform(rng)) / m) / k - 1.0;
                     double q[3], wi[3];
                     for (int c = 0; c < 3; c++) q[c] = s->center[c] + su * s->u[c] + sv * s->v[c];
                     for (int c = 0; c < 3; c++) wi[c] = q[c] - po[c];
@@ -352,7 +359,8 @@ void ref_irradiance(const ref_ctx *ctx, const double p[3], const double ng[3], c
             int k = (int)ceil(sqrt((double)n));
             for (int a = 0; a < k; a++)
                 for (int b = 0; b < k; b++) {
-                    double u1 = (a + ref_rng_uniform(rng)) / k, u2 = (b + ref_rng_uniform(rng)) / k;
+                    double u1 = (a + (si + ref_rng_uniform(rng)) / m) / k;
+                    double u2 = (b + (sj + ref_rng_uniform(rng)) / m) / k;
                     double wi[3];
                     int px, py;
                     double pdf = env_sample(&l->env, u1, u2, wi, &px, &py);

@@ -128,7 +128,7 @@ sss_result ref_points_generate(ref_ctx *ctx, size_t object, double h, sss_error 
                             memcpy(ns, ng, sizeof ns);
                         }
                         double T[3];
-                        ref_irradiance(ctx, p, ng, ns, eta, ctx->area_samples_point, ctx->env_samples_point, &rng, T);
+                        ref_irradiance(ctx, p, ng, ns, eta, ctx->area_samples_point, ctx->env_samples_point, 0, 1, &rng, T);
                         ref_point *pt = &pts[k];
                         for (int q = 0; q < 3; q++) {
                             pt->p[q] = (float)p[q];

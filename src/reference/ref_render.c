@@ -121,7 +121,7 @@ static int probe_irradiance(const ref_ctx *ctx, const ref_object *obj, const sur
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return 0;
     surface_hit y;
     decode_hit(ctx, x->geom, &rh, n, &y);
-    ref_irradiance(ctx, y.p, y.ng, y.ns, obj->eta, area_n, env_n, rng, val);
+    ref_irradiance(ctx, y.p, y.ng, y.ns, obj->eta, area_n, env_n, 0, 1, rng, val);
     double jac = 1.0 / fmax(fabs(v3_dot(y.ng, n)), 0.1);
     for (int c = 0; c < 3; c++) val[c] *= jac;
     return 1;
@@ -170,7 +170,7 @@ static void near_part(const ref_ctx *ctx, const ref_object *obj, const surface_h
         if (!probe_irradiance(ctx, obj, x, t1, t2, r, ph, area_n, env_n, rng, val)) {
             if (!have_tx) {
                 ref_irradiance(ctx, x->p, x->ng, x->ns, obj->eta, ctx->area_samples_camera, ctx->env_samples_camera,
-                               rng, Tx);
+                               0, 1, rng, Tx);
                 have_tx = 1;
             }
             memcpy(val, Tx, sizeof val);
@@ -187,7 +187,7 @@ static void near_part(const ref_ctx *ctx, const ref_object *obj, const surface_h
         } else {
             if (!have_tx) {
                 ref_irradiance(ctx, x->p, x->ng, x->ns, obj->eta, ctx->area_samples_camera, ctx->env_samples_camera,
-                               rng, Tx);
+                               0, 1, rng, Tx);
                 have_tx = 1;
             }
             out[c] = pf->near[c] * Tx[c];
@@ -217,8 +217,8 @@ static void far_sum(const ref_ctx *ctx, const ref_object *obj, const double p[3]
 }
 
 /* Radiance along one camera ray. */
-static void shade(const ref_ctx *ctx, const double dir[3], ref_rng *rng, double L[3], sample_info *info,
-                  shade_counters *cnt, far_cache *fc)
+static void shade(const ref_ctx *ctx, const double dir[3], int stratum, int strata, ref_rng *rng, double L[3],
+                  sample_info *info, shade_counters *cnt, far_cache *fc)
 {
     surface_hit hit;
     L[0] = L[1] = L[2] = 0.0;
@@ -241,7 +241,8 @@ static void shade(const ref_ctx *ctx, const double dir[3], ref_rng *rng, double 
     const sss_reference_object *src = obj->src;
     if (!obj->subsurface) {
         double E[3];
-        ref_irradiance(ctx, p, ng, ns, 0.0, ctx->area_samples_camera, ctx->env_samples_camera, rng, E);
+        ref_irradiance(ctx, p, ng, ns, 0.0, ctx->area_samples_camera, ctx->env_samples_camera, stratum, strata, rng,
+                       E);
         for (int c = 0; c < 3; c++) L[c] = src->reflectance[c] / REF_PI * E[c];
         return;
     }
@@ -250,7 +251,7 @@ static void shade(const ref_ctx *ctx, const double dir[3], ref_rng *rng, double 
     near_part(ctx, obj, &hit, rng, near);
     if (obj->tree.point_count > 0) {
         double d[3] = {p[0] - fc->center.p[0], p[1] - fc->center.p[1], p[2] - fc->center.p[2]};
-        if (fc->valid && fc->center.geom == hit.geom && v3_len(d) <= 0.5 * obj->prof.r0 &&
+        if (fc->valid && fc->center.geom == hit.geom && v3_len(d) <= obj->prof.r0 &&
             v3_dot(ng, fc->center.ng) > 0.9) {
             if (!fc->computed) {
                 far_sum(ctx, obj, fc->center.p, fc->far, cnt);
@@ -379,7 +380,7 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
                     double dir[3];
                     ref_camera_ray(&ctx.cam, x + (s % kb + ref_rng_uniform(&rng)) / kb,
                                    y + (s / kb + ref_rng_uniform(&rng)) / kb, dir);
-                    shade(&ctx, dir, &rng, L[s], &info[s], &cnt, &fc);
+                    shade(&ctx, dir, s, n, &rng, L[s], &info[s], &cnt, &fc);
                     for (int c = 0; c < 3; c++) {
                         if (!isfinite(L[s][c])) {
                             nonfinite++;
@@ -396,7 +397,7 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
                         sample_info si;
                         ref_camera_ray(&ctx.cam, x + (s % ka + ref_rng_uniform(&rng)) / ka,
                                        y + (s / ka + ref_rng_uniform(&rng)) / ka, dir);
-                        shade(&ctx, dir, &rng, Ls, &si, &cnt, &fc);
+                        shade(&ctx, dir, s, ka * ka, &rng, Ls, &si, &cnt, &fc);
                         for (int c = 0; c < 3; c++) {
                             if (!isfinite(Ls[c])) {
                                 nonfinite++;
