@@ -159,11 +159,17 @@ typedef struct ref_tree {
 /* Builds the tree over tree->points (point_count of them, already filled; points get reordered). */
 sss_result ref_tree_build(ref_tree *tree, sss_error *err);
 void ref_tree_free(ref_tree *tree);
-/* sum over samples of T A S_far(|x - x_o|), hierarchical or brute force; *visits += nodes+points. */
-void ref_tree_sum(const ref_tree *tree, const ref_profile *prof, const float xo[3], double out[3],
-                  uint64_t *visits);
+/* sum over samples of T A S_far(|x - x_o|), hierarchical or brute force; *visits += nodes+points.
+ * abs_tol (may be NULL): per channel, a node is also accepted when its estimated monopole error
+ * T A S (s / l)^2 / 40 is below it (see ref_abs_tolerance). */
+void ref_tree_sum(const ref_tree *tree, const ref_profile *prof, const float xo[3], const float abs_tol[3],
+                  double out[3], uint64_t *visits);
 void ref_brute_sum(const ref_tree *tree, const ref_profile *prof, const float xo[3], double out[3],
                    uint64_t *visits);
+
+/* Absolute tolerance of a node's error, relative to the object's lit level: the mean irradiance T of
+ * its lit samples times the profile's plane integral (what a uniformly lit flat part would show). */
+#define REF_TREE_ABS 1e-6
 
 /* Tree criterion (see sss/reference.h); overridable at compile time for experiments. */
 #ifndef REF_TREE_ANGLE
@@ -209,6 +215,7 @@ typedef struct ref_object {
     ref_profile prof;
     ref_tree tree;
     double spacing, footprint;
+    float abs_tol[3];    /* REF_TREE_ABS times the lit level, per channel */
     double bounds_min[3], bounds_max[3];
     int visible;         /* seen by a pixel centre */
     uint64_t visible_pixels;

@@ -143,6 +143,23 @@ sss_result ref_points_generate(ref_ctx *ctx, size_t object, double h, sss_error 
         d = ++done_chunks;
         ref_report_progress(ctx, (double)d / (double)chunks, NULL, 0);
     }
+    /* The lit level (sequentially, so that it does not depend on the thread count): the area-weighted
+     * mean T of the lit samples per channel, times the profile's plane integral. */
+    double ta[3] = {0, 0, 0}, lit[3] = {0, 0, 0};
+    for (uint32_t t = 0; t < nt; t++) {
+        uint64_t b = offset[t], e = offset[t + 1];
+        if (e == b) continue;
+        const uint32_t *idx = mesh->indices + 3 * (size_t)t;
+        double A;
+        triangle_subdiv(mesh->positions + 3 * (size_t)idx[0], mesh->positions + 3 * (size_t)idx[1],
+                        mesh->positions + 3 * (size_t)idx[2], h, &A);
+        double cell = A / (double)(e - b);
+        for (uint64_t i = b; i < e; i++)
+            for (int c = 0; c < 3; c++)
+                if (pts[i].ta[c] > 0.0f) ta[c] += pts[i].ta[c], lit[c] += cell;
+    }
+    for (int c = 0; c < 3; c++)
+        obj->abs_tol[c] = lit[c] > 0.0 ? (float)(REF_TREE_ABS * ta[c] / lit[c] * obj->prof.total[c]) : 0.0f;
     free(offset);
     free(obj->tree.points);
     obj->tree.points = pts;

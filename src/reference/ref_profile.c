@@ -158,7 +158,6 @@ sss_result ref_profile_build(ref_profile *p, const ref_profile_source *src, doub
             break;
         }
     }
-    free(cum);
     double r_cut = r0 * exp2((double)cut / SUBSTEPS_PER_OCTAVE);
     if (r_cut > max_r) r_cut = max_r;
     if (r_cut < r0 * 1.01) r_cut = r0 * 1.01;
@@ -171,12 +170,16 @@ sss_result ref_profile_build(ref_profile *p, const ref_profile_source *src, doub
     uint32_t last = (bits >> 15) - (127u << 8) + 1; /* first entry beyond r_cut */
     p->n = last + 1;
     p->table = calloc((size_t)p->n * 4, sizeof(float));
-    if (!p->table) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (profile)");
+    if (!p->table) {
+        free(cum);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (profile)");
+    }
     double *rr = malloc(sizeof(double) * p->n);
     double *sv = malloc(sizeof(double) * 3 * p->n);
     if (!rr || !sv) {
         free(rr);
         free(sv);
+        free(cum);
         ref_profile_free(p);
         return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (profile)");
     }
@@ -188,8 +191,10 @@ sss_result ref_profile_build(ref_profile *p, const ref_profile_source *src, doub
     }
     /* Criterion length l(r) = min over channels of sqrt(S / (|S''| + 2 |S'| / r)): the monopole error
      * of a node of size s is about (s / l)^2 / 40 (second moment of its points against the Hessian
-     * of S(|x - x_o|), whose eigenvalues are S'' and S'/r twice). Channels that are negligible at r
-     * (below 1e-6 of their S(R0)) do not count. Finite differences on the (non-uniform) grid. */
+     * of S(|x - x_o|), whose eigenvalues are S'' and S'/r twice). A channel counts only where it still
+     * matters: where a ring of width r, 2 pi r^2 S(r), holds at least 1e-4 of its plane integral
+     * (so a fast-decaying blue does not dictate the nodes far out where only red remains).
+     * Finite differences on the (non-uniform) grid. */
     for (uint32_t i = 0; i < p->n; i++) {
         double len = (double)FLT_MAX;
         if (i + 1 < p->n) {
@@ -197,7 +202,8 @@ sss_result ref_profile_build(ref_profile *p, const ref_profile_source *src, doub
             double hm = rr[i] - rr[im], hp = rr[ip] - rr[i];
             for (int c = 0; c < 3; c++) {
                 double s = sv[3 * i + c];
-                if (!(s > 1e-6 * p->s0[c]) || s <= 0.0) continue;
+                double whole = below_r0[c] + cum[3 * steps + c];
+                if (!(s > 0.0) || !(2.0 * REF_PI * rr[i] * rr[i] * s >= 1e-4 * whole)) continue;
                 double d1, d2;
                 if (i == 0) {
                     d1 = (sv[3 * ip + c] - s) / hp;
@@ -221,6 +227,7 @@ sss_result ref_profile_build(ref_profile *p, const ref_profile_source *src, doub
     }
     free(rr);
     free(sv);
+    free(cum);
     return SSS_OK;
 }
 

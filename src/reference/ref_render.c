@@ -212,7 +212,7 @@ static void far_sum(const ref_ctx *ctx, const ref_object *obj, const double p[3]
     if (ctx->desc.exact)
         ref_brute_sum(&obj->tree, &obj->prof, xo, far, &cnt->visits);
     else
-        ref_tree_sum(&obj->tree, &obj->prof, xo, far, &cnt->visits);
+        ref_tree_sum(&obj->tree, &obj->prof, xo, obj->abs_tol, far, &cnt->visits);
     cnt->lookups++;
 }
 

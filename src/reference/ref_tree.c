@@ -172,8 +172,8 @@ static inline float dist3(const float a[3], const float b[3])
     return sqrtf(dx * dx + dy * dy + dz * dz);
 }
 
-void ref_tree_sum(const ref_tree *tree, const ref_profile *prof, const float xo[3], double out[3],
-                  uint64_t *visits)
+void ref_tree_sum(const ref_tree *tree, const ref_profile *prof, const float xo[3], const float abs_tol[3],
+                  double out[3], uint64_t *visits)
 {
     double acc[3] = {0, 0, 0};
     uint64_t v = 0;
@@ -209,7 +209,15 @@ void ref_tree_sum(const ref_tree *tree, const ref_profile *prof, const float xo[
             if (dmin > 0.0f && size <= REF_TREE_ANGLE * dmin) {
                 float len;
                 ref_profile_lookup(prof, dmin, s, &len);
-                if (size <= REF_TREE_PROFILE * len) {
+                /* Relative: the monopole error (size / l)^2 / 40 is small against the node itself;
+                 * or absolute: that error is negligible against the object's lit level. */
+                int ok = size <= REF_TREE_PROFILE * len;
+                if (!ok && abs_tol) {
+                    float k = size * size / (40.0f * len * len);
+                    ok = nd->ta[0] * s[0] * k <= abs_tol[0] && nd->ta[1] * s[1] * k <= abs_tol[1] &&
+                         nd->ta[2] * s[2] * k <= abs_tol[2];
+                }
+                if (ok) {
                     /* Seen from x_o the node is one sample at its T A-weighted centroid. */
                     ref_profile_lookup(prof, dist3(xo, nd->centroid), s, NULL);
                     for (int c = 0; c < 3; c++) acc[c] += (double)nd->ta[c] * s[c];

@@ -126,7 +126,7 @@ static void test_tree(void)
     for (int k = 0; k < 200; k++) {
         const ref_point *q = &tree.points[(size_t)(ref_rng_uniform(&rng) * n)];
         double a[3], b[3];
-        ref_tree_sum(&tree, &prof, q->p, a, &visits_tree);
+        ref_tree_sum(&tree, &prof, q->p, NULL, a, &visits_tree);
         ref_brute_sum(&tree, &prof, q->p, b, &visits_brute);
         double ma = fmax(b[0], fmax(b[1], b[2]));
         for (int c = 0; c < 3; c++)
