@@ -138,27 +138,36 @@ vec3 lut_rd(int mat, float r, float area)
     Material m = materials[mat];
     float rmax = m.lut.x, amax = m.lut.y, size = m.lut.w;
     bool sqrt_axes = m.lut.z > 0.5;
-    float tr = r / rmax;
-    if (tr > 1.0) return vec3(0.0); // beyond the kernel's cut-off radius (seed 000, section 7.1)
-    if (sqrt_axes) tr = sqrt(tr);
+    if (r > rmax) return vec3(0.0); // beyond the kernel's cut-off radius (seed 000, section 7.1)
     // A disc larger than the table's largest: all of R_d's energy lies inside it, so the mean falls as
     // 1/A (exact when r + r_A exceeds r_max everywhere the kernel is non-zero).
     float scale = 1.0;
     if (area > amax) { scale = amax / area; area = amax; }
+    // The finest level of the cascade (r_max / 16^l, A_max / 256^l) that holds both r and A.
+    int levels = max(int(m.spec.z + 0.5), 1);
+    float lr = r > 0.0 ? floor(log2(rmax / r) * 0.25) : 99.0;
+    float la = area > 0.0 ? floor(log2(amax / area) * 0.125) : 99.0;
+    int level = int(clamp(min(lr, la), 0.0, float(levels - 1)));
+    float f = exp2(-4.0 * float(level));
+    rmax *= f;
+    amax *= f * f;
+    float layer = m.params.z + float(level);
+    float tr = min(r / rmax, 1.0);
+    if (sqrt_axes) tr = sqrt(tr);
     // Area of the first row above A = 0.
     float a1 = sqrt_axes ? amax / ((size - 1.0) * (size - 1.0)) : amax / (size - 1.0);
     if (area < a1) {
         // Below the first row, interpolating the mean linearly towards R_d(r) (row 0) overestimates
         // it near R_d's peak by orders of magnitude. There the disc integral grows like r_A (R_d ~ 1/r
         // near 0), so R'(r, A) ~ sqrt(A_1 / A) R'(r, A_1); away from the peak R'(r, A) -> R_d(r).
-        vec3 row0 = lut_fetch(m.params.z, tr, 0.0, size);
+        vec3 row0 = lut_fetch(layer, tr, 0.0, size);
         if (area <= 0.0) return row0;
-        vec3 row1 = lut_fetch(m.params.z, tr, 1.0 / (size - 1.0), size);
+        vec3 row1 = lut_fetch(layer, tr, 1.0 / (size - 1.0), size);
         return min(sqrt(a1 / area) * row1, row0);
     }
     float ta = area / amax;
     if (sqrt_axes) ta = sqrt(ta);
-    return scale * lut_fetch(m.params.z, tr, ta, size);
+    return scale * lut_fetch(layer, tr, ta, size);
 }
 
 // ---- Lights ----------------------------------------------------------------------------------

@@ -113,7 +113,7 @@ typedef struct gl_material_record {
                         1 diffuse, 2 emitter (spec.x: two-sided) */
     float params[4]; /* x: eta, y: c = 1 - 2 FM1(1/eta), z: LUT layer, w: albedo texture layer or -1 */
     float lut[4];    /* x: r_max, y: a_max, z: axes (0 linear, 1 sqrt), w: LUT size */
-    float spec[4];   /* x: has specular, y: roughness */
+    float spec[4];   /* x: has specular, y: roughness, z: LUT levels (level l: r_max / 16^l) */
 } gl_material_record;
 
 typedef struct gl_light_record {
@@ -219,6 +219,7 @@ enum {
     GL_P_LUT_CUTOFF,
     GL_P_LUT_ENERGY,
     GL_P_SPLAT_TRIANGLES,
+    GL_P_LUT_LEVELS,
     GL_P_SHARED_COUNT
 };
 

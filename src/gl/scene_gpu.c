@@ -81,7 +81,14 @@ static void animated_bounds(const sss_scene_object *so, float lo[3], float hi[3]
     }
 }
 
-static sss_result build_lut(sss_gl_renderer *r, const sss_scene_material *m, sss_lut *lut, sss_error *err)
+/* The kernel LUT of a material as a cascade of `levels` tables (one array layer each): level l covers
+ * r in [0, r_max / 16^l] and A in [0, pi (r_max / 16^l)^2]. One table spanning the longest channel's
+ * r_max resolves areas only down to ~1e-4 A_max (sqrt axes, 512 texels): with r_max set by a weakly
+ * absorbing red channel, pixel-sized areas of the short green and blue kernels fell into its first
+ * rows and a flat, uniformly lit plane came out up to 4x too bright. The finer levels fix that; the
+ * lookup (common.glsl lut_rd) takes the finest level that contains both r and A. */
+static sss_result build_lut(sss_gl_renderer *r, const sss_scene_material *m, sss_lut *luts, int levels,
+                            sss_error *err)
 {
     sss_profile prof;
     sss_result res = sss_profile_init(&prof, sss_scene_material_profile_model(m), &m->optical, m->table, err);
@@ -91,20 +98,29 @@ static sss_result build_lut(sss_gl_renderer *r, const sss_scene_material *m, sss
     d.size = (int)r->shared[GL_P_LUT_SIZE];
     d.axes = (int)r->shared[GL_P_LUT_AXES] ? SSS_LUT_AXES_SQRT : SSS_LUT_AXES_LINEAR;
     d.source_cutoff = r->shared[GL_P_LUT_CUTOFF];
+    double rm = sss_lut_r_max(&m->optical, d.source_cutoff);
     double energy = r->shared[GL_P_LUT_ENERGY];
     if (energy > 0.0) {
         /* The source-function rule of seed 000 (section 7.1) uses sigma_t' alone and cuts weakly
          * absorbing channels far inside their diffusion tail (Skimmilk red: r_max = 32 mm against an
          * e-folding length of 18 mm; the back-lit dragon lost 25% of its red). r_max is therefore the
          * larger of that rule and the radius holding `energy` of every channel's plane integral. */
-        double rm = sss_lut_r_max(&m->optical, d.source_cutoff);
         for (int c = 0; c < 3; c++) {
             double x = sss_profile_radius_for_fraction(&prof, c, energy);
             if (isfinite(x) && x > rm) rm = x;
         }
-        d.r_max = rm;
     }
-    return sss_lut_build(&prof, &d, lut, err);
+    if (!(rm > 0.0) || !isfinite(rm))
+        return sss_error_set(err, SSS_ERROR_NUMERIC, "no finite kernel radius for the material");
+    for (int l = 0; l < levels; l++) {
+        d.r_max = rm / pow(16.0, l);
+        res = sss_lut_build(&prof, &d, &luts[l], err);
+        if (res != SSS_OK) {
+            for (int k = 0; k < l; k++) sss_lut_free(&luts[k]);
+            return res;
+        }
+    }
+    return SSS_OK;
 }
 
 sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err)
@@ -123,7 +139,8 @@ sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err)
     gl_object_record *orec = calloc(n_obj, sizeof *orec);
     gl_material_record *mrec = calloc(n_obj, sizeof *mrec);
     const sss_scene_material **mref = calloc(s->object_count, sizeof *mref);
-    sss_lut *luts = calloc(s->object_count, sizeof *luts);
+    int levels = (int)r->shared[GL_P_LUT_LEVELS];
+    sss_lut *luts = calloc(s->object_count * (size_t)levels, sizeof *luts);
     if (!gs->objects || !gs->materials || !orec || !mrec || !mref || !luts) {
         free(orec); free(mrec); free(mref); free(luts);
         return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene upload)");
@@ -167,12 +184,13 @@ sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err)
             if (gm->subsurface) {
                 rec->params[0] = (float)sm->optical.eta;
                 rec->params[1] = (float)sss_bssrdf_normalization(sm->optical.eta);
-                res = build_lut(r, sm, &luts[lut_layers], err);
+                res = build_lut(r, sm, &luts[lut_layers], levels, err);
                 if (res != SSS_OK) {
                     sss_error_prefix(err, "kernel LUT");
                     break;
                 }
-                gm->lut_layer = lut_layers++;
+                gm->lut_layer = lut_layers;
+                lut_layers += levels;
                 gm->r_max = luts[gm->lut_layer].r_max;
                 gm->a_max = luts[gm->lut_layer].a_max;
                 gm->axes = luts[gm->lut_layer].axes;
@@ -183,6 +201,7 @@ sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err)
                 rec->lut[3] = (float)luts[gm->lut_layer].size;
                 rec->spec[0] = sm->has_specular ? 1.0f : 0.0f;
                 rec->spec[1] = (float)sm->roughness;
+                rec->spec[2] = (float)levels;
                 if (sm->texture) {
                     int t = 0;
                     while (t < tex_count && strcmp(tex_paths[t], sm->texture) != 0) t++;

@@ -1,0 +1,98 @@
+/* tests/gl/gl_test_util.h — helpers of the GL tests: one headless context per process, rendering a
+ * scene file with parameters to an image, comparing with cached CPU-reference images. */
+#ifndef SSS_GL_TEST_UTIL_H
+#define SSS_GL_TEST_UTIL_H
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "sss/gl.h"
+#include "sss/image.h"
+#include "sss/scene.h"
+
+static sss_gl_context *gt_ctx(void)
+{
+    static sss_gl_context *ctx;
+    if (!ctx) {
+        sss_error err = {0};
+        if (sss_gl_context_create(NULL, &ctx, &err) != SSS_OK) {
+            fprintf(stderr, "no headless GL context: %s\n", err.message);
+            exit(1);
+        }
+    }
+    return ctx;
+}
+
+static int gt_load(const char *name, sss_scene *scene)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/scenes/%s", SSS_SOURCE_DIR, name);
+    sss_error err = {0};
+    if (sss_scene_load(path, NULL, scene, &err) != SSS_OK) {
+        fprintf(stderr, "%s\n", err.message);
+        return 0;
+    }
+    return 1;
+}
+
+/* Renders with technique (NULL: the scene's) and "name=value" parameters; out is created. */
+static int gt_render(const sss_scene *scene, const char *technique, double time, const sss_gl_param_value *params,
+                     int nparams, sss_image *out)
+{
+    sss_error err = {0};
+    sss_gl_renderer_desc d;
+    memset(&d, 0, sizeof d);
+    d.technique = technique;
+    d.params = params;
+    d.param_count = nparams;
+    sss_gl_renderer *r = NULL;
+    memset(out, 0, sizeof *out);
+    if (sss_gl_renderer_create(gt_ctx(), scene, &d, &r, &err) != SSS_OK ||
+        sss_gl_renderer_render(r, time, &err) != SSS_OK ||
+        sss_image_create(out, scene->camera.width, scene->camera.height, &err) != SSS_OK ||
+        sss_gl_renderer_read(r, out, &err) != SSS_OK) {
+        fprintf(stderr, "render failed: %s\n", err.message);
+        sss_gl_renderer_destroy(r);
+        sss_image_free(out);
+        return 0;
+    }
+    sss_gl_renderer_destroy(r);
+    return 1;
+}
+
+static int gt_read_ref(const char *name, sss_image *out)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/gl/%s", SSS_TEST_DATA, name);
+    sss_error err = {0};
+    if (sss_image_read(path, out, &err) != SSS_OK) {
+        fprintf(stderr, "%s\n", err.message);
+        return 0;
+    }
+    return 1;
+}
+
+static double gt_dssim(const sss_image *a, const sss_image *b)
+{
+    sss_image_metrics m;
+    sss_error err = {0};
+    if (sss_image_compare(a, b, 0.0, &m, NULL, &err) != SSS_OK) {
+        fprintf(stderr, "%s\n", err.message);
+        return 1.0;
+    }
+    return m.dssim;
+}
+
+static void gt_mean(const sss_image *a, double mean[3])
+{
+    mean[0] = mean[1] = mean[2] = 0.0;
+    size_t n = (size_t)a->width * a->height;
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++) mean[c] += a->pixels[3 * i + c];
+    for (int c = 0; c < 3; c++) mean[c] /= (double)n;
+}
+
+#endif
