@@ -1,0 +1,155 @@
+/* Numerical robustness of the profiles: every measured medium x eta in {1.0, 1.2, 1.33, 1.5, 2.0} x
+ * scale in {1e-3, 1, 1e3} (millimetres per scene unit, so coefficients from 1e-3 to 1e3 times the
+ * table's), through the PBD table and the dipole: R_d(r) finite and >= 0 at radii from 0 through
+ * denormal-small and astronomically large ones; the plane integral (rho_eff) finite and in [0, 1.05];
+ * a quadrature of R_d 2 pi r dr agreeing with it (the profile and its total are consistent at every
+ * scale, so nothing under- or overflows along the way); sampling radii and densities finite.
+ * (Kernel LUTs and separable kernels over the same sweep: test_numeric_kernels.c.) */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "sss/material.h"
+#include "sss/profile.h"
+
+static const double etas[] = {1.0, 1.2, 1.33, 1.5, 2.0};
+static const double scales[] = {1e-3, 1.0, 1e3};
+#define NETA (sizeof etas / sizeof etas[0])
+#define NSCALE (sizeof scales / sizeof scales[0])
+
+static int bad_reports; /* print the first few failures in full, count the rest */
+static int known_reports;
+
+/* KNOWN (reported to the lead, not a failure): at eta = 1 exactly (index-matched boundary) PBRT-v3's
+ * PBD table, which sss reproduces, gives rho_eff above 1 for albedos near 1 (Spectralon 1.085, Cream
+ * red 1.077): single scattering plus the diffusion term overshoot when no Fresnel reflection holds light
+ * back. Kept identical to PBRT for now; the check still bounds it (finite, <= 1.10) and prints it. */
+static int known_pbd_overshoot(const sss_profile *p, double total)
+{
+    return p->model == SSS_PROFILE_PBD && p->material.eta == 1.0 && total > 1.05 && total <= 1.10;
+}
+
+static void report(const char *what, const char *medium, double eta, double scale, const char *model, int c,
+                   double r, double v)
+{
+    if (bad_reports++ < 20)
+        fprintf(stderr, "%s: %s eta %g scale %g %s channel %d r %g: %g\n", what, medium, eta, scale, model, c, r, v);
+}
+
+/* Plane integral of R_d by composite Simpson in u = ln(r) over 40 decades around the profile's own
+ * length scale: int R_d(r) 2 pi r dr = int R_d(e^u) 2 pi e^(2u) du. Independent of the closed form
+ * (dipole) and of the table's stored rho_eff (PBD). */
+static double plane_integral(const sss_profile *p, int c, double length)
+{
+    const double u0 = log(length) - 20.0 * log(10.0), u1 = log(length) + 8.0 * log(10.0);
+    const int n = 4000; /* even */
+    double h = (u1 - u0) / n, sum = 0.0;
+    for (int i = 0; i <= n; i++) {
+        double u = u0 + h * i, r = exp(u);
+        double f = sss_profile_eval(p, c, r) * 2.0 * M_PI * r * r;
+        sum += f * (i == 0 || i == n ? 1.0 : (i % 2 ? 4.0 : 2.0));
+    }
+    return sum * h / 3.0;
+}
+
+static void sweep_profile(const sss_profile *p, const char *medium, double eta, double scale, const char *model)
+{
+    for (int c = 0; c < 3; c++) {
+        double sig_t = p->material.sigma_a[c] + p->material.sigma_s[c];
+        double length = 1.0 / sig_t; /* mean free path in scene units */
+        /* Radii: 0, tiny (down to denormals), the profile's range on a fine log grid, huge. */
+        double radii[80];
+        int nr = 0;
+        radii[nr++] = 0.0;
+        radii[nr++] = 4.9e-324;
+        radii[nr++] = 1e-300;
+        radii[nr++] = 1e-30 * length;
+        for (int k = 0; k <= 64; k++) radii[nr++] = length * pow(10.0, -4.0 + k / 8.0);
+        radii[nr++] = 1e30 * length;
+        radii[nr++] = 1e300;
+        radii[nr++] = INFINITY;
+        int ok = 1;
+        for (int i = 0; i < nr; i++) {
+            double v = sss_profile_eval(p, c, radii[i]);
+            if (!isfinite(v) || v < 0.0) {
+                report("R_d not finite or negative", medium, eta, scale, model, c, radii[i], v);
+                ok = 0;
+            }
+        }
+        CHECK(ok);
+        double total = sss_profile_total(p, c);
+        if (known_pbd_overshoot(p, total)) {
+            if (known_reports++ < 3)
+                printf("KNOWN: %s eta %g %s channel %d: rho_eff %.4f > 1.05 (PBRT's PBD at eta = 1)\n", medium, eta,
+                       model, c, total);
+        } else {
+            if (!(isfinite(total) && total >= 0.0 && total <= 1.05))
+                report("rho_eff", medium, eta, scale, model, c, 0, total);
+            CHECK(isfinite(total) && total >= 0.0 && total <= 1.05);
+        }
+        /* The profile integrates to its total (1.5% covers PBRT's Catmull-Rom table interpolation). */
+        double q = plane_integral(p, c, length);
+        if (!(fabs(q - total) <= 0.015 * total + 1e-12))
+            report("quadrature != total", medium, eta, scale, model, c, q, total);
+        CHECK(fabs(q - total) <= 0.015 * total + 1e-12);
+        double r999 = sss_profile_radius_for_fraction(p, c, 0.999);
+        CHECK(isfinite(r999) && r999 > 0.0);
+        /* Importance sampling (the reference renderer's path): finite radii, finite densities. */
+        for (int k = 0; k <= 8; k++) {
+            double u = k == 0 ? 0.0 : k == 8 ? 1.0 - 1e-16 : k / 8.0;
+            double r, pdf;
+            if (p->model == SSS_PROFILE_DIPOLE) {
+                r = sss_dipole_sample_radius(&p->dipole[c], u, u);
+                pdf = sss_dipole_pdf_radius(&p->dipole[c], r);
+            } else {
+                r = sss_pbd_sample_radius(p->table, p->material.sigma_a[c], p->material.sigma_s[c], u);
+                pdf = r >= 0.0 ? sss_pbd_pdf_radius(p->table, p->material.sigma_a[c], p->material.sigma_s[c], r) : 0.0;
+            }
+            if (!(isfinite(r) && r >= 0.0 && isfinite(pdf) && pdf >= 0.0))
+                report("sampling", medium, eta, scale, model, c, r, pdf);
+            CHECK(isfinite(r) && r >= 0.0 && isfinite(pdf) && pdf >= 0.0);
+        }
+    }
+}
+
+int main(void)
+{
+    sss_pbd_table *tables = malloc(NETA * sizeof *tables);
+    CHECK(tables != NULL);
+    if (!tables) return CHECK_DONE();
+    for (size_t e = 0; e < NETA; e++) {
+        sss_error err = {0};
+        CHECK_MSG(sss_pbd_table_build(etas[e], 0.0, &tables[e], &err) == SSS_OK, "eta %g: %s", etas[e], err.message);
+        /* The table itself: finite, non-negative rho_eff over all albedos. */
+        for (int i = 0; i < SSS_PBD_ALBEDOS; i++)
+            CHECK(isfinite(tables[e].rho_eff[i]) && tables[e].rho_eff[i] >= 0.0 &&
+                  tables[e].rho_eff[i] <= (etas[e] == 1.0 ? 1.10 : 1.05)); /* see known_pbd_overshoot */
+    }
+    size_t media = sss_measured_medium_count(), materials = 0;
+    CHECK(media >= 10);
+    for (size_t i = 0; i < media; i++) {
+        const char *name = sss_measured_medium_at(i)->name;
+        for (size_t e = 0; e < NETA; e++)
+            for (size_t s = 0; s < NSCALE; s++) {
+                sss_material m;
+                sss_error err = {0};
+                sss_result r = sss_material_from_medium(name, scales[s], etas[e], &m, &err);
+                CHECK_MSG(r == SSS_OK, "%s eta %g scale %g: %s", name, etas[e], scales[s], err.message);
+                if (r != SSS_OK) continue;
+                materials++;
+                sss_profile pbd, dip;
+                CHECK(sss_profile_init(&pbd, SSS_PROFILE_PBD, &m, &tables[e], &err) == SSS_OK);
+                CHECK(sss_profile_init(&dip, SSS_PROFILE_DIPOLE, &m, NULL, &err) == SSS_OK);
+                sweep_profile(&pbd, name, etas[e], scales[s], "pbd");
+                sweep_profile(&dip, name, etas[e], scales[s], "dipole");
+            }
+    }
+    printf("swept %zu materials (%zu media x %zu eta x %zu scales) through PBD and dipole\n", materials, media,
+           NETA, NSCALE);
+    if (bad_reports > 20) fprintf(stderr, "... %d failures in all\n", bad_reports);
+    if (known_reports) printf("KNOWN: %d channels with PBD rho_eff in (1.05, 1.10] at eta = 1\n", known_reports);
+    free(tables);
+    return CHECK_DONE();
+}
