@@ -21,7 +21,7 @@
 static const char *stb_reason(void)
 {
     const char *r = stbi_failure_reason();
-    if (!r) return "unknown error";
+    if (!r || !*r) return "unknown error";
     return strcmp(r, "outofdata") == 0 ? "truncated or corrupt data" : r;
 }
 
@@ -38,7 +38,8 @@ static uint32_t be32(const unsigned char *b)
 #define DEFLATE_MAX_RATIO 1032.0
 
 /* Walks the chunk list (f just past the signature) for IHDR's size and the total IDAT length.
- * Returns 0 when it cannot tell (no IHDR first, unknown colour type): stb then reports the error. */
+ * Returns 0 when it cannot tell (no IHDR first, unknown colour type: stb then reports the error),
+ * -1 when a chunk claims more bytes than the file holds (stb would allocate the claim first), else 1. */
 static int png_survey(FILE *f, uint32_t *w, uint32_t *h, double *raw_bytes, unsigned long long *idat)
 {
     unsigned char hd[8], ihdr[13];
@@ -52,13 +53,16 @@ static int png_survey(FILE *f, uint32_t *w, uint32_t *h, double *raw_bytes, unsi
     if (!samples || depth < 1 || depth > 16) return 0;
     /* Non-interlaced size (interlacing only adds filter bytes): one filter byte per row. */
     *raw_bytes = (double)*h * (1.0 + ceil((double)*w * samples * depth / 8.0));
-    if (fseek(f, 4, SEEK_CUR) != 0) return 0; /* IHDR's CRC */
-    for (;;) {
+    /* Skip IHDR's CRC, then chunk by chunk. A seek past the end (which files allow and memory streams
+     * refuse) or a short read both mean: no more chunks. */
+    for (int more = fseek(f, 4, SEEK_CUR) == 0; more;) {
         if (fread(hd, 1, 8, f) != 8) break; /* missing IEND: stb decides */
         uint32_t len = be32(hd);
         if (memcmp(hd + 4, "IEND", 4) == 0) break;
+        long long have = sss_image_stream_remaining_(f);
+        if (have >= 0 && (long long)len > have) return -1;
         if (memcmp(hd + 4, "IDAT", 4) == 0) *idat += len;
-        if (len > 0x7fffffffu || fseek(f, (long)len + 4, SEEK_CUR) != 0) break;
+        more = len <= 0x7fffffffu && fseek(f, (long)len + 4, SEEK_CUR) == 0;
     }
     return 1;
 }
@@ -72,7 +76,9 @@ sss_result sss_png_read_(FILE *f, const char *path, sss_image *out, sss_error *e
     uint32_t sw = 0, sh = 0;
     double raw = 0.0;
     unsigned long long idat = 0;
-    if (png_survey(f, &sw, &sh, &raw, &idat)) {
+    int survey = png_survey(f, &sw, &sh, &raw, &idat);
+    if (survey < 0) return sss_error_set(err, SSS_ERROR_PARSE, "%s: truncated (a chunk is longer than the rest of the file)", path);
+    if (survey > 0) {
         sss_result r = sss_image_check_dims_(path, sw, sh, err);
         if (r != SSS_OK) return r;
         if ((double)idat * DEFLATE_MAX_RATIO + 64.0 < raw)
