@@ -54,7 +54,7 @@ int main(void)
     sss_reference_object o = object_subsurface(&sphere.m, &marble, &table);
     sss_light l1 = light_directional(-1, -0.2, -0.3, 2.0);
     memset(&w, 0, sizeof w);
-    camera_set(&w.camera, 0, 0, 4, 0, 0, 0, 40, 48, 48);
+    camera_set(&w.camera, 0, 0, 4, 0, 0, 0, 40, 40, 40);
     w.objects = &o, w.object_count = 1, w.lights = &l1, w.light_count = 1;
     compare_modes("sphere, side light", &w);
 
@@ -65,7 +65,7 @@ int main(void)
     o.mesh = &slab.m;
     sss_light l2 = light_point(0.4, 0.3, -1.5, 6.0);
     w.lights = &l2;
-    camera_set(&w.camera, 0.3, 0.2, 4, 0, 0, 0, 40, 48, 48);
+    camera_set(&w.camera, 0.3, 0.2, 4, 0, 0, 0, 40, 40, 40);
     compare_modes("slab, back light", &w);
 
     /* A torus lit from behind. */
@@ -74,7 +74,7 @@ int main(void)
     o.mesh = &torus.m;
     sss_light l3 = light_point(0.2, 1.5, -2.5, 10.0);
     w.lights = &l3;
-    camera_set(&w.camera, 0, 2.0, 3.5, 0, 0, 0, 40, 48, 48);
+    camera_set(&w.camera, 0, 2.0, 3.5, 0, 0, 0, 40, 40, 40);
     compare_modes("torus, back light", &w);
 
     tmesh_free(&sphere);
