@@ -24,9 +24,12 @@
  *    midpoint rule), weighted by its exact area; T is computed once per sample and shared by all
  *    pixels.
  *  - the profile is split at R0 = 4 h: S_r = S_far + S_near, S_far(r) = S_r(max(r, R0)) (continuous,
- *    flat inside R0) summed over the samples, and S_near = S_r - S_far (the sharp peak at r -> 0,
- *    where a sample sum would be noise) integrated in closed form over the local tangent disc with
- *    the irradiance T(x_o) of the shaded point itself: near = T(x_o) int_0^R0 (S_r - S_r(R0)) 2 pi r dr.
+ *    flat inside R0) is summed over the samples, and S_near = S_r - S_far (the sharp peak at r -> 0,
+ *    where a sample sum would be noise) is integrated over the surface within R0 of x_o by probe rays
+ *    as PBRT samples its BSSRDF: radii drawn from S_near (binned, stratified), tangent-plane points
+ *    projected onto the same object along -n, T evaluated at each probe hit with shadow rays, the
+ *    estimate self-normalised so that a constant T gives exactly T int_0^R0 S_near 2 pi r dr.
+ *    (Shadow edges at the pixel scale come from here.)
  *  - the sample sum is hierarchical (Jensen & Buhler 2002): a BVH over the samples stores per node
  *    the sum of T A (per channel) and the T A-weighted centroid; desc.exact sums all samples instead.
  *
@@ -60,31 +63,39 @@ typedef enum sss_reference_quality {
  * Density rule. For each visible subsurface object, fp = the world-space size of one pixel at the
  * object's nearest visible points (the 1st percentile of the pixel footprints depth * 2 tan(fov/2) /
  * min(width, height) over the pixel centres that see the object; objects no centre sees use their
- * bounding box's nearest point). Spacing h = fp / 2 (final; 4 samples per pixel^2) or h = fp (draft),
- * divided by sqrt(density). The total over all objects is capped at 16 M samples (final; draft 2 M)
- * by growing h, and every triangle gets at least one sample. The mean free path does not appear:
- * below R0 = 4 h the profile is integrated analytically (see above), and above it the sample sum of
- * a profile that is flat inside R0 has a relative quadrature error of about 0.7/(4^2 * 2 pi ln(...))
- * < 0.3% for the 1/r^2 single-scattering peak and less for the smoother diffusion tail.
+ * bounding box centre). Spacing h = fp / 2 (final: 4 samples per pixel^2 there) or h = fp (draft),
+ * divided by sqrt(density). The total over all objects is capped at 16 M samples (final; draft 2 M;
+ * both times density) by growing h, and every triangle gets at least one sample. The mean free path
+ * does not enter: below R0 = 4 h = 2 fp the profile is handled by the probes, and above it the sample
+ * sum of a profile that is flat inside R0 is a smooth quadrature; on a uniformly lit plane the
+ * result is within 0.06% of c_o F_t E rho_eff per pixel for both short (sigma_tr R0 ~ 0.3) and long
+ * (Marble) profiles (tests/reference/test_ref_plane.c), and 4x the density changes the dragon
+ * benchmark by a DSSIM below 1e-4.
  *
  * Tree criterion. A node (bounding sphere of diameter s around its points, distance d_min from x_o
- * to that sphere) is used as one sample at its T A-weighted centroid when s <= 0.5 d_min and
+ * to that sphere) is used as one sample at its T A-weighted centroid when s <= 0.5 d_min and either
  * s <= 0.6 l(d_min), l(r) = min over channels of sqrt(S / (|S''| + 2 |S'| / r)) for S = S_far (the
  * monopole's relative error is about (s / l)^2 / 40: the second moment of the node's points against
- * the Hessian of S(|x - x_o|), whose eigenvalues are S'' and S'/r twice);
- * it is skipped when d_min is beyond the profile's support (where the tail beyond holds less than
- * 1e-6 of the plane integral) or its T A is zero, and taken whole with S_r(R0) when it lies inside
- * R0; leaves (<= 8 samples) are summed exactly.
+ * the Hessian of S(|x - x_o|), whose eigenvalues are S'' and S'/r twice; channels count where a ring
+ * of width r still holds 1e-4 of their plane integral), or that error estimate, T A S (s / l)^2 / 40,
+ * is below 1e-6 of the object's lit level (mean T of its lit samples times the plane integral) in
+ * every channel. A node is skipped when d_min is beyond the profile's support (the tail beyond holds
+ * less than 1e-6 of the plane integral) or its T A is zero, and taken whole with S_r(R0) when it lies
+ * inside R0; leaves (<= 8 samples) are summed exactly. Measured against desc.exact: <= 0.12% per
+ * pixel (tests/reference/test_ref_exact.c).
  *
- * Pixel samples: spp stratified jittered samples (final 4 = 2x2, draft 1), and pixels whose samples
- * see different surfaces (object, or normals differing by more than ~25 degrees) or whose 8-bit tone-mapped
- * values differ by more than 2 get a further 4 x spp stratified samples (final: 16, draft: 4).
- * The sample sum (the far part) is smooth on the scale of R0 >= 2 pixels, so it is evaluated once
- * per pixel at the pixel centre's hit and shared by the pixel's samples that land on the same surface
- * within R0 / 2 of it (the midpoint rule over the pixel); the near part, F_t, visibility and the
- * irradiance T(x_o) stay per sample. desc.no_far_reuse evaluates it at every sample.
- * Light samples per shaded point: area lights 16 per surface sample and 64 per camera sample
- * (draft 4 and 16), environment maps 64 and 256 (draft 16 and 64), stratified.
+ * Pixel samples: spp stratified jittered samples (final 16 = 4x4, draft 1); pixels whose samples see
+ * different surfaces (object, or normals differing by more than ~25 degrees) or whose 8-bit tone-
+ * mapped values differ by more than 2 get 4 x spp more (final 64). The sample sum (the far part) is
+ * smooth on the scale of R0 >= 2 pixels, so it is evaluated once per pixel at the pixel centre's hit
+ * and shared by the pixel's samples that land on the same surface within R0 of it (the midpoint rule
+ * over the pixel); the near part, F_t and visibility stay per sample. desc.no_far_reuse evaluates it
+ * at every sample.
+ * Light samples: per surface sample, area lights 16 and environment maps 64 (draft 4 and 16); per
+ * pixel, spread over its camera samples and interleaved so that the pixel's set is stratified as a
+ * whole, area lights 256 and environment maps 1024 (draft 16 and 64); probes for the near part: 128
+ * per pixel (draft 16), at least 4 per camera sample. Environment maps are importance-sampled by
+ * luminance x sin(theta) (piecewise constant, as PBRT's infinite light).
  */
 typedef struct sss_reference_desc {
     sss_reference_quality quality;
@@ -96,7 +107,7 @@ typedef struct sss_reference_desc {
     int spp;               /* base samples per pixel (rounded up to a square); 0 = the quality's */
     int no_adaptive;       /* no extra samples at edges */
     double density;        /* multiplies the surface-sample density (samples per area); 0 = 1 */
-    int light_samples;     /* multiplies the light sample counts above; 0 = 1 */
+    int light_samples;     /* multiplies the light sample counts above (not the probes); 0 = 1 */
     int no_far_reuse;      /* evaluate the sample sum at every camera sample (see below) */
 } sss_reference_desc;
 
