@@ -28,7 +28,7 @@ struct Material {
     vec4 albedo;  // rgb; w: 0 subsurface, 1 diffuse
     vec4 params;  // x: eta, y: c = 1 - 2 FM1(1/eta), z: LUT layer, w: albedo texture layer (-1: none)
     vec4 lut;     // x: r_max, y: a_max, z: axes (0 linear, 1 sqrt), w: LUT size
-    vec4 spec;    // x: has specular, y: roughness
+    vec4 spec;    // x: has specular, y: roughness, z: LUT levels, w: splat reach
 };
 
 struct Light {
@@ -127,48 +127,67 @@ void object_to_world(Object o, vec3 p, vec3 n, float t, out vec3 wp, out vec3 wn
 
 // ---- Kernel LUT: R'_d(r, A), the mean of R_d over a disc of area A at distance r (seed 000, Eq. 5) -
 
+layout(std430, binding = 9) readonly buffer LutScaleBlock { float lut_scales[]; };
+
+// A material's LUT cascade, loaded once per pixel or splat (level l: r_max / 16^l, A_max / 256^l).
+struct LutInfo {
+    float layer0;  // first array layer
+    float rmax;    // level 0
+    float amax;
+    float size;    // texels per axis
+    int levels;
+    bool sqrt_axes;
+};
+
+LutInfo lut_info(int mat)
+{
+    Material m = materials[mat];
+    return LutInfo(m.params.z, m.lut.x, m.lut.y, m.lut.w, max(int(m.spec.z + 0.5), 1), m.lut.z > 0.5);
+}
+
 vec3 lut_fetch(float layer, float tr, float ta, float size)
 {
     vec2 uv = (vec2(tr, ta) * (size - 1.0) + 0.5) / size;
     return textureLod(u_lut, vec3(uv, layer), 0.0).rgb;
 }
 
-vec3 lut_rd(int mat, float r, float area)
+vec3 lut_eval(LutInfo L, float r, float area)
 {
-    Material m = materials[mat];
-    float rmax = m.lut.x, amax = m.lut.y, size = m.lut.w;
-    bool sqrt_axes = m.lut.z > 0.5;
-    if (r > rmax) return vec3(0.0); // beyond the kernel's cut-off radius (seed 000, section 7.1)
+    if (r > L.rmax) return vec3(0.0); // beyond the kernel's cut-off radius (seed 000, section 7.1)
     // A disc larger than the table's largest: all of R_d's energy lies inside it, so the mean falls as
     // 1/A (exact when r + r_A exceeds r_max everywhere the kernel is non-zero).
     float scale = 1.0;
-    if (area > amax) { scale = amax / area; area = amax; }
-    // The finest level of the cascade (r_max / 16^l, A_max / 256^l) that holds both r and A.
-    int levels = max(int(m.spec.z + 0.5), 1);
-    float lr = r > 0.0 ? floor(log2(rmax / r) * 0.25) : 99.0;
-    float la = area > 0.0 ? floor(log2(amax / area) * 0.125) : 99.0;
-    int level = int(clamp(min(lr, la), 0.0, float(levels - 1)));
-    float f = exp2(-4.0 * float(level));
-    rmax *= f;
-    amax *= f * f;
-    float layer = m.params.z + float(level);
+    if (area > L.amax) { scale = L.amax / area; area = L.amax; }
+    // The finest level of the cascade that holds both r and A.
+    float rmax = L.rmax, amax = L.amax;
+    int level = 0;
+    for (int l = 1; l < L.levels; l++) {
+        if (r * 16.0 > rmax || area * 256.0 > amax) break;
+        rmax *= 0.0625;
+        amax *= 0.00390625;
+        level = l;
+    }
+    float layer = L.layer0 + float(level);
+    scale *= lut_scales[int(layer)];
     float tr = min(r / rmax, 1.0);
-    if (sqrt_axes) tr = sqrt(tr);
+    if (L.sqrt_axes) tr = sqrt(tr);
     // Area of the first row above A = 0.
-    float a1 = sqrt_axes ? amax / ((size - 1.0) * (size - 1.0)) : amax / (size - 1.0);
+    float a1 = L.sqrt_axes ? amax / ((L.size - 1.0) * (L.size - 1.0)) : amax / (L.size - 1.0);
     if (area < a1) {
         // Below the first row, interpolating the mean linearly towards R_d(r) (row 0) overestimates
         // it near R_d's peak by orders of magnitude. There the disc integral grows like r_A (R_d ~ 1/r
         // near 0), so R'(r, A) ~ sqrt(A_1 / A) R'(r, A_1); away from the peak R'(r, A) -> R_d(r).
-        vec3 row0 = lut_fetch(layer, tr, 0.0, size);
-        if (area <= 0.0) return row0;
-        vec3 row1 = lut_fetch(layer, tr, 1.0 / (size - 1.0), size);
-        return min(sqrt(a1 / area) * row1, row0);
+        vec3 row0 = lut_fetch(layer, tr, 0.0, L.size);
+        if (area <= 0.0) return scale * row0;
+        vec3 row1 = lut_fetch(layer, tr, 1.0 / (L.size - 1.0), L.size);
+        return scale * min(sqrt(a1 / area) * row1, row0);
     }
     float ta = area / amax;
-    if (sqrt_axes) ta = sqrt(ta);
-    return scale * lut_fetch(layer, tr, ta, size);
+    if (L.sqrt_axes) ta = sqrt(ta);
+    return scale * lut_fetch(layer, tr, ta, L.size);
 }
+
+vec3 lut_rd(int mat, float r, float area) { return lut_eval(lut_info(mat), r, area); }
 
 // ---- Lights ----------------------------------------------------------------------------------
 

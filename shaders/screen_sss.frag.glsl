@@ -34,6 +34,7 @@ void main()
     int mat = int(objects[int(I0.w - 0.5)].anim.y);
     if (materials[mat].albedo.w > 0.5) return;
     vec3 xo = texelFetch(t_pos, px, 0).xyz;
+    LutInfo L = lut_info(mat);
     float id = I0.w;
     ivec2 size0 = textureSize(t_pos, 0);
     vec3 sum = vec3(0.0);
@@ -45,7 +46,7 @@ void main()
             vec4 I = texelFetch(t_irr, q, 0);
             if (I.w != id || P.w <= 0.0) continue;
             float r = length(P.xyz - xo);
-            sum += I.rgb * P.w * lut_rd(mat, r, u_preintegrated != 0 ? P.w : 0.0);
+            sum += I.rgb * P.w * lut_eval(L, r, u_preintegrated != 0 ? P.w : 0.0);
         }
     vec2 centre = vec2(px) + 0.5;
     float d_prev = float(2 * u_n + 1);
@@ -92,7 +93,7 @@ void main()
                 }
                 a *= area_scale;
                 float r = length(pos - xo);
-                layer_sum += irr * a * lut_rd(mat, r, u_preintegrated != 0 ? a : 0.0);
+                layer_sum += irr * a * lut_eval(L, r, u_preintegrated != 0 ? a : 0.0);
             }
         sum += bright * layer_sum;
         d_prev *= grow;

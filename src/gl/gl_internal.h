@@ -84,7 +84,8 @@ enum {
     GL_SSBO_SPLAT_COUNT = 5,
     GL_SSBO_MESH_POS = 6,
     GL_SSBO_MESH_IDX = 7,
-    GL_SSBO_MESH_UV = 8
+    GL_SSBO_MESH_UV = 8,
+    GL_SSBO_LUT_SCALES = 9
 };
 enum {
     GL_UNIT_LUT = 8,          /* sampler2DArray of the materials' LUTs */
@@ -113,7 +114,8 @@ typedef struct gl_material_record {
                         1 diffuse, 2 emitter (spec.x: two-sided) */
     float params[4]; /* x: eta, y: c = 1 - 2 FM1(1/eta), z: LUT layer, w: albedo texture layer or -1 */
     float lut[4];    /* x: r_max, y: a_max, z: axes (0 linear, 1 sqrt), w: LUT size */
-    float spec[4];   /* x: has specular, y: roughness, z: LUT levels (level l: r_max / 16^l) */
+    float spec[4];   /* x: has specular, y: roughness, z: LUT levels (level l: r_max / 16^l),
+                        w: splat reach (radius holding splat_energy of R_d, <= r_max) */
 } gl_material_record;
 
 typedef struct gl_light_record {
@@ -148,8 +150,9 @@ typedef struct gl_scene {
     gl_material *materials;
     gl_light_record *lights;      /* light_count records (VPLs included) */
     int shadow_cube_count, shadow_2d_count;
-    GLuint ssbo_objects, ssbo_materials, ssbo_lights;
-    GLuint lut_array;             /* 2D array texture, RGB32F, one layer per subsurface material */
+    GLuint ssbo_objects, ssbo_materials, ssbo_lights, ssbo_lut_scales;
+    GLuint lut_array;             /* 2D array, RGBA32F, R'_d / lut_scales[layer]; `levels` layers per
+                                     subsurface material (the cascade, scene_gpu.c) */
     int lut_size, lut_layers;
     GLuint albedo_array;          /* RGBA8 2D array with mips, or 0 */
     GLuint shadow_cube, shadow_2d;/* depth cube-map array / 2D array */
@@ -220,6 +223,7 @@ enum {
     GL_P_LUT_ENERGY,
     GL_P_SPLAT_TRIANGLES,
     GL_P_LUT_LEVELS,
+    GL_P_SPLAT_ENERGY,
     GL_P_SHARED_COUNT
 };
 

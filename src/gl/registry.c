@@ -59,6 +59,8 @@ static const sss_gl_param_info shared_params[GL_P_SHARED_COUNT] = {
                          "if > 0: r_max is at least the radius holding this fraction of R_d's integral"},
     [GL_P_LUT_LEVELS] = {"lut_levels", SSS_GL_PARAM_INT, 3, 1, 6,
                          "LUT cascade: level l spans r_max / 16^l, for small areas of short kernels"},
+    [GL_P_SPLAT_ENERGY] = {"splat_energy", SSS_GL_PARAM_FLOAT, 0.99, 0.5, 1,
+                           "splats reach the radius holding this fraction of R_d's integral (<= r_max)"},
     [GL_P_SPLAT_TRIANGLES] = {"splat_triangles", SSS_GL_PARAM_INT, 4096, 4, 16777216,
                               "triangle budget of simplified splat meshes (objects without splat_mesh)"},
 };

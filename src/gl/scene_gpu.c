@@ -87,6 +87,20 @@ static void animated_bounds(const sss_scene_object *so, float lo[3], float hi[3]
  * absorbing red channel, pixel-sized areas of the short green and blue kernels fell into its first
  * rows and a flat, uniformly lit plane came out up to 4x too bright. The finer levels fix that; the
  * lookup (common.glsl lut_rd) takes the finest level that contains both r and A. */
+/* Radius within which `fraction` of every channel's plane integral of R_d lies (the splats' reach). */
+static double energy_radius(const sss_scene_material *m, double fraction)
+{
+    sss_profile prof;
+    if (sss_profile_init(&prof, sss_scene_material_profile_model(m), &m->optical, m->table, NULL) != SSS_OK)
+        return 0.0;
+    double rm = 0.0;
+    for (int c = 0; c < 3; c++) {
+        double x = sss_profile_radius_for_fraction(&prof, c, fraction);
+        if (isfinite(x) && x > rm) rm = x;
+    }
+    return rm;
+}
+
 static sss_result build_lut(sss_gl_renderer *r, const sss_scene_material *m, sss_lut *luts, int levels,
                             sss_error *err)
 {
@@ -202,6 +216,9 @@ sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err)
                 rec->spec[0] = sm->has_specular ? 1.0f : 0.0f;
                 rec->spec[1] = (float)sm->roughness;
                 rec->spec[2] = (float)levels;
+                /* splat reach: r_max, or less when a smaller radius already holds splat_energy */
+                double reach = energy_radius(sm, r->shared[GL_P_SPLAT_ENERGY]);
+                rec->spec[3] = (float)(reach > 0.0 && reach < gm->r_max ? reach : gm->r_max);
                 if (sm->texture) {
                     int t = 0;
                     while (t < tex_count && strcmp(tex_paths[t], sm->texture) != 0) t++;
@@ -288,29 +305,58 @@ sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err)
     if (res == SSS_OK) {
         gs->ssbo_objects = make_buffer(orec, sizeof *orec * n_obj, &gs->buffer_bytes);
         gs->ssbo_materials = make_buffer(mrec, sizeof *mrec * (size_t)gs->material_count, &gs->buffer_bytes);
-        /* LUT array: a 1x1 zero layer when no material scatters, so the sampler is always complete. */
+        /* LUT array: a 1x1 zero layer when no material scatters, so the sampler is always complete.
+         * RGBA32F holding R'_d / (the layer's largest value), the scale in lut_scales[layer]. Not
+         * RGBA16F: a layer spans the blue peak R_d(0) and the red tail at r_max, more than the 1e8 the
+         * half-float range holds (tried: the back-lit dragon lost 20% of its red). The LUT's bytes
+         * matter for speed: the screen-space and splat passes read it at scattered places (llvmpipe,
+         * 960x540 dragon: 512^2 texels 5.3 s, 256^2 2.9 s for the screen-space pass). */
         int size = lut_layers ? luts[0].size : 1;
         gs->lut_size = size;
         gs->lut_layers = lut_layers ? lut_layers : 1;
         glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &gs->lut_array);
-        glTextureStorage3D(gs->lut_array, 1, GL_RGB32F, size, size, gs->lut_layers);
+        glTextureStorage3D(gs->lut_array, 1, GL_RGBA32F, size, size, gs->lut_layers);
         glTextureParameteri(gs->lut_array, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         glTextureParameteri(gs->lut_array, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         glTextureParameteri(gs->lut_array, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         glTextureParameteri(gs->lut_array, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        gs->lut_bytes = (size_t)size * size * 12 * (size_t)gs->lut_layers;
+        gs->lut_bytes = (size_t)size * size * 16 * (size_t)gs->lut_layers;
         gs->texture_bytes += gs->lut_bytes;
-        if (!lut_layers) {
-            float z[3] = {0, 0, 0};
-            glTextureSubImage3D(gs->lut_array, 0, 0, 0, 0, 1, 1, 1, GL_RGB, GL_FLOAT, z);
+        float *scales = calloc((size_t)gs->lut_layers, sizeof *scales);
+        float *texels = malloc((size_t)size * size * 4 * sizeof(float));
+        if (!scales || !texels) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (LUT upload)");
+        if (res == SSS_OK && !lut_layers) {
+            float z[4] = {0, 0, 0, 0};
+            glTextureSubImage3D(gs->lut_array, 0, 0, 0, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, z);
+            scales[0] = 1.0f;
         }
-        for (int l = 0; l < lut_layers; l++) {
+        for (int l = 0; l < lut_layers && res == SSS_OK; l++) {
             if (luts[l].size != size) {
                 res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "kernel LUTs of different sizes");
                 break;
             }
-            glTextureSubImage3D(gs->lut_array, 0, 0, 0, l, size, size, 1, GL_RGB, GL_FLOAT, luts[l].texels);
+            double mx = 0.0;
+            size_t n = (size_t)size * size;
+            for (size_t i = 0; i < 3 * n; i++) {
+                double v = luts[l].texels[i];
+                if (!isfinite(v) || v < 0.0) {
+                    res = sss_error_set(err, SSS_ERROR_NUMERIC, "kernel LUT holds a negative or non-finite value");
+                    break;
+                }
+                if (v > mx) mx = v;
+            }
+            if (res != SSS_OK) break;
+            scales[l] = mx > 0.0 ? (float)mx : 1.0f;
+            for (size_t i = 0; i < n; i++) {
+                for (int c = 0; c < 3; c++) texels[4 * i + c] = (float)(luts[l].texels[3 * i + c] / scales[l]);
+                texels[4 * i + 3] = 0.0f;
+            }
+            glTextureSubImage3D(gs->lut_array, 0, 0, 0, l, size, size, 1, GL_RGBA, GL_FLOAT, texels);
         }
+        if (res == SSS_OK)
+            gs->ssbo_lut_scales = make_buffer(scales, sizeof *scales * (size_t)gs->lut_layers, &gs->buffer_bytes);
+        free(scales);
+        free(texels);
     }
     for (int l = 0; l < lut_layers; l++) sss_lut_free(&luts[l]);
     free(orec);
@@ -384,6 +430,7 @@ void gl_scene_free(gl_scene *gs)
     delete_buffer(&gs->ssbo_objects);
     delete_buffer(&gs->ssbo_materials);
     delete_buffer(&gs->ssbo_lights);
+    delete_buffer(&gs->ssbo_lut_scales);
     GLuint t[5] = {gs->lut_array, gs->albedo_array, gs->shadow_cube, gs->shadow_2d, gs->env_tex};
     for (int i = 0; i < 5; i++)
         if (t[i]) glDeleteTextures(1, &t[i]);
@@ -398,6 +445,7 @@ void gl_bind_scene(const sss_gl_renderer *r)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_OBJECTS, gs->ssbo_objects);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_MATERIALS, gs->ssbo_materials);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_LIGHTS, gs->ssbo_lights);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_LUT_SCALES, gs->ssbo_lut_scales);
     glBindTextureUnit(GL_UNIT_LUT, gs->lut_array);
     glBindTextureUnit(GL_UNIT_SHADOW_CUBE, gs->shadow_cube);
     glBindTextureUnit(GL_UNIT_SHADOW_2D, gs->shadow_2d);
