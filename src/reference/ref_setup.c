@@ -300,7 +300,9 @@ static sss_result find_footprints(ref_ctx *ctx, sss_error *err)
         ro->visible_pixels = count[o];
         if (count[o] > 0) {
             qsort(sorted + start[o], count[o], sizeof(float), cmp_float);
-            ro->footprint = sorted[start[o] + count[o] / 100];
+            size_t k = count[o] / 100;
+            while (k + 1 < count[o] && !(sorted[start[o] + k] > 0.0f)) k++; /* hits at the eye */
+            ro->footprint = sorted[start[o] + k];
             ro->visible = 1;
         } else {
             /* Seen by no pixel centre (tiny on screen): the footprint at its bounding box centre. */
