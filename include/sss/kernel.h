@@ -51,6 +51,10 @@ double sss_lut_texel_r(const sss_lut *lut, int i);
 double sss_lut_texel_area(const sss_lut *lut, int j);
 /* Bilinear lookup with clamping, as a GPU sampler with the same axes does. */
 void sss_lut_lookup(const sss_lut *lut, double r, double area, double out[3]);
+/* R'_d(r, A) at one point by the build's ring integration with R_d evaluated directly (no table) and
+ * finer panels: slow (~1e4 profile evaluations), a reference for checks and for other modules'
+ * tests. out = R_d(r) for A = 0; zeros for negative or non-finite input. */
+void sss_lut_exact(const sss_profile *profile, double r, double area, double out[3]);
 
 /* ---- Separable kernels (seed 002) ------------------------------------------------------------ */
 
