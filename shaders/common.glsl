@@ -135,14 +135,19 @@ struct LutInfo {
     float rmax;    // level 0
     float amax;
     float size;    // texels per axis
-    int levels;
+    int levels;    // at most 4
     bool sqrt_axes;
+    vec4 scales;   // lut_scales of the levels
 };
 
 LutInfo lut_info(int mat)
 {
     Material m = materials[mat];
-    return LutInfo(m.params.z, m.lut.x, m.lut.y, m.lut.w, max(int(m.spec.z + 0.5), 1), m.lut.z > 0.5);
+    int levels = clamp(int(m.spec.z + 0.5), 1, 4);
+    int l0 = int(m.params.z + 0.5);
+    vec4 sc = vec4(lut_scales[l0]);
+    for (int l = 1; l < levels; l++) sc[l] = lut_scales[l0 + l];
+    return LutInfo(m.params.z, m.lut.x, m.lut.y, m.lut.w, levels, m.lut.z > 0.5, sc);
 }
 
 vec3 lut_fetch(float layer, float tr, float ta, float size)
@@ -158,32 +163,29 @@ vec3 lut_eval(LutInfo L, float r, float area)
     // 1/A (exact when r + r_A exceeds r_max everywhere the kernel is non-zero).
     float scale = 1.0;
     if (area > L.amax) { scale = L.amax / area; area = L.amax; }
-    // The finest level of the cascade that holds both r and A.
-    float rmax = L.rmax, amax = L.amax;
-    int level = 0;
-    for (int l = 1; l < L.levels; l++) {
-        if (r * 16.0 > rmax || area * 256.0 > amax) break;
-        rmax *= 0.0625;
-        amax *= 0.00390625;
-        level = l;
-    }
+    // The finest level of the cascade that holds both r and A: level l needs r <= r_max / 16^l and
+    // A <= A_max / 256^l, i.e. max(r / r_max, sqrt(A / A_max)) <= 16^-l.
+    float q = max(r / L.rmax, sqrt(area / L.amax));
+    int level = q > 0.0 ? min(int(-log2(q) * 0.25), L.levels - 1) : L.levels - 1;
+    float f = exp2(-4.0 * float(level));
+    float rmax = L.rmax * f, amax = L.amax * f * f;
     float layer = L.layer0 + float(level);
-    scale *= lut_scales[int(layer)];
+    scale *= L.scales[level];
     float tr = min(r / rmax, 1.0);
-    if (L.sqrt_axes) tr = sqrt(tr);
-    // Area of the first row above A = 0.
-    float a1 = L.sqrt_axes ? amax / ((L.size - 1.0) * (L.size - 1.0)) : amax / (L.size - 1.0);
-    if (area < a1) {
+    float ta = area / amax;
+    if (L.sqrt_axes) { tr = sqrt(tr); ta = sqrt(ta); }
+    // ta of the first row above A = 0
+    float t1 = 1.0 / (L.size - 1.0);
+    if (ta < t1) {
         // Below the first row, interpolating the mean linearly towards R_d(r) (row 0) overestimates
         // it near R_d's peak by orders of magnitude. There the disc integral grows like r_A (R_d ~ 1/r
         // near 0), so R'(r, A) ~ sqrt(A_1 / A) R'(r, A_1); away from the peak R'(r, A) -> R_d(r).
         vec3 row0 = lut_fetch(layer, tr, 0.0, L.size);
         if (area <= 0.0) return scale * row0;
-        vec3 row1 = lut_fetch(layer, tr, 1.0 / (L.size - 1.0), L.size);
-        return scale * min(sqrt(a1 / area) * row1, row0);
+        vec3 row1 = lut_fetch(layer, tr, t1, L.size);
+        float ratio = L.sqrt_axes ? t1 / ta : sqrt(t1 / ta); // sqrt(A_1 / A)
+        return scale * min(ratio * row1, row0);
     }
-    float ta = area / amax;
-    if (L.sqrt_axes) ta = sqrt(ta);
     return scale * lut_fetch(layer, tr, ta, L.size);
 }
 

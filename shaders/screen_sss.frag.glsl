@@ -60,10 +60,13 @@ void main()
         float bright = u_brightening != 0 ? sqrt(float(i)) : 1.0;
         ivec2 size = textureSize(t_pos, level);
         vec3 layer_sum = vec3(0.0);
-        for (int t = 0; t < u_nl; t++)
-            for (int s = 0; s < u_nl; s++) {
-                if (s != 0 && s != u_nl - 1 && t != 0 && t != u_nl - 1) continue; // outer ring only
-                vec2 off = (vec2(s, t) - 0.5 * float(u_nl - 1)) * w;
+        int side = u_nl - 1;
+        for (int k = 0; k < 4 * side; k++) {
+                // the outer ring of the n_l x n_l grid, walked clockwise: 4 (n_l - 1) cells
+                int j = k % side, e = k / side;
+                ivec2 st = e == 0 ? ivec2(j, 0) : e == 1 ? ivec2(side, j) : e == 2 ? ivec2(side - j, side)
+                                                                                  : ivec2(0, side - j);
+                vec2 off = (vec2(st) - 0.5 * float(side)) * w;
                 vec2 sp = centre + off; // sample position in level-0 pixels
                 if (any(lessThan(sp, vec2(0.0))) || any(greaterThanEqual(sp, vec2(size0)))) continue;
                 vec3 pos, irr;

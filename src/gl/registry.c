@@ -57,7 +57,7 @@ static const sss_gl_param_info shared_params[GL_P_SHARED_COUNT] = {
                          "r_max solves Q(r_max) = alpha' sigma_t' e^(-sigma_t' r_max) = cutoff (seed 000, 7.1)"},
     [GL_P_LUT_ENERGY] = {"lut_energy", SSS_GL_PARAM_FLOAT, 0.999, 0, 0.999999,
                          "if > 0: r_max is at least the radius holding this fraction of R_d's integral"},
-    [GL_P_LUT_LEVELS] = {"lut_levels", SSS_GL_PARAM_INT, 3, 1, 6,
+    [GL_P_LUT_LEVELS] = {"lut_levels", SSS_GL_PARAM_INT, 3, 1, 4,
                          "LUT cascade: level l spans r_max / 16^l, for small areas of short kernels"},
     [GL_P_SPLAT_ENERGY] = {"splat_energy", SSS_GL_PARAM_FLOAT, 0.99, 0.5, 1,
                            "splats reach the radius holding this fraction of R_d's integral (<= r_max)"},
