@@ -232,7 +232,10 @@ void sss_gl_context_destroy(sss_gl_context *ctx)
         eglMakeCurrent(ctx->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (ctx->egl_context != EGL_NO_CONTEXT && ctx->egl_context)
             eglDestroyContext(ctx->egl_display, ctx->egl_context);
-        eglTerminate(ctx->egl_display);
+        /* No eglTerminate: an EGL display is a per-process singleton (the next context gets the same
+         * handle back and eglInitialize is then a no-op), and terminating unloads Mesa's driver, whose
+         * one-time (pthread_once) initialisation is then leaked on every reload. */
+        eglReleaseThread();
     }
     if (ctx->window) glfwDestroyWindow(ctx->window);
     if (ctx->glfw_initialised) glfwTerminate();

@@ -135,7 +135,10 @@ sss_result sss_gl_renderer_create(sss_gl_context *ctx, const sss_scene *scene, c
         size_t at = 0;
         for (int i = 0; i < sss_gl_technique_count() && at < sizeof list; i++)
             at += (size_t)snprintf(list + at, sizeof list - at, "%s%s", i ? ", " : "", sss_gl_technique_at(i)->name);
-        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "unknown technique '%s' (known: %s)", name, list);
+        if (desc.technique)
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "unknown technique '%s' (known: %s)", name, list);
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: render.technique: unknown technique '%s' (known: %s)",
+                             scene->name ? scene->name : "scene", name, list);
     }
     int width = desc.width > 0 ? desc.width : scene->camera.width;
     int height = desc.height > 0 ? desc.height : scene->camera.height;

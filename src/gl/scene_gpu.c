@@ -250,6 +250,15 @@ sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err)
         for (int c = 0; c < 8; c++) {
             double p[3] = {(c & 1) ? hi[0] : lo[0], (c & 2) ? hi[1] : lo[1], (c & 4) ? hi[2] : lo[2]}, w[3];
             sss_transform_point(so->transform.matrix, p, w);
+            /* GL works in float: positions beyond ~1e18 leave no room for products (areas, depth) */
+            if (!isfinite(w[0]) || !isfinite(w[1]) || !isfinite(w[2]) || fabs(w[0]) > 1e18 || fabs(w[1]) > 1e18 ||
+                fabs(w[2]) > 1e18) {
+                res = sss_error_set(err, SSS_ERROR_LIMIT,
+                                    "%s: objects[%zu]: a world-space vertex position is not finite in single "
+                                    "precision (|x| > 1e18; transform scale too large?)",
+                                    s->name ? s->name : "scene", i);
+                break;
+            }
             for (int k = 0; k < 3; k++) {
                 if ((float)w[k] < gs->bounds_min[k]) gs->bounds_min[k] = (float)w[k];
                 if ((float)w[k] > gs->bounds_max[k]) gs->bounds_max[k] = (float)w[k];
