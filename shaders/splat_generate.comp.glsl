@@ -21,6 +21,7 @@ layout(std430, binding = 4) writeonly buffer SplatBlock { Splat splats[]; };
 layout(std430, binding = 5) buffer CommandBlock { uint cmd_count, cmd_instances, cmd_first, cmd_base; };
 layout(std430, binding = 6) readonly buffer MeshPos { float mesh_pos[]; };
 layout(std430, binding = 7) readonly buffer MeshIdx { uint mesh_idx[]; };
+layout(std430, binding = 8) readonly buffer MeshUv { float mesh_uv[]; };
 
 layout(binding = 0) uniform sampler2D g_pos;
 layout(binding = 1) uniform sampler2D g_nrm;
@@ -31,6 +32,7 @@ uniform uint u_capacity;
 uniform int u_cull_rule;
 uniform float u_irradiance_cull;
 uniform float u_shadow_offset; // in units of sqrt(triangle area)
+uniform int u_has_uv;          // the splat mesh has texture coordinates
 
 void main()
 {
@@ -39,8 +41,10 @@ void main()
     Object o = objects[u_object];
     Material m = materials[int(o.anim.y)];
     vec3 p[3];
+    vec2 uv = vec2(0.0);
     for (int k = 0; k < 3; k++) {
         uint i = mesh_idx[3u * t + uint(k)];
+        if (u_has_uv != 0) uv += vec2(mesh_uv[2u * i], mesh_uv[2u * i + 1u]) / 3.0;
         vec3 op = vec3(mesh_pos[3u * i], mesh_pos[3u * i + 1u], mesh_pos[3u * i + 2u]);
         vec3 dn = vec3(0.0, 1.0, 0.0);
         p[k] = (o.model * vec4(anim_deform(o, op, dn, u_camera_pos.w), 1.0)).xyz;
@@ -80,6 +84,9 @@ void main()
         vec3 E = light_irradiance(i, ps, n, l);
         et += (1.0 - fr_dielectric(dot(n, l), 1.0, m.params.x)) * E;
     }
+    // Albedo texture: half of it where light enters (sqrt, like the illumination pass), sampled at
+    // the centre's texture coordinates.
+    if (u_has_uv != 0 && m.params.w >= 0.0) et *= sqrt(textureLod(u_albedo_tex, vec3(uv, m.params.w), 0.0).rgb);
     if (max(et.r, max(et.g, et.b)) <= u_irradiance_cull) return;
     uint slot = atomicAdd(cmd_instances, 1u);
     if (slot >= u_capacity) return;

@@ -41,7 +41,8 @@ static void print_usage(FILE *f)
             "  --param NAME=VALUE  a technique or shared parameter (`sss techniques --params`), repeatable\n"
             "  --timings           print milliseconds per pass (median over the frames) as a table\n"
             "  --timings-json FILE write the timings as JSON\n"
-            "  --window            show the frames in a window (needs a display) instead of writing files\n"
+            "  --window            show the frames in a window (needs a display; until it is closed, or\n"
+            "                      for --frames N frames); with -o the last frame is also written\n"
             "\n"
             "Timings on a software rasteriser (llvmpipe) put glFinish() around every pass and read a monotonic\n"
             "clock; on GPUs they use GL_TIME_ELAPSED queries. The method is printed with the table.\n"
@@ -187,7 +188,9 @@ int sss_cmd_render(int argc, char **argv)
     }
     if (!scene_path) return cli_usage_error(CMD, "missing SCENE.json");
     if (!out && !window) return cli_usage_error(CMD, "missing -o OUT.png (or --window)");
-    if (animate && !frames_given) return cli_usage_error(CMD, "--animate needs --frames N");
+    if (animate && !frames_given && !window) return cli_usage_error(CMD, "--animate needs --frames N");
+    if (window && !frames_given && (out || exr))
+        return cli_usage_error(CMD, "--window with -o/--exr needs --frames N (which frame to write)");
     if (out && !valid_pattern(out)) return cli_usage_error(CMD, "-o '%s': '%%' must start one %%d conversion", out);
     if (exr && !valid_pattern(exr)) return cli_usage_error(CMD, "--exr '%s': '%%' must start one %%d conversion", exr);
     if (out && !animate && strchr(out, '%')) return cli_usage_error(CMD, "-o holds a %%d pattern but --animate is not set");
@@ -247,8 +250,8 @@ int sss_cmd_render(int argc, char **argv)
         goto done;
     }
     sss_gl_timings last = {0};
-    for (int k = 0; k < frames || window; k++) {
-        double t = animate ? time0 + (k % frames) / fps : time0;
+    for (int k = 0; k < frames || (window && !frames_given); k++) {
+        double t = animate ? time0 + k / fps : time0;
         if (window && sss_gl_window_should_close(ctx)) break;
         if (sss_gl_renderer_render(r, t, &err) != SSS_OK) {
             status = cli_fail(CMD, &err);
@@ -260,7 +263,6 @@ int sss_cmd_render(int argc, char **argv)
                 goto done;
             }
             sss_gl_window_swap(ctx);
-            if (!animate) continue;
         }
         if (rdesc.timings && k < frames) {
             sss_gl_renderer_timings(r, &last);
@@ -281,8 +283,8 @@ int sss_cmd_render(int argc, char **argv)
                 ps[j].ms[ps[j].count++] = last.passes[p].ms;
             }
         }
-        if (window) continue;
-        int write_now = animate || k == frames - 1;
+        if (!out && !exr) continue;
+        int write_now = k < frames && (animate || k == frames - 1);
         if (!write_now) continue;
         if (sss_gl_renderer_read(r, &img, &err) != SSS_OK) {
             status = cli_fail(CMD, &err);

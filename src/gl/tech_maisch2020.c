@@ -171,6 +171,8 @@ static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, sss_error *er
         if (!o->subsurface || o->splat_triangle_count == 0) continue;
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_MESH_POS, o->splat_pos);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_MESH_IDX, o->splat_idx);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_MESH_UV, o->splat_uv ? o->splat_uv : o->splat_pos);
+        set_i(s->prog_gen, "u_has_uv", o->splat_uv != 0);
         set_i(s->prog_gen, "u_object", i);
         glUniform1ui(glGetUniformLocation(s->prog_gen, "u_triangles"), o->splat_triangle_count);
         glDispatchCompute((o->splat_triangle_count + 63) / 64, 1, 1);

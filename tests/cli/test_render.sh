@@ -96,6 +96,14 @@ DISPLAY= WAYLAND_DISPLAY= "$SSS" render "$SC/gl_area.json" --window >"$T/out.txt
 [ $? -eq 1 ] || fail "--window without a display did not exit 1"
 grep -q "DISPLAY" "$T/err.txt" && grep -q "sss render" "$T/err.txt" || fail "--window message: $(cat "$T/err.txt")"
 "$SSS" render --help | grep -q "timings-json" || fail "help lacks --timings-json"
+# with a display (Xvfb), a GLFW window shows the same image the headless context renders
+if command -v xvfb-run >/dev/null; then
+    mkdir -p "$T/w"
+    "$SSS" render "$SC/gl_area.json" -o "$T/w/headless.png" --width 40 --height 32 || fail "headless render failed"
+    timeout 120 xvfb-run -a "$SSS" render "$SC/gl_area.json" --window --frames 2 -o "$T/w/window.png" \
+        --width 40 --height 32 2>"$T/err.txt" || fail "--window under xvfb-run failed: $(cat "$T/err.txt")"
+    cmp -s "$T/w/headless.png" "$T/w/window.png" || fail "window and headless renders differ"
+fi
 
 if [ "$fails" -ne 0 ]; then
     echo "$fails failure(s)"
