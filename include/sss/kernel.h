@@ -70,8 +70,11 @@ typedef struct sss_separable_kernel {
     double range;      /* half-width covered by the taps */
 } sss_separable_kernel;
 
-/* The pre-integrated 1D kernel a_p(x) = integral of R_d(sqrt(x^2 + y^2)) dy (seed 002, Eq. 4). */
+/* The pre-integrated 1D kernel a_p(x) = integral of R_d(sqrt(x^2 + y^2)) dy (seed 002, Eq. 4).
+ * Its integral over x is ||R_d||_1. An adaptive quadrature per call (~1e3 profile evaluations). */
 double sss_kernel_preintegrated_eval(const sss_profile *profile, int channel, double x);
+/* The same for the three channels at once (one quadrature). */
+void sss_kernel_preintegrated_eval_rgb(const sss_profile *profile, double x, double out[3]);
 
 /* Discretised a_p / ||R_d||_1 (Eq. 5): tap positions importance-sample the dominant channel (the one
  * with the widest profile), each tap's weight integrates every channel's a_p over the tap's interval
@@ -92,8 +95,12 @@ typedef struct sss_svd_kernel {
     double *singular_values; /* 3 * grid: all singular values per channel, descending */
     float *vectors;          /* rank * 3 * grid: sqrt(s_k) * u_k per channel (u = v by symmetry),
                                 vectors[(k * 3 + channel) * grid + x] */
+    float *signs;            /* rank * 3: +1 or -1, signs[k * 3 + channel]. The matrix is symmetric, so
+                                v_k = +-u_k: term k of the approximation is signs * a_k(x) a_k(y) with
+                                a_k = vectors[k]; -1 only where the matrix has a negative eigenvalue. */
 } sss_svd_kernel;
 
+/* grid in [1, 1024], extent > 0, rank in [1, grid]. */
 sss_result sss_kernel_svd(const sss_profile *profile, int grid, double extent, int rank,
                           sss_svd_kernel *out, sss_error *err);
 void sss_svd_kernel_free(sss_svd_kernel *k);
