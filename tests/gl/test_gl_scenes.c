@@ -1,5 +1,5 @@
 /* maisch2020 against the CPU ground truth (sss_reference_render, final quality, cached under
- * tests/data/gl/, see its README) on four small scenes, with DSSIM bounds measured on this renderer.
+ * tests/data/gl/, see its README) on five small scenes, with DSSIM bounds measured on this renderer.
  *
  * How the bounds were chosen: each is the DSSIM measured when the test was written (llvmpipe, Mesa
  * 22.3) plus about a third for numerical drift (LUT construction, driver rounding), and each is well
@@ -11,6 +11,7 @@
  *   shadow edge      0.018      0.025   local 0.040
  *   area light       0.039      0.05    local 0.12
  *   environment      0.073      0.095   (local 0.048: the sqrt(i) brightening over-brightens here)
+ *   spot + sun       0.037      0.05    local 0.068
  * Seed 000's brightening term sqrt(i) (default on, as the paper) adds 30-46% to these area- and
  * environment-lit scenes; without it the mean colour is within 4% of the reference, checked below. */
 #include "gl_test_util.h"
@@ -91,5 +92,8 @@ int main(void)
     test_scene("gl_area.json", "ref_area.exr", 0.05, 0.06, 1);
     /* environment map as 32 median-cut directional lights, and as the background */
     test_scene("gl_env.json", "ref_env.exr", 0.095, 0.06, 0);
+    /* spot light (2D perspective shadow map) and directional light (orthographic map), two
+     * subsurface materials with their own LUTs (Skin2, Apple) and a diffuse floor */
+    test_scene("gl_spot.json", "ref_spot.exr", 0.05, 0.03, 1);
     return CHECK_DONE();
 }
