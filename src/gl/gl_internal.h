@@ -182,7 +182,32 @@ typedef struct gl_frame {
     int normal_mips;
 } gl_frame;
 
-/* ---- Techniques ------------------------------------------------------------------------------- */
+/* ---- Techniques -------------------------------------------------------------------------------
+ *
+ * Adding a technique (the six planned ones: ssss, sam, mertens2003, dss, chen2012, screen):
+ *  1. src/gl/tech_<name>.c defines `const gl_technique gl_technique_<name>` with its parameter table
+ *     (name, type, default = the paper's, range, one-line doc citing the paper), the shared passes it
+ *     needs (GL_NEED_*) and its callbacks; registry.c gets one line. Parameters are read with
+ *     gl_param(r, index) at render time (set_param only stores them; resize() is called after a
+ *     technique parameter changes and after the frame size changes).
+ *  2. Shaders are shaders/<name>_*.glsl with `#include "common.glsl"` (frame block, objects,
+ *     materials, lights with shadows, Fresnel, animation, lut_eval of the kernel LUT, exit_factor).
+ *  3. render() runs the technique's passes on the shared results of this frame and must end by
+ *     writing the linear radiance of every pixel into frame.final (fbo_final), reflected light and
+ *     background included (frame.refl holds them). Bracket each pass with gl_timer_begin/end and
+ *     finish it with gl_check(r->ctx, "<technique>: <pass>", err).
+ * Shared resources available in render():
+ *  - frame.pos/nrm/albedo/depth (G-buffer; reversed-Z depth), frame.irr (F_t E with sqrt(albedo) and
+ *    the object id), frame.refl (diffuse, emitters, specular, environment background); with
+ *    GL_NEED_MIPS area-weighted premultiplied mip chains of pos and irr (and nrm with
+ *    GL_NEED_NORMAL_MIPS), see gl_frame;
+ *  - gs.shadow_cube / gs.shadow_2d through light_irradiance() in any shader stage (compute too), so a
+ *    technique can light its own sample points (splats, texture-space atlases, shadow-map texels);
+ *  - gs.objects[i].splat_pos/splat_idx (GL_NEED_SPLAT_MESHES): the low-resolution splat mesh in
+ *    object space at rest; deform with anim_deform() in the shader like splat_generate.comp.glsl;
+ *  - the kernel LUT of every subsurface material (lut_info/lut_eval) and the materials' records;
+ *  - gl_draw_objects() to rasterise the scene with the caller's program (u_object uniform), and
+ *    gl_draw_fullscreen() for screen passes. */
 
 #define GL_NEED_GBUFFER 1u
 #define GL_NEED_SHADOWS 2u
