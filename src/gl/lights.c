@@ -190,11 +190,16 @@ static sss_result env_load(const sss_light *L, env_map *e, sss_error *err)
 }
 
 /* The first environment map at full resolution, for camera rays that miss (sss/reference.h). */
-static sss_result env_upload(gl_scene *gs, const sss_light *L, sss_error *err)
+static sss_result env_upload(gl_scene *gs, const sss_light *L, int max_size, sss_error *err)
 {
     sss_image img;
     sss_result res = sss_image_read(L->file, &img, err);
     if (res != SSS_OK) return res;
+    if (img.width > max_size || img.height > max_size) {
+        sss_image_free(&img);
+        return sss_error_set(err, SSS_ERROR_LIMIT, "%s: environment map of %dx%d exceeds the GL texture limit %d",
+                             L->file, img.width, img.height, max_size);
+    }
     for (size_t i = 0; i < (size_t)img.width * img.height * 3; i++)
         if (!isfinite(img.pixels[i]) || img.pixels[i] < 0.0f) img.pixels[i] = 0.0f;
     glCreateTextures(GL_TEXTURE_2D, 1, &gs->env_tex);
@@ -286,7 +291,7 @@ sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err)
         if (L->type == SSS_LIGHT_ENVIRONMENT) {
             env_map e;
             memset(&e, 0, sizeof e);
-            sss_result res = gs->env_tex ? SSS_OK : env_upload(gs, L, err);
+            sss_result res = gs->env_tex ? SSS_OK : env_upload(gs, L, r->ctx->max_texture_size, err);
             if (res == SSS_OK) res = env_load(L, &e, err);
             if (res != SSS_OK) {
                 env_free(&e);
@@ -387,6 +392,21 @@ sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err)
     /* One size per array: full-size maps when any light needs them, else the VPL size. */
     gs->shadow_cube_size = cubes > cubes_vpl ? (int)r->shared[GL_P_SHADOW_CUBE_SIZE] : (int)r->shared[GL_P_SHADOW_VPL_SIZE];
     gs->shadow_2d_size = maps > maps_env ? (int)r->shared[GL_P_SHADOW_2D_SIZE] : (int)r->shared[GL_P_SHADOW_VPL_SIZE];
+    /* Shadow maps must fit: array layers and memory (area lights multiply the cube maps). */
+    GLint max_layers = 0;
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
+    double shadow_mb = ((double)gs->shadow_cube_size * gs->shadow_cube_size * 24.0 * cubes +
+                        (double)gs->shadow_2d_size * gs->shadow_2d_size * 4.0 * maps) / 1048576.0;
+    if (6 * cubes > max_layers || maps > max_layers)
+        return sss_error_set(err, SSS_ERROR_LIMIT,
+                             "%d cube and %d 2D shadow maps exceed the GL limit of %d array layers (fewer lights, "
+                             "area_samples or env_lights)",
+                             cubes, maps, (int)max_layers);
+    if (shadow_mb > 2048.0)
+        return sss_error_set(err, SSS_ERROR_LIMIT,
+                             "the shadow maps would take %.0f MB (limit 2048 MB): lower shadow_cube_size, "
+                             "shadow_size, shadow_vpl_size, area_samples or env_lights",
+                             shadow_mb);
     gs->shadow_cube_count = cubes;
     gs->shadow_2d_count = maps;
     /* Shadow transforms */
