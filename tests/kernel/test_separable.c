@@ -270,6 +270,59 @@ static void check_svd(const sss_profile *p, const char *what)
     sss_svd_kernel_free(&k);
 }
 
+/* ---- Guided rank-1 (seed 002, Appendix A): a constrained minimum ------------------------------- */
+
+static void check_guided(const sss_profile *p, double k, const char *what)
+{
+    const int n = 40;
+    const double extent = 4.0, b = 4.0, h = 2.0 * extent / n;
+    double a[3 * 40];
+    sss_error err = {0};
+    CHECK_MSG(sss_kernel_guided(p, n, extent, k, b, a, &err) == SSS_OK, "%s", err.message);
+    for (int c = 0; c < 3; c++) {
+        const double *ac = a + c * n;
+        /* The energy constraint (h sum a)^2 = ||R_d||_1, and symmetry a(-x) = a(x). */
+        double s = 0.0;
+        for (int i = 0; i < n; i++) s += ac[i] * h;
+        CHECK_REL(s * s, sss_profile_total(p, c), 1e-9);
+        for (int i = 0; i < n / 2; i++) CHECK_NEAR(ac[i], ac[n - 1 - i], 1e-9 * fabs(ac[n / 2]));
+        /* No worse than the pre-integrated start a_p / sqrt(||R_d||), which meets the constraint too. */
+        double start[40], ap[3];
+        double t = 0.0;
+        for (int i = 0; i < n; i++) {
+            sss_kernel_preintegrated_eval_rgb(p, -extent + (i + 0.5) * h, ap);
+            start[i] = ap[c];
+            t += ap[c] * h;
+        }
+        for (int i = 0; i < n; i++) start[i] *= sqrt(sss_profile_total(p, c)) / t;
+        double f = sss_kernel_guided_objective(p, n, extent, k, b, c, ac);
+        double f0 = sss_kernel_guided_objective(p, n, extent, k, b, c, start);
+        CHECK_MSG(f <= f0, "%s ch %d: objective %g above the start's %g", what, c, f, f0);
+        /* Stationary along the constraint: moving mass between two cells (sum kept) does not lower
+         * the objective to first order (central differences), unlike at the start. */
+        double worst = 0.0, worst0 = 0.0;
+        for (int i = 0; i < n / 2; i += 3) {
+            int j = n / 2 + 2;
+            double e = 1e-4 * ac[n / 2], d[40], d0[40];
+            for (int q = 0; q < n; q++) d[q] = ac[q], d0[q] = start[q];
+            d[i] += e, d[n - 1 - i] += e, d[j] -= e, d[n - 1 - j] -= e;
+            d0[i] += e, d0[n - 1 - i] += e, d0[j] -= e, d0[n - 1 - j] -= e;
+            double fp = sss_kernel_guided_objective(p, n, extent, k, b, c, d);
+            double fp0 = sss_kernel_guided_objective(p, n, extent, k, b, c, d0);
+            for (int q = 0; q < n; q++) d[q] = 2.0 * ac[q] - d[q], d0[q] = 2.0 * start[q] - d0[q];
+            double fm = sss_kernel_guided_objective(p, n, extent, k, b, c, d);
+            double fm0 = sss_kernel_guided_objective(p, n, extent, k, b, c, d0);
+            worst = fmax(worst, fabs(fp - fm) / (2.0 * e));
+            worst0 = fmax(worst0, fabs(fp0 - fm0) / (2.0 * e));
+        }
+        CHECK_MSG(worst < 1e-3 * worst0, "%s ch %d: directional derivative %g (start %g)", what, c, worst, worst0);
+    }
+    CHECK(sss_kernel_guided(p, 1, extent, k, b, a, &err) == SSS_ERROR_INVALID_ARGUMENT);
+    CHECK(sss_kernel_guided(p, n, extent, -1.0, b, a, &err) == SSS_ERROR_INVALID_ARGUMENT);
+    CHECK(sss_kernel_guided(p, n, extent, k, 0.0, a, &err) == SSS_ERROR_INVALID_ARGUMENT);
+    CHECK(isnan(sss_kernel_guided_objective(p, n, extent, k, b, 3, a)));
+}
+
 int main(void)
 {
     sss_error err = {0};
@@ -297,5 +350,7 @@ int main(void)
     check_artist("production");
     check_svd(&dip, "Skin1 dipole");
     check_svd(&pbd, "Skin1 PBD");
+    check_guided(&dip, 2.0, "Skin1 dipole k 2");
+    check_guided(&pbd, 0.0, "Skin1 PBD k 0");
     return CHECK_DONE();
 }
