@@ -4,7 +4,7 @@
  * denormal-small and astronomically large ones; the plane integral (rho_eff) finite and in [0, 1.05];
  * a quadrature of R_d 2 pi r dr agreeing with it (the profile and its total are consistent at every
  * scale, so nothing under- or overflows along the way); sampling radii and densities finite.
- * (Kernel LUTs and separable kernels over the same sweep: test_numeric_kernels.c.) */
+ * (Kernel LUTs and separable kernels over the same sweep: test_numeric_lut.c, test_numeric_separable.c.) */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
