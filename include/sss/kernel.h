@@ -92,9 +92,11 @@ double sss_kernel_preintegrated_eval(const sss_profile *profile, int channel, do
 void sss_kernel_preintegrated_eval_rgb(const sss_profile *profile, double x, double out[3]);
 
 /* Discretised a_p / ||R_d||_1 (Eq. 5): tap positions importance-sample the dominant channel (the one
- * with the widest profile), each tap's weight integrates every channel's a_p over the tap's interval
- * (midpoints between taps). taps >= 1 and odd (0 -> 7); range <= 0 -> the radius holding 99.9% of the
- * dominant channel's a_p. */
+ * with the widest a_p): tap k sits at the quantile (k + 1/2) / taps of its a_p restricted to
+ * [-range, range] (so the middle tap is at 0). Each tap's weight integrates every channel's a_p over
+ * the tap's interval (midpoints between taps; the outer taps' intervals reach to -inf / +inf, so no
+ * energy is lost) divided by the channel's plane integral. taps >= 1 and odd (0 -> 7); range <= 0 ->
+ * the radius holding 99.9% of the dominant channel's a_p. ~0.1 s for the PBD profile. */
 sss_result sss_kernel_preintegrated(const sss_profile *profile, int taps, double range,
                                     sss_separable_kernel *out, sss_error *err);
 /* The artist model's a_m, discretised the same way. */
