@@ -4,6 +4,7 @@
 #define SSS_CLI_H
 
 #include "sss/common.h"
+#include "sss/profile.h"
 
 enum { CLI_EXIT_OK = 0, CLI_EXIT_ERROR = 1, CLI_EXIT_USAGE = 2 };
 
@@ -17,6 +18,7 @@ int sss_cmd_reference(int argc, char **argv);
 int sss_cmd_export(int argc, char **argv);
 int sss_cmd_render(int argc, char **argv);
 int sss_cmd_techniques(int argc, char **argv);
+int sss_cmd_sam(int argc, char **argv);
 
 /* Prints "sss CMD: message" and "Try 'sss CMD --help'." to stderr; returns CLI_EXIT_USAGE. */
 int cli_usage_error(const char *cmd, const char *fmt, ...)
@@ -44,5 +46,19 @@ int cli_parse_int(const char *cmd, const char *option, const char *text, int *ou
 /* For options with a value: returns argv[*i + 1] and advances *i, or prints a usage error and
  * returns NULL when the value is missing. */
 const char *cli_option_value(const char *cmd, int argc, char **argv, int *i);
+
+/* The profile of a measured medium, for the commands that take MEDIUM [--scale S] [--eta E]
+ * [--model pbd|dipole]. */
+typedef struct cli_medium_profile {
+    sss_material material;
+    sss_pbd_table *table; /* heap-allocated for PBD, NULL for the dipole */
+    sss_profile profile;
+} cli_medium_profile;
+
+/* model is "pbd" or "dipole" (validated by the caller). On failure prints the error as cmd's and
+ * returns CLI_EXIT_ERROR (nothing to free); on success CLI_EXIT_OK. */
+int cli_medium_profile_init(const char *cmd, const char *medium, double scale, double eta, const char *model,
+                            cli_medium_profile *out);
+void cli_medium_profile_free(cli_medium_profile *mp);
 
 #endif

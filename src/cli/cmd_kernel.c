@@ -136,34 +136,24 @@ int sss_cmd_kernel(int argc, char **argv)
         print_taps("artist", &k);
         sss_separable_kernel_free(&k);
     } else {
-        sss_material m;
-        if (sss_material_from_medium(medium, scale, eta, &m, &err) != SSS_OK) return cli_fail(CMD, &err);
-        sss_profile_model model = strcmp(model_text, "dipole") == 0 ? SSS_PROFILE_DIPOLE : SSS_PROFILE_PBD;
-        sss_pbd_table *table = NULL;
-        if (model == SSS_PROFILE_PBD) {
-            table = malloc(sizeof *table);
-            if (!table) return cli_failf(CMD, "out of memory for the PBD table");
-            if (sss_pbd_table_build(m.eta, m.g, table, &err) != SSS_OK) {
-                free(table);
-                return cli_fail(CMD, &err);
-            }
-        }
-        sss_profile p;
-        sss_result res = sss_profile_init(&p, model, &m, table, &err);
-        if (res == SSS_OK && strcmp(method, "svd") == 0) {
+        cli_medium_profile mp;
+        if (cli_medium_profile_init(CMD, medium, scale, eta, model_text, &mp) != CLI_EXIT_OK) return CLI_EXIT_ERROR;
+        const sss_profile *p = &mp.profile;
+        sss_result res = SSS_OK;
+        if (strcmp(method, "svd") == 0) {
             if (!(extent > 0.0))
-                for (int c = 0; c < 3; c++) extent = fmax(extent, sss_profile_radius_for_fraction(&p, c, 0.999));
+                for (int c = 0; c < 3; c++) extent = fmax(extent, sss_profile_radius_for_fraction(p, c, 0.999));
             sss_svd_kernel k;
-            res = sss_kernel_svd(&p, grid, extent, rank, &k, &err);
+            res = sss_kernel_svd(p, grid, extent, rank, &k, &err);
             if (res == SSS_OK) print_svd(&k);
             sss_svd_kernel_free(&k);
-        } else if (res == SSS_OK) {
+        } else {
             sss_separable_kernel k;
-            res = sss_kernel_preintegrated(&p, taps, range, &k, &err);
+            res = sss_kernel_preintegrated(p, taps, range, &k, &err);
             if (res == SSS_OK) print_taps("pre-integrated", &k);
             sss_separable_kernel_free(&k);
         }
-        free(table);
+        cli_medium_profile_free(&mp);
         if (res != SSS_OK) return cli_fail(CMD, &err);
     }
     if (fflush(stdout) != 0 || ferror(stdout)) return cli_failf(CMD, "error writing the output");

@@ -90,32 +90,18 @@ int sss_cmd_lut(int argc, char **argv)
         return cli_failf(CMD, "%s: the LUT needs a float image format (.exr or .pfm)", output);
 
     sss_error err = {0};
-    sss_material m;
-    if (sss_material_from_medium(medium, scale, eta, &m, &err) != SSS_OK) return cli_fail(CMD, &err);
-    sss_profile_model model = strcmp(model_text, "dipole") == 0 ? SSS_PROFILE_DIPOLE : SSS_PROFILE_PBD;
-    sss_pbd_table *table = NULL;
-    if (model == SSS_PROFILE_PBD) {
-        table = malloc(sizeof *table);
-        if (!table) return cli_failf(CMD, "out of memory for the PBD table");
-        if (sss_pbd_table_build(m.eta, m.g, table, &err) != SSS_OK) {
-            free(table);
-            return cli_fail(CMD, &err);
-        }
-    }
-    sss_profile p;
-    if (sss_profile_init(&p, model, &m, table, &err) != SSS_OK) {
-        free(table);
-        return cli_fail(CMD, &err);
-    }
+    cli_medium_profile mp;
+    if (cli_medium_profile_init(CMD, medium, scale, eta, model_text, &mp) != CLI_EXIT_OK) return CLI_EXIT_ERROR;
+    const sss_profile *p = &mp.profile;
     sss_lut_desc desc;
     memset(&desc, 0, sizeof desc);
     desc.size = size;
     desc.axes = strcmp(axes_text, "sqrt") == 0 ? SSS_LUT_AXES_SQRT : SSS_LUT_AXES_LINEAR;
     sss_lut lut;
     double t0 = sss_time_seconds();
-    sss_result res = sss_lut_build(&p, &desc, &lut, &err);
+    sss_result res = sss_lut_build(p, &desc, &lut, &err);
     double ms = 1e3 * (sss_time_seconds() - t0);
-    free(table);
+    cli_medium_profile_free(&mp);
     if (res != SSS_OK) return cli_fail(CMD, &err);
 
     /* Texel (i, j) at texels[3 (j N + i)] is pixel (x = i, y = j): the layout of an image already. */

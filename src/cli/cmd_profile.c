@@ -104,39 +104,24 @@ int sss_cmd_profile(int argc, char **argv)
     }
     if (!medium) return cli_usage_error(CMD, "missing MEDIUM");
 
-    sss_error err = {0};
-    sss_material m;
-    if (sss_material_from_medium(medium, scale, eta, &m, &err) != SSS_OK) return cli_fail(CMD, &err);
+    cli_medium_profile mp;
+    if (cli_medium_profile_init(CMD, medium, scale, eta, model_text, &mp) != CLI_EXIT_OK) return CLI_EXIT_ERROR;
+    const sss_profile *p = &mp.profile;
 
-    sss_profile_model model = strcmp(model_text, "dipole") == 0 ? SSS_PROFILE_DIPOLE : SSS_PROFILE_PBD;
-    sss_pbd_table *table = NULL;
-    if (model == SSS_PROFILE_PBD) {
-        table = malloc(sizeof *table);
-        if (!table) return cli_failf(CMD, "out of memory for the PBD table");
-        if (sss_pbd_table_build(m.eta, m.g, table, &err) != SSS_OK) {
-            free(table);
-            return cli_fail(CMD, &err);
-        }
-    }
-    sss_profile p;
-    if (sss_profile_init(&p, model, &m, table, &err) != SSS_OK) {
-        free(table);
-        return cli_fail(CMD, &err);
-    }
     if (!have_range) {
         r0 = 0.0;
         r1 = 0.0;
-        for (int c = 0; c < 3; c++) r1 = fmax(r1, sss_profile_radius_for_fraction(&p, c, 0.999));
+        for (int c = 0; c < 3; c++) r1 = fmax(r1, sss_profile_radius_for_fraction(p, c, 0.999));
     }
 
     printf("r\tR\tG\tB\n");
     for (int k = 0; k < count; k++) {
         double r = count == 1 ? r0 : r0 + (r1 - r0) * k / (double)(count - 1);
         double v[3];
-        sss_profile_eval_rgb(&p, r, v);
+        sss_profile_eval_rgb(p, r, v);
         printf("%.6g\t%.6e\t%.6e\t%.6e\n", r, v[0], v[1], v[2]);
     }
-    free(table);
+    cli_medium_profile_free(&mp);
     if (fflush(stdout) != 0 || ferror(stdout)) return cli_failf(CMD, "error writing the output");
     return CLI_EXIT_OK;
 }
