@@ -138,6 +138,24 @@ uint64_t sss_sam_update(sss_sam *sam, const sss_mesh *deformed, const sss_mesh_a
 void sss_sam_approximate(const sss_sam *sam, const sss_mesh *mesh, const float *fan_area,
                          const sss_sam_profile_table *table, float *out);
 
+/* ---- Scene objects ------------------------------------------------------------------------------- */
+
+struct sss_scene;
+struct sss_scene_object;
+
+/* The mesh a map of a scene object is built on: its mesh at rest (no animation) with its transform
+ * applied, in scene units (sss_scene_object_world_mesh without the animation). */
+sss_result sss_sam_object_mesh(const struct sss_scene_object *obj, sss_mesh *out, sss_error *err);
+/* The profile of a subsurface object's material (its model; artist profiles use PBD, as the GL LUT). */
+sss_result sss_sam_object_profile(const struct sss_scene_object *obj, sss_profile *out, sss_error *err);
+/* Builds the map of scene object `index` (desc->transform is set to the object's). Errors name the
+ * scene and the object: out of range, not subsurface. */
+sss_result sss_sam_build_object(const struct sss_scene *scene, size_t index, const sss_sam_desc *desc, sss_sam *out,
+                                sss_sam_stats *stats, sss_error *err);
+/* Reads `path` and checks it against scene object `index` (mesh, material, model, transform). */
+sss_result sss_sam_read_object(const char *path, const struct sss_scene *scene, size_t index, sss_sam *out,
+                               sss_error *err);
+
 /* ---- Files -------------------------------------------------------------------------------------- */
 
 /* Binary little-endian: magic "SSSSAM1\n", version, vertex and triangle counts, mesh hash, n, samples,
