@@ -20,6 +20,7 @@ static const command commands[] = {
     {"render", sss_cmd_render, "render a scene in real time with OpenGL (headless) to an image"},
     {"techniques", sss_cmd_techniques, "list the real-time techniques"},
     {"export", sss_cmd_export, "write a scene for another renderer (export pbrt)"},
+    {"sam", sss_cmd_sam, "build or inspect a Spatial Adjacency Map (seed 001) of a mesh"},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 
