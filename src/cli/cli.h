@@ -19,7 +19,6 @@ int sss_cmd_export(int argc, char **argv);
 int sss_cmd_render(int argc, char **argv);
 int sss_cmd_techniques(int argc, char **argv);
 int sss_cmd_sam(int argc, char **argv);
-int sss_cmd_sam(int argc, char **argv);
 
 /* Prints "sss CMD: message" and "Try 'sss CMD --help'." to stderr; returns CLI_EXIT_USAGE. */
 int cli_usage_error(const char *cmd, const char *fmt, ...)
