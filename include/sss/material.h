@@ -20,6 +20,13 @@ extern "C" {
 #define SSS_ETA_MIN 1.0
 #define SSS_ETA_MAX 2.5
 
+/* Accepted range of the extinction sigma_t = sigma_a + sigma_s per scene unit in every channel (after
+ * scale). R_d grows as sigma_t^2 and lives in floats in the kernels and renderers; far outside this
+ * range the profiles lose all precision (the dipole returns 0 beyond ~1e100, PBD beyond ~1e150) instead
+ * of failing. A mean free path of 1e-12 to 1e12 scene units covers any sensible choice of unit. */
+#define SSS_SIGMA_T_MIN 1e-12
+#define SSS_SIGMA_T_MAX 1e12
+
 /* ---- Fresnel ------------------------------------------------------------------------------- */
 
 /* Unpolarised dielectric Fresnel reflectance for light arriving with cosine cos_theta_i on the eta_i
@@ -70,7 +77,8 @@ sss_result sss_material_from_medium(const char *name, double scale, double eta, 
 sss_result sss_material_from_coefficients(const double sigma_a[3], const double sigma_s[3], double scale,
                                           double eta, double g, sss_material *out, sss_error *err);
 
-/* Checks a filled material (finite, non-negative, sigma_t > 0, eta and g in range). */
+/* Checks a filled material (finite, non-negative, sigma_t in [SSS_SIGMA_T_MIN, SSS_SIGMA_T_MAX], eta
+ * and g in range). The constructors below validate their result with it. */
 sss_result sss_material_validate(const sss_material *m, sss_error *err);
 
 #ifdef __cplusplus

@@ -101,10 +101,25 @@ static sss_result check_coefficients(const double sigma_a[3], const double sigma
     return SSS_OK;
 }
 
+/* sigma_t within [SSS_SIGMA_T_MIN, SSS_SIGMA_T_MAX] (checked on the final, scaled coefficients). */
+static sss_result check_extinction(const double sigma_a[3], const double sigma_s[3], sss_error *err)
+{
+    for (int c = 0; c < 3; c++) {
+        double t = sigma_a[c] + sigma_s[c];
+        if (t < SSS_SIGMA_T_MIN || t > SSS_SIGMA_T_MAX)
+            return sss_error_set(err, SSS_ERROR_LIMIT,
+                                 "%s channel: sigma_a + sigma_s = %g per scene unit is outside [%g, %g] "
+                                 "(choose a scene unit nearer the mean free path)",
+                                 channel_name[c], t, SSS_SIGMA_T_MIN, SSS_SIGMA_T_MAX);
+    }
+    return SSS_OK;
+}
+
 sss_result sss_material_validate(const sss_material *m, sss_error *err)
 {
     if (!m) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "material is NULL");
     sss_result r = check_coefficients(m->sigma_a, m->sigma_s, err);
+    if (r == SSS_OK) r = check_extinction(m->sigma_a, m->sigma_s, err);
     if (r == SSS_OK) r = check_eta(m->eta, err);
     if (r == SSS_OK) r = check_g(m->g, err);
     return r;

@@ -140,6 +140,8 @@ fail | profile Marble --scale -1 | scale;-1
 fail | profile Marble --scale nan | --scale;nan
 fail | profile Marble --scale inf | --scale;inf
 fail | profile Marble --scale 1e308 | scale;finite
+fail | profile Marble --scale 1e200 | sigma_a \+ sigma_s;outside
+fail | profile Marble --model dipole --scale 1e-20 | sigma_a \+ sigma_s;outside
 fail | profile Marble --r 0:1:0 | --r
 fail | profile Marble --r -1:1:3 | --r
 fail | profile Marble --model foo | --model;foo
@@ -149,6 +151,10 @@ fail | lut Marble --eta 0.9 -o @OUT@/lut.exr | eta
 fail | lut Marble --scale 0 -o @OUT@/lut.exr | scale
 fail | lut Marble --scale -5 -o @OUT@/lut.exr | scale
 fail | lut Marble --size 0 -o @OUT@/lut.exr | size
+fail | lut Marble --scale 1e300 --size 8 -o @OUT@/lut.exr | sigma_a \+ sigma_s;outside
+fail | lut Marble --scale 1e-9 --size 8 -o @OUT@/lut.exr | cut-off
+fail | lut Marble --axes diagonal -o @OUT@/lut.exr | --axes;diagonal
+fail | lut Marble --model foo -o @OUT@/lut.exr | --model;foo
 fail | lut Marble --size 100000 -o @OUT@/lut.exr | size
 fail | lut Marble --size 64 -o @OUT@/no_folder/lut.exr | no_folder/lut\.exr
 fail | lut Marble --size 64 -o @OUT@/lut.tiff | lut\.tiff
@@ -161,6 +167,7 @@ fail | @SCENE@ @BAD@/scene_negative_sigma.json | scene_negative_sigma\.json;sigm
 fail | @SCENE@ @BAD@/scene_zero_coefficients.json | scene_zero_coefficients\.json;objects\[0\]\.material
 fail | @SCENE@ @BAD@/scene_zero_scale.json | scene_zero_scale\.json;material\.scale
 fail | @SCENE@ @BAD@/scene_negative_scale.json | scene_negative_scale\.json;material\.scale
+fail | @SCENE@ @BAD@/scene_scale_1e20.json | scene_scale_1e20\.json;objects\[0\]\.material;outside
 fail | @SCENE@ @BAD@/scene_eta_below_1.json | scene_eta_below_1\.json;material\.eta
 fail | @SCENE@ @BAD@/scene_eta_too_large.json | scene_eta_too_large\.json;material\.eta
 fail | @SCENE@ @BAD@/scene_unknown_medium.json | scene_unknown_medium\.json;material\.medium;unobtainium

@@ -4,6 +4,9 @@
  * denormal-small and astronomically large ones; the plane integral (rho_eff) finite and in [0, 1.05];
  * a quadrature of R_d 2 pi r dr agreeing with it (the profile and its total are consistent at every
  * scale, so nothing under- or overflows along the way); sampling radii and densities finite.
+ * Units: R_d(r; s sigma) = s^2 R_d(s r; sigma) exactly (dimensional analysis) and rho_eff does not
+ * depend on s, across the sweep's scales and out to the accepted extinction range
+ * [SSS_SIGMA_T_MIN, SSS_SIGMA_T_MAX], beyond which materials are refused.
  * (Kernel LUTs and separable kernels over the same sweep: test_numeric_lut.c, test_numeric_separable.c.) */
 #include <math.h>
 #include <stdio.h>
@@ -114,6 +117,69 @@ static void sweep_profile(const sss_profile *p, const char *medium, double eta, 
     }
 }
 
+/* R_d of the material scaled by s against the unscaled one at the same optical radius. */
+static int scaling_holds(const sss_profile *unit, const sss_profile *scaled, double s, const char *what)
+{
+    int ok = 1;
+    for (int c = 0; c < 3; c++) {
+        double mfp = 1.0 / (unit->material.sigma_a[c] + unit->material.sigma_s[c]);
+        for (int k = 0; k <= 12; k++) {
+            double r = mfp * pow(10.0, -3.0 + k / 2.0);
+            double a = sss_profile_eval(unit, c, r), b = sss_profile_eval(scaled, c, r / s) / (s * s);
+            if (!(fabs(a - b) <= 1e-9 * a + 1e-300)) {
+                if (ok && bad_reports++ < 20)
+                    fprintf(stderr, "%s: scale %g channel %d r %g mfp: R_d %g, scaled %g\n", what, s, c, r / mfp, a, b);
+                ok = 0;
+            }
+        }
+        double ta = sss_profile_total(unit, c), tb = sss_profile_total(scaled, c);
+        if (!(fabs(ta - tb) <= 1e-12 * ta)) {
+            if (bad_reports++ < 20) fprintf(stderr, "%s: scale %g channel %d: rho_eff %g vs %g\n", what, s, c, ta, tb);
+            ok = 0;
+        }
+    }
+    return ok;
+}
+
+static void test_units(const sss_pbd_table *table)
+{
+    for (size_t i = 0; i < sss_measured_medium_count(); i++) {
+        const char *name = sss_measured_medium_at(i)->name;
+        sss_material m1;
+        CHECK(sss_material_from_medium(name, 1.0, table->eta, &m1, NULL) == SSS_OK);
+        double t_min = 1e300, t_max = 0.0;
+        for (int c = 0; c < 3; c++) {
+            double t = m1.sigma_a[c] + m1.sigma_s[c];
+            t_min = t < t_min ? t : t_min;
+            t_max = t > t_max ? t : t_max;
+        }
+        /* The sweep's scales and the largest and smallest the range admits for this medium. */
+        double scales_[4] = {1e-3, 1e3, SSS_SIGMA_T_MAX / t_max * (1 - 1e-9), SSS_SIGMA_T_MIN / t_min * (1 + 1e-9)};
+        for (int model = 0; model < 2; model++) {
+            sss_profile unit;
+            CHECK(sss_profile_init(&unit, model ? SSS_PROFILE_DIPOLE : SSS_PROFILE_PBD, &m1, table, NULL) == SSS_OK);
+            for (int k = 0; k < 4; k++) {
+                sss_material ms;
+                sss_error err = {0};
+                sss_result r = sss_material_from_medium(name, scales_[k], table->eta, &ms, &err);
+                CHECK_MSG(r == SSS_OK, "%s scale %g: %s", name, scales_[k], err.message);
+                if (r != SSS_OK) continue;
+                sss_profile sp;
+                CHECK(sss_profile_init(&sp, unit.model, &ms, table, NULL) == SSS_OK);
+                CHECK(scaling_holds(&unit, &sp, scales_[k], name));
+            }
+        }
+        /* Just beyond the range: refused, naming the limit. */
+        double beyond[2] = {10.0 * SSS_SIGMA_T_MAX / t_min, 0.1 * SSS_SIGMA_T_MIN / t_max};
+        for (int k = 0; k < 2; k++) {
+            sss_material ms;
+            sss_error err = {0};
+            CHECK_MSG(sss_material_from_medium(name, beyond[k], table->eta, &ms, &err) == SSS_ERROR_LIMIT,
+                      "%s scale %g accepted", name, beyond[k]);
+        }
+    }
+}
+
 int main(void)
 {
     sss_pbd_table *tables = malloc(NETA * sizeof *tables);
@@ -146,6 +212,7 @@ int main(void)
                 sweep_profile(&dip, name, etas[e], scales[s], "dipole");
             }
     }
+    test_units(&tables[2]); /* eta 1.33 */
     printf("swept %zu materials (%zu media x %zu eta x %zu scales) through PBD and dipole\n", materials, media,
            NETA, NSCALE);
     if (bad_reports > 20) fprintf(stderr, "... %d failures in all\n", bad_reports);
