@@ -1,0 +1,358 @@
+/* gl/tech_ssss.c — Separable Subsurface Scattering (Jimenez et al., seed 002) and its two baselines:
+ *   ssss         two 1D passes (horizontal, vertical) of one separable kernel: pre-integrated (Eq. 4-5),
+ *                artist-friendly (Eq. 6, Table 2) or guided rank-1 (Appendix A, Eq. 8-9);
+ *   ssss-gauss6  the six-Gaussian sum of d'Eon et al. 2007: 12 1D passes;
+ *   ssss-svd     the rank-N SVD of the discretised profile (seed 002, section 3): 2N 1D passes.
+ * Passes after the shared G-buffer, shadows and illumination: (1) prepare: the transmitted irradiance
+ * plus the transmittance through thin parts (Jimenez et al. 2010 from the shadow maps) and the object
+ * mask; (2) per separable term a horizontal and a vertical pass (shaders/ssss_blur.frag.glsl: screen
+ * projection of world-space tap offsets, depth correction of Eq. 7, stochastic rotation of section 6),
+ * the vertical ones summed additively; (3) combine: c_o sqrt(albedo) x total reflectance x the sum.
+ * The kernels are built on the CPU once per parameter set (tech_ssss_kernel.c). */
+#include <math.h>
+#include <string.h>
+
+#include "gl/tech_ssss.h"
+
+#define TRANS_DEFINE "#define SSSS_TRANS_SIZE 256\n"
+
+/* ---- Parameters ------------------------------------------------------------------------------ */
+
+#define P_TAPS {"taps", SSS_GL_PARAM_INT, 7, 1, 63, "importance-sampled taps per 1D pass, odd (seed 002, section 7: 7)"}
+#define P_FOLLOW                                                                                                  \
+    {"follow_surface", SSS_GL_PARAM_BOOL, 1, 0, 1,                                                               \
+     "depth correction of Eq. 7: taps lerp to the centre colour by 1 - e^(-dz^2/2 sigma^2) (SSSS follow surface)"}
+#define P_ROTATE                                                                                                  \
+    {"rotation", SSS_GL_PARAM_FLOAT, 0.1, 0, 0.3,                                                                \
+     "per-pixel random rotation of the taps nearer than this fraction of the kernel range (section 6: 10%, 30%)"}
+#define P_TRANS                                                                                                   \
+    {"transmittance", SSS_GL_PARAM_BOOL, 1, 0, 1,                                                                \
+     "light through thin parts: T(thickness from the shadow maps) (Jimenez et al. 2010, SSSS reference code)"}
+
+static const sss_gl_param_info ssss_params[] = {
+    P_TAPS,
+    {"kernel", SSS_GL_PARAM_INT, 0, 0, 3,
+     "0 auto (artist for {\"artist\"} profiles, else pre-integrated); 1 pre-integrated (Eq. 4-5); 2 artist "
+     "(Eq. 6); 3 guided rank-1 (Appendix A)"},
+    {"artist_preset", SSS_GL_PARAM_INT, 0, 0, 3,
+     "artist kernel: 0 the material's profile (production for others); Table 2: 1 single-layer, 2 multi-layer, "
+     "3 production (s in mm / material scale)"},
+    {"guide_k", SSS_GL_PARAM_FLOAT, 2, 0, 4, "guided kernel: guide parameter k of Eq. 9 (Appendix A: k ~ 2 fits R_d)"},
+    {"guide_b", SSS_GL_PARAM_FLOAT, 50, 1e-3, 1e6, "guided kernel: suppression term b of Eq. 9, mm^-2 (Appendix A: 50)"},
+    P_FOLLOW,
+    P_ROTATE,
+    P_TRANS,
+};
+
+static const sss_gl_param_info gauss6_params[] = {P_TAPS, P_FOLLOW, P_ROTATE, P_TRANS};
+
+static const sss_gl_param_info svd_params[] = {
+    {"rank", SSS_GL_PARAM_INT, 3, 1, 8, "rank N of the SVD approximation: 2N 1D passes (seed 002, section 3: 3)"},
+    {"svd_grid", SSS_GL_PARAM_INT, 24, 2, 255,
+     "cells per axis of the discretised profile = uniform taps per pass (even: no cell sampled at the profile's "
+     "r = 0 peak)"},
+    P_FOLLOW,
+    P_ROTATE,
+    P_TRANS,
+};
+
+/* ---- State ----------------------------------------------------------------------------------- */
+
+typedef struct ssss_state {
+    ssss_variant variant;
+    GLuint prog_prep, prog_blur, prog_combine;
+    GLuint ssbo, trans_tex, samp_cube, samp_2d;
+    GLuint tex_prep, tex_tmp, tex_sum;
+    GLuint fbo_prep, fbo_tmp, fbo_sum;
+    int width, height, terms, have_kernel;
+    ssss_kernel_opts built;
+    size_t target_bytes, kernel_bytes;
+} ssss_state;
+
+static double param(const sss_gl_renderer *r, const char *name, double fallback)
+{
+    double v = sss_gl_renderer_get_param(r, name);
+    return isnan(v) ? fallback : v;
+}
+
+static void opts_from_params(const sss_gl_renderer *r, ssss_variant v, ssss_kernel_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->variant = v;
+    o->taps = (int)param(r, "taps", 7);
+    o->kernel = v == SSSS_VARIANT_SEPARABLE ? (int)param(r, "kernel", 0) : 0;
+    o->preset = (int)param(r, "artist_preset", 0);
+    o->guide_k = param(r, "guide_k", 2);
+    o->guide_b_mm = param(r, "guide_b", 50);
+    o->rank = (int)param(r, "rank", 3);
+    o->grid = (int)param(r, "svd_grid", 24);
+}
+
+static void free_targets(ssss_state *s)
+{
+    GLuint f[3] = {s->fbo_prep, s->fbo_tmp, s->fbo_sum}, t[3] = {s->tex_prep, s->tex_tmp, s->tex_sum};
+    for (int i = 0; i < 3; i++) {
+        if (f[i]) glDeleteFramebuffers(1, &f[i]);
+        if (t[i]) glDeleteTextures(1, &t[i]);
+    }
+    s->fbo_prep = s->fbo_tmp = s->fbo_sum = s->tex_prep = s->tex_tmp = s->tex_sum = 0;
+    s->target_bytes = 0;
+    s->width = s->height = 0;
+}
+
+static GLuint fbo_for(GLuint tex)
+{
+    GLuint fbo;
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex, 0);
+    glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
+    return fbo;
+}
+
+static sss_result make_targets(sss_gl_renderer *r, ssss_state *s, sss_error *err)
+{
+    free_targets(s);
+    s->tex_prep = gl_texture_2d(GL_RGBA32F, r->width, r->height, 1, &s->target_bytes);
+    s->tex_tmp = gl_texture_2d(GL_RGBA32F, r->width, r->height, 1, &s->target_bytes);
+    s->tex_sum = gl_texture_2d(GL_RGBA32F, r->width, r->height, 1, &s->target_bytes);
+    /* the taps read the signal bilinearly (fractional projected offsets) */
+    GLuint lin[2] = {s->tex_prep, s->tex_tmp};
+    for (int i = 0; i < 2; i++) {
+        glTextureParameteri(lin[i], GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(lin[i], GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    }
+    s->fbo_prep = fbo_for(s->tex_prep);
+    s->fbo_tmp = fbo_for(s->tex_tmp);
+    s->fbo_sum = fbo_for(s->tex_sum);
+    GLuint f[3] = {s->fbo_prep, s->fbo_tmp, s->fbo_sum};
+    for (int i = 0; i < 3; i++)
+        if (glCheckNamedFramebufferStatus(f[i], GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "incomplete render target");
+    s->width = r->width;
+    s->height = r->height;
+    return gl_check(r->ctx, "ssss: targets", err);
+}
+
+/* (Re)builds the kernel block and the T(s) table when the kernel parameters changed. */
+static sss_result make_kernel(sss_gl_renderer *r, ssss_state *s, sss_error *err)
+{
+    ssss_kernel_opts o;
+    opts_from_params(r, s->variant, &o);
+    if (s->have_kernel && memcmp(&o, &s->built, sizeof o) == 0) return SSS_OK;
+    ssss_kernel_data d;
+    sss_result res = ssss_kernel_build(r, &o, &d, err);
+    if (res != SSS_OK) return res;
+    if (s->ssbo) glDeleteBuffers(1, &s->ssbo);
+    if (s->trans_tex) glDeleteTextures(1, &s->trans_tex);
+    glCreateBuffers(1, &s->ssbo);
+    glNamedBufferStorage(s->ssbo, (GLsizeiptr)sizeof(float) * 4 * d.vec4_count, d.block, 0);
+    glCreateTextures(GL_TEXTURE_2D, 1, &s->trans_tex);
+    glTextureStorage2D(s->trans_tex, 1, GL_RGBA32F, SSSS_TRANS_SIZE, d.trans_rows);
+    glTextureSubImage2D(s->trans_tex, 0, 0, 0, SSSS_TRANS_SIZE, d.trans_rows, GL_RGBA, GL_FLOAT, d.trans);
+    glTextureParameteri(s->trans_tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(s->trans_tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(s->trans_tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(s->trans_tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    s->kernel_bytes = sizeof(float) * 4 * ((size_t)d.vec4_count + (size_t)SSSS_TRANS_SIZE * d.trans_rows);
+    s->terms = d.terms;
+    s->built = o;
+    s->have_kernel = 1;
+    ssss_kernel_data_free(&d);
+    return gl_check(r->ctx, "ssss: kernel upload", err);
+}
+
+static sss_result ssss_resize(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    ssss_state *s = state;
+    sss_result res = SSS_OK;
+    if (s->width != r->width || s->height != r->height || !s->tex_prep) res = make_targets(r, s, err);
+    if (res == SSS_OK) res = make_kernel(r, s, err);
+    return res;
+}
+
+static sss_result create_variant(sss_gl_renderer *r, ssss_state *s, ssss_variant v, sss_error *err)
+{
+    s->variant = v;
+    sss_result res = gl_program_vf("fullscreen.vert.glsl", "ssss_prepare.frag.glsl", TRANS_DEFINE, &s->prog_prep, err);
+    if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "ssss_blur.frag.glsl", NULL, &s->prog_blur, err);
+    if (res == SSS_OK)
+        res = gl_program_vf("fullscreen.vert.glsl", "ssss_combine.frag.glsl", NULL, &s->prog_combine, err);
+    if (res != SSS_OK) return res;
+    /* the shadow maps read as plain depth (the renderer's units compare): sampler objects override the
+     * textures' comparison mode on our units only */
+    GLuint samp[2];
+    glCreateSamplers(2, samp);
+    for (int i = 0; i < 2; i++) {
+        glSamplerParameteri(samp[i], GL_TEXTURE_COMPARE_MODE, GL_NONE);
+        glSamplerParameteri(samp[i], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glSamplerParameteri(samp[i], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glSamplerParameteri(samp[i], GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glSamplerParameteri(samp[i], GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    s->samp_cube = samp[0];
+    s->samp_2d = samp[1];
+    return ssss_resize(r, s, err);
+}
+
+static sss_result ssss_create(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    return create_variant(r, state, SSSS_VARIANT_SEPARABLE, err);
+}
+static sss_result gauss6_create(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    return create_variant(r, state, SSSS_VARIANT_GAUSS6, err);
+}
+static sss_result svd_create(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    return create_variant(r, state, SSSS_VARIANT_SVD, err);
+}
+
+static void set_i(GLuint prog, const char *name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
+
+static sss_result ssss_render(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    ssss_state *s = state;
+    sss_result res = ssss_resize(r, s, err);
+    if (res != SSS_OK) return res;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSSS_SSBO_BINDING, s->ssbo);
+    glViewport(0, 0, r->width, r->height);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+
+    gl_timer_begin(&r->timer, "ssss_prepare");
+    glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_prep);
+    glUseProgram(s->prog_prep);
+    glBindTextureUnit(0, r->frame.pos);
+    glBindTextureUnit(1, r->frame.nrm);
+    glBindTextureUnit(2, r->frame.albedo);
+    glBindTextureUnit(3, r->frame.irr);
+    glBindTextureUnit(5, s->trans_tex);
+    glBindTextureUnit(6, r->gs.shadow_cube);
+    glBindSampler(6, s->samp_cube);
+    glBindTextureUnit(7, r->gs.shadow_2d);
+    glBindSampler(7, s->samp_2d);
+    set_i(s->prog_prep, "u_transmittance", (int)param(r, "transmittance", 1) && r->gs.light_count > 0);
+    gl_draw_fullscreen(r);
+    glBindSampler(6, 0);
+    glBindSampler(7, 0);
+    res = gl_check(r->ctx, "ssss: prepare pass", err);
+    if (res != SSS_OK) return res;
+
+    const float zero[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(s->fbo_sum, GL_COLOR, 0, zero);
+    glUseProgram(s->prog_blur);
+    glBindTextureUnit(1, r->frame.pos);
+    set_i(s->prog_blur, "u_follow", (int)param(r, "follow_surface", 1));
+    glUniform1f(glGetUniformLocation(s->prog_blur, "u_rotate"), (float)param(r, "rotation", 0.1));
+    GLint u_vertical = glGetUniformLocation(s->prog_blur, "u_vertical");
+    GLint u_term = glGetUniformLocation(s->prog_blur, "u_term");
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+    for (int t = 0; t < s->terms; t++) {
+        gl_timer_begin(&r->timer, "ssss_blur_h");
+        glDisable(GL_BLEND);
+        glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_tmp);
+        glBindTextureUnit(0, s->tex_prep);
+        glUniform1i(u_vertical, 0);
+        glUniform1i(u_term, t);
+        gl_draw_fullscreen(r);
+        gl_timer_begin(&r->timer, "ssss_blur_v");
+        /* the terms add up in the float target (blending does not clamp RGBA32F) */
+        glEnable(GL_BLEND);
+        glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_sum);
+        glBindTextureUnit(0, s->tex_tmp);
+        glUniform1i(u_vertical, 1);
+        gl_draw_fullscreen(r);
+        glDisable(GL_BLEND);
+        res = gl_check(r->ctx, "ssss: separable passes", err);
+        if (res != SSS_OK) return res;
+    }
+
+    gl_timer_begin(&r->timer, "combine");
+    glBindFramebuffer(GL_FRAMEBUFFER, r->frame.fbo_final);
+    glUseProgram(s->prog_combine);
+    glBindTextureUnit(0, r->frame.pos);
+    glBindTextureUnit(1, r->frame.nrm);
+    glBindTextureUnit(2, r->frame.albedo);
+    glBindTextureUnit(3, r->frame.refl);
+    glBindTextureUnit(4, s->tex_sum);
+    glBindTextureUnit(5, s->tex_prep);
+    gl_draw_fullscreen(r);
+    gl_timer_end(&r->timer);
+    return gl_check(r->ctx, "ssss: combination", err);
+}
+
+static void ssss_destroy(sss_gl_renderer *r, void *state)
+{
+    (void)r;
+    ssss_state *s = state;
+    free_targets(s);
+    GLuint p[3] = {s->prog_prep, s->prog_blur, s->prog_combine};
+    for (int i = 0; i < 3; i++)
+        if (p[i]) glDeleteProgram(p[i]);
+    if (s->ssbo) glDeleteBuffers(1, &s->ssbo);
+    if (s->trans_tex) glDeleteTextures(1, &s->trans_tex);
+    GLuint samp[2] = {s->samp_cube, s->samp_2d};
+    for (int i = 0; i < 2; i++)
+        if (samp[i]) glDeleteSamplers(1, &samp[i]);
+}
+
+static GLuint ssss_buffer(sss_gl_renderer *r, void *state, const char *name)
+{
+    (void)r;
+    ssss_state *s = state;
+    if (strcmp(name, "ssss_signal") == 0) return s->tex_prep;     /* irradiance + transmittance */
+    if (strcmp(name, "ssss_horizontal") == 0) return s->tex_tmp;  /* last term's horizontal pass */
+    if (strcmp(name, "ssss_sum") == 0) return s->tex_sum;         /* sum of the terms */
+    return 0;
+}
+
+static void ssss_stats(sss_gl_renderer *r, void *state, sss_gl_stats *out)
+{
+    ssss_state *s = state;
+    out->texture_bytes += s->target_bytes + s->kernel_bytes;
+    out->per_pixel_bytes += s->target_bytes / ((size_t)r->width * (size_t)r->height);
+}
+
+#define SSSS_NEEDS (GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION)
+
+const gl_technique gl_technique_ssss = {
+    .info = {"ssss",
+             "Jimenez et al. (seed 002): separable SSS, two 1D passes of a pre-integrated, artist or guided kernel, "
+             "transmittance from shadow maps",
+             ssss_params, (int)(sizeof ssss_params / sizeof ssss_params[0])},
+    .needs = SSSS_NEEDS,
+    .state_size = sizeof(ssss_state),
+    .create = ssss_create,
+    .resize = ssss_resize,
+    .render = ssss_render,
+    .destroy = ssss_destroy,
+    .buffer = ssss_buffer,
+    .stats = ssss_stats,
+};
+
+const gl_technique gl_technique_ssss_gauss6 = {
+    .info = {"ssss-gauss6", "d'Eon et al. 2007 six-Gaussian sum as 12 1D passes (the baseline of seed 002)",
+             gauss6_params, (int)(sizeof gauss6_params / sizeof gauss6_params[0])},
+    .needs = SSSS_NEEDS,
+    .state_size = sizeof(ssss_state),
+    .create = gauss6_create,
+    .resize = ssss_resize,
+    .render = ssss_render,
+    .destroy = ssss_destroy,
+    .buffer = ssss_buffer,
+    .stats = ssss_stats,
+};
+
+const gl_technique gl_technique_ssss_svd = {
+    .info = {"ssss-svd", "rank-N SVD of the discretised profile as 2N 1D passes (seed 002, section 3)", svd_params,
+             (int)(sizeof svd_params / sizeof svd_params[0])},
+    .needs = SSSS_NEEDS,
+    .state_size = sizeof(ssss_state),
+    .create = svd_create,
+    .resize = ssss_resize,
+    .render = ssss_render,
+    .destroy = ssss_destroy,
+    .buffer = ssss_buffer,
+    .stats = ssss_stats,
+};
