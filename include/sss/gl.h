@@ -114,6 +114,8 @@ typedef struct sss_gl_renderer_desc {
     const sss_gl_param_value *params; /* technique or shared parameters by name */
     int param_count;
     int timings;                      /* 1: time every pass (on software GL this adds a glFinish per pass) */
+    const char *data_file;            /* a technique's precomputed data (sam: a .sam file of `sss sam build`),
+                                         NULL: none; must outlive the renderer, like the scene */
 } sss_gl_renderer_desc;
 
 typedef struct sss_gl_renderer sss_gl_renderer;

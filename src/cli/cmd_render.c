@@ -39,6 +39,7 @@ static void print_usage(FILE *f)
             "                      with one %%d, e.g. frame_%%03d.png)\n"
             "  --fps F             frames per second of --animate (default 30)\n"
             "  --param NAME=VALUE  a technique or shared parameter (`sss techniques --params`), repeatable\n"
+            "  --data FILE         the technique's precomputed data (sam: a .sam file of `sss sam build`)\n"
             "  --timings           print milliseconds per pass (median over the frames) as a table\n"
             "  --timings-json FILE write the timings as JSON\n"
             "  --window            show the frames in a window (needs a display; until it is closed, or\n"
@@ -128,7 +129,7 @@ int sss_cmd_render(int argc, char **argv)
         print_usage(stdout);
         return CLI_EXIT_OK;
     }
-    const char *scene_path = NULL, *out = NULL, *exr = NULL, *technique = NULL, *json = NULL;
+    const char *scene_path = NULL, *out = NULL, *exr = NULL, *technique = NULL, *json = NULL, *data = NULL;
     int width = 0, height = 0, frames = 1, animate = 0, timings = 0, window = 0, frames_given = 0;
     double time0 = 0.0, fps = 30.0;
     sss_gl_param_value params[MAX_PARAMS];
@@ -165,6 +166,8 @@ int sss_cmd_render(int argc, char **argv)
             timings = 1;
         } else if (strcmp(a, "--timings-json") == 0) {
             if (!(json = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
+        } else if (strcmp(a, "--data") == 0) {
+            if (!(data = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
         } else if (strcmp(a, "--window") == 0) {
             window = 1;
         } else if (strcmp(a, "--param") == 0) {
@@ -228,6 +231,7 @@ int sss_cmd_render(int argc, char **argv)
     rdesc.params = params;
     rdesc.param_count = nparams;
     rdesc.timings = timings || json;
+    rdesc.data_file = data;
     sss_gl_renderer *r = NULL;
     int status = CLI_EXIT_OK;
     pass_series ps[SSS_GL_MAX_PASSES];

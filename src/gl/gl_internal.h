@@ -257,6 +257,7 @@ struct sss_gl_renderer {
     const sss_scene *scene;
     const gl_technique *tech;
     void *tech_state;
+    const char *data_file;         /* sss_gl_renderer_desc.data_file (may be NULL) */
     double params[GL_MAX_PARAMS];  /* technique parameters, in info.params order */
     double shared[GL_P_SHARED_COUNT];
     int width, height;

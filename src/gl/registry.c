@@ -6,11 +6,13 @@
 
 extern const gl_technique gl_technique_maisch2020;
 extern const gl_technique gl_technique_local;
+extern const gl_technique gl_technique_sam;
 extern const gl_technique gl_technique_ssss, gl_technique_ssss_gauss6, gl_technique_ssss_svd, gl_technique_screen;
 
 static const gl_technique *const techniques[] = {
     &gl_technique_maisch2020,
     &gl_technique_local,
+    &gl_technique_sam,
     &gl_technique_ssss, &gl_technique_ssss_gauss6, &gl_technique_ssss_svd, &gl_technique_screen,
 };
 #define TECHNIQUE_COUNT ((int)(sizeof techniques / sizeof techniques[0]))

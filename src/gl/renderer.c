@@ -156,6 +156,7 @@ sss_result sss_gl_renderer_create(sss_gl_context *ctx, const sss_scene *scene, c
     r->ctx = ctx;
     r->scene = scene;
     r->tech = tech;
+    r->data_file = desc.data_file;
     r->width = width;
     r->height = height;
     for (int i = 0; i < tech->info.param_count; i++) r->params[i] = tech->info.params[i].default_value;

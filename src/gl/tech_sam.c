@@ -1,0 +1,423 @@
+/* gl/tech_sam.c — technique "sam": Spatial Adjacency Maps (Maisch & Ropinski 2017, seed 001).
+ *
+ * Translucency per vertex from n precomputed back-side links (Eq. 12) plus a surface-diffusion
+ * technique for the front side (section 3.2: L_o = c_o (L_o+ + L_o-)). Passes after the shared
+ * G-buffer, shadows and illumination:
+ *   sam_deform     per vertex: world position and normal at time t (compute)
+ *   sam_update     deforming objects only: fan areas (Eq. 16) and the link update of section 3.4
+ *   sam_light      per vertex: L_d = F_t E sqrt(albedo) from every light (shared shadow maps)
+ *   sam_transfer   per vertex: Eq. 12 (Eq. 15 for deforming objects), blended in time (Eq. 17-18)
+ *   surface        the front side: a whole surface technique run in place (ssss, its transmittance
+ *                  off, as the paper pairs SAM with SSSS; or the screen-space part of maisch2020)
+ *   sam_raster     the per-vertex translucency rasterised (barycentric blend) at full resolution
+ *   sam_combine    frame.final += c_o sqrt(albedo) L~_o-
+ * The maps come from a .sam file (sss sam build) when the renderer is given one, else they are built
+ * at creation with the parameters n and samples.
+ *
+ * Time (Eq. 17-18): alpha = 1 - base^dt with dt the animation time since the previous frame of this
+ * renderer. The first frame has no previous value: dt is taken as infinite, alpha = 1, so a
+ * single-frame render shows exactly the current Eq. 12 (no history). A frame at the same time as the
+ * previous one keeps the previous value (alpha = 0: nothing moved). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl/tech_sam.h"
+
+enum { P_N = 0, P_SAMPLES, P_SEED, P_SURFACE, P_TRANSLUCENCY, P_TEMPORAL, P_BASE, P_UPDATE, P_COUNT };
+
+static const sss_gl_param_info params[P_COUNT] = {
+    [P_N] = {"n", SSS_GL_PARAM_INT, 3, 1, SSS_SAM_MAX_N,
+             "back-side vertices per vertex when the map is built at creation (seed 001, 4.1: 3)"},
+    [P_SAMPLES] = {"samples", SSS_GL_PARAM_INT, 64, 1, SSS_SAM_MAX_SAMPLES,
+                   "Monte Carlo pairs per form factor of Eq. 11 when the map is built at creation"},
+    [P_SEED] = {"seed", SSS_GL_PARAM_INT, 0, 0, 1e9, "seed of the Monte Carlo shifts when the map is built"},
+    [P_SURFACE] = {"surface", SSS_GL_PARAM_INT, 1, 0, 2,
+                   "front side (L_o+, section 3.2): 0 none, 1 ssss (seed 002, transmittance off; the paper's "
+                   "pairing), 2 screen-space pattern of maisch2020 (seed 000, section 4)"},
+    [P_TRANSLUCENCY] = {"translucency", SSS_GL_PARAM_BOOL, 1, 0, 1, "include the SAM translucency L_o- (Eq. 12)"},
+    [P_TEMPORAL] = {"temporal", SSS_GL_PARAM_BOOL, 1, 0, 1,
+                    "blend with the previous frame (Eq. 17); the first frame is never blended"},
+    [P_BASE] = {"blend_base", SSS_GL_PARAM_FLOAT, 1e-10, 1e-30, 1,
+                "alpha = 1 - base^dt, dt the animation time between frames in seconds (Eq. 18: 1e-10)"},
+    [P_UPDATE] = {"update_steps", SSS_GL_PARAM_INT, 1, 0, 64,
+                  "link updates per frame of deforming objects through adjacency (section 3.4: 1)"},
+};
+
+enum { PASS_DEFORM = 0, PASS_AREA, PASS_UPDATE, PASS_LIGHT, PASS_TRANSFER, PASS_COUNT };
+
+typedef struct sam_state {
+    GLuint prog[PASS_COUNT], prog_raster, prog_add, prog_combine;
+    sam_object *objs;
+    int count;
+    int w, h;
+    GLuint tex_trans, tex_depth, fbo;
+    size_t target_bytes;
+    double last_time;
+    int have_last;
+    /* the surface technique, run with its own parameter table */
+    const gl_technique *surface;
+    void *surface_state;
+    double surface_params[GL_MAX_PARAMS];
+    double saved[GL_MAX_PARAMS];
+    const gl_technique *saved_tech;
+    double build_seconds;
+} sam_state;
+
+/* ---- The surface technique ------------------------------------------------------------------- */
+
+static void enter(sss_gl_renderer *r, sam_state *s)
+{
+    memcpy(s->saved, r->params, sizeof s->saved);
+    memcpy(r->params, s->surface_params, sizeof s->surface_params);
+    s->saved_tech = r->tech;
+    r->tech = s->surface;
+}
+
+static void leave(sss_gl_renderer *r, sam_state *s)
+{
+    memcpy(s->surface_params, r->params, sizeof s->surface_params);
+    memcpy(r->params, s->saved, sizeof s->saved);
+    r->tech = s->saved_tech;
+}
+
+static sss_result surface_create(sss_gl_renderer *r, sam_state *s, sss_error *err)
+{
+    int kind = (int)gl_param(r, P_SURFACE);
+    if (kind == 0) return SSS_OK;
+    const char *name = kind == 1 ? "ssss" : "screen";
+    s->surface = gl_technique_lookup(name);
+    if (!s->surface)
+        return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "surface technique '%s' is not available (parameter surface)",
+                             name);
+    const sss_gl_technique_info *in = &s->surface->info;
+    for (int i = 0; i < in->param_count && i < GL_MAX_PARAMS; i++) {
+        double v = in->params[i].default_value;
+        /* SAM replaces the translucency of the surface techniques */
+        if (strcmp(in->params[i].name, "transmittance") == 0 || strcmp(in->params[i].name, "translucency") == 0)
+            v = 0.0;
+        /* seed 000's brightening term compensates for light its translucency pass misses; the front side
+         * alone is what SAM needs */
+        if (strcmp(in->params[i].name, "brightening") == 0) v = 0.0;
+        s->surface_params[i] = v;
+    }
+    s->surface_state = calloc(1, s->surface->state_size ? s->surface->state_size : 1);
+    if (!s->surface_state) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (surface technique)");
+    enter(r, s);
+    sss_result res = s->surface->create ? s->surface->create(r, s->surface_state, err) : SSS_OK;
+    leave(r, s);
+    if (res != SSS_OK) sss_error_prefix(err, name);
+    return res;
+}
+
+static void surface_destroy(sss_gl_renderer *r, sam_state *s)
+{
+    if (s->surface && s->surface_state && s->surface->destroy) {
+        enter(r, s);
+        s->surface->destroy(r, s->surface_state);
+        leave(r, s);
+    }
+    free(s->surface_state);
+    s->surface_state = NULL;
+    s->surface = NULL;
+}
+
+/* ---- Targets ----------------------------------------------------------------------------------- */
+
+static void free_targets(sam_state *s)
+{
+    if (s->fbo) glDeleteFramebuffers(1, &s->fbo);
+    if (s->tex_trans) glDeleteTextures(1, &s->tex_trans);
+    if (s->tex_depth) glDeleteTextures(1, &s->tex_depth);
+    s->fbo = s->tex_trans = s->tex_depth = 0;
+    s->target_bytes = 0;
+}
+
+static sss_result make_targets(sss_gl_renderer *r, sam_state *s, sss_error *err)
+{
+    if (s->fbo && s->w == r->width && s->h == r->height) return SSS_OK;
+    free_targets(s);
+    s->w = r->width;
+    s->h = r->height;
+    s->tex_trans = gl_texture_2d(GL_RGBA32F, s->w, s->h, 1, &s->target_bytes);
+    s->tex_depth = gl_texture_2d(GL_DEPTH_COMPONENT32F, s->w, s->h, 1, &s->target_bytes);
+    glCreateFramebuffers(1, &s->fbo);
+    glNamedFramebufferTexture(s->fbo, GL_COLOR_ATTACHMENT0, s->tex_trans, 0);
+    glNamedFramebufferTexture(s->fbo, GL_DEPTH_ATTACHMENT, s->tex_depth, 0);
+    if (glCheckNamedFramebufferStatus(s->fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "sam: incomplete render target");
+    return gl_check(r->ctx, "sam: targets", err);
+}
+
+/* ---- Callbacks ---------------------------------------------------------------------------------- */
+
+static sss_result sam_create(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    sam_state *s = state;
+    static const char *defines[PASS_COUNT] = {"#define PASS 0\n", "#define PASS 1\n", "#define PASS 2\n",
+                                              "#define PASS 3\n", "#define PASS 4\n"};
+    sss_result res = SSS_OK;
+    for (int p = 0; p < PASS_COUNT && res == SSS_OK; p++)
+        res = gl_program_compute("sam_vertex.comp.glsl", defines[p], &s->prog[p], err);
+    if (res == SSS_OK) res = gl_program_vf("sam_raster.vert.glsl", "sam_raster.frag.glsl", NULL, &s->prog_raster, err);
+    if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "sam_add.frag.glsl", NULL, &s->prog_add, err);
+    if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "combine.frag.glsl", NULL, &s->prog_combine, err);
+    if (res != SSS_OK) return res;
+    int subsurface = 0;
+    for (size_t i = 0; i < r->scene->object_count; i++)
+        subsurface += r->scene->objects[i].material.type == SSS_SCENE_MATERIAL_SUBSURFACE;
+    s->objs = calloc(subsurface ? (size_t)subsurface : 1, sizeof *s->objs);
+    if (!s->objs) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (sam objects)");
+    sam_data_desc d;
+    memset(&d, 0, sizeof d);
+    d.n = (uint32_t)gl_param(r, P_N);
+    d.samples = (uint32_t)gl_param(r, P_SAMPLES);
+    d.seed = (uint64_t)gl_param(r, P_SEED);
+    d.file = r->data_file;
+    for (size_t i = 0; i < r->scene->object_count && res == SSS_OK; i++) {
+        if (r->scene->objects[i].material.type != SSS_SCENE_MATERIAL_SUBSURFACE) continue;
+        res = sam_object_create(r, (int)i, &d, &s->objs[s->count], err);
+        if (res == SSS_OK) s->build_seconds += s->objs[s->count++].build_seconds;
+        else {
+            char what[64];
+            snprintf(what, sizeof what, "objects[%zu]", i);
+            sss_error_prefix(err, what);
+        }
+    }
+    if (res == SSS_OK) res = make_targets(r, s, err);
+    if (res == SSS_OK) res = surface_create(r, s, err);
+    return res;
+}
+
+static sss_result sam_resize(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    sam_state *s = state;
+    sss_result res = make_targets(r, s, err);
+    if (res == SSS_OK && s->surface && s->surface->resize) {
+        enter(r, s);
+        res = s->surface->resize(r, s->surface_state, err);
+        leave(r, s);
+    }
+    return res;
+}
+
+static void bind_object(const sss_gl_renderer *r, const sam_object *o)
+{
+    const gl_object *go = &r->gs.objects[o->index];
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_TOPO, o->topo);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_GEOM, o->geom);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_LINKS, o->links);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_COEF, o->coef);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_LD, o->ld);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_TRANS, o->trans);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_RD, o->rd);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_POS, go->pos);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_NRM, go->nrm);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_UV, go->uv ? go->uv : go->pos);
+}
+
+static void dispatch(const sss_gl_renderer *r, GLuint prog, const sam_object *o, float alpha)
+{
+    glUseProgram(prog);
+    glUniform1ui(glGetUniformLocation(prog, "u_vertices"), o->vertices);
+    glUniform1ui(glGetUniformLocation(prog, "u_n"), o->n);
+    glUniform1i(glGetUniformLocation(prog, "u_object"), o->index);
+    glUniform1ui(glGetUniformLocation(prog, "u_adj_list"), o->adj_list);
+    glUniform1ui(glGetUniformLocation(prog, "u_inc_off"), o->inc_off);
+    glUniform1ui(glGetUniformLocation(prog, "u_inc_list"), o->inc_list);
+    glUniform1ui(glGetUniformLocation(prog, "u_idx"), o->idx);
+    glUniform1f(glGetUniformLocation(prog, "u_rd_rmax"), o->rd_rmax);
+    glUniform1i(glGetUniformLocation(prog, "u_rd_size"), o->rd_size);
+    glUniform1i(glGetUniformLocation(prog, "u_deforming"), o->deforming);
+    glUniform1f(glGetUniformLocation(prog, "u_alpha"), alpha);
+    glUniform1i(glGetUniformLocation(prog, "u_has_uv"), r->gs.objects[o->index].uv != 0);
+    glDispatchCompute((o->vertices + 63) / 64, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+/* Eq. 18 with dt the animation time since the previous frame; the first frame is not blended. */
+static float blend_alpha(sss_gl_renderer *r, sam_state *s)
+{
+    double dt = s->have_last ? r->time - s->last_time : INFINITY;
+    if (!(int)gl_param(r, P_TEMPORAL) || !(dt >= 0.0)) return 1.0f; /* off, or time went backwards */
+    double a = 1.0 - pow(gl_param(r, P_BASE), dt);
+    return (float)(a < 0.0 ? 0.0 : a > 1.0 ? 1.0 : a);
+}
+
+static sss_result pass_vertices(sss_gl_renderer *r, sam_state *s, sss_error *err)
+{
+    float alpha = blend_alpha(r, s);
+    int steps = (int)gl_param(r, P_UPDATE);
+    gl_timer_begin(&r->timer, "sam_deform");
+    for (int i = 0; i < s->count; i++) {
+        bind_object(r, &s->objs[i]);
+        dispatch(r, s->prog[PASS_DEFORM], &s->objs[i], alpha);
+    }
+    sss_result res = gl_check(r->ctx, "sam: deformation", err);
+    if (res != SSS_OK) return res;
+    gl_timer_begin(&r->timer, "sam_update");
+    for (int i = 0; i < s->count; i++) {
+        if (!s->objs[i].deforming) continue;
+        bind_object(r, &s->objs[i]);
+        dispatch(r, s->prog[PASS_AREA], &s->objs[i], alpha);
+        for (int k = 0; k < steps; k++) dispatch(r, s->prog[PASS_UPDATE], &s->objs[i], alpha);
+    }
+    res = gl_check(r->ctx, "sam: link update", err);
+    if (res != SSS_OK) return res;
+    gl_timer_begin(&r->timer, "sam_light");
+    for (int i = 0; i < s->count; i++) {
+        bind_object(r, &s->objs[i]);
+        dispatch(r, s->prog[PASS_LIGHT], &s->objs[i], alpha);
+    }
+    res = gl_check(r->ctx, "sam: vertex irradiance", err);
+    if (res != SSS_OK) return res;
+    gl_timer_begin(&r->timer, "sam_transfer");
+    for (int i = 0; i < s->count; i++) {
+        bind_object(r, &s->objs[i]);
+        dispatch(r, s->prog[PASS_TRANSFER], &s->objs[i], alpha);
+    }
+    s->last_time = r->time;
+    s->have_last = 1;
+    return gl_check(r->ctx, "sam: transfer", err);
+}
+
+static sss_result pass_raster(sss_gl_renderer *r, sam_state *s, sss_error *err)
+{
+    gl_timer_begin(&r->timer, "sam_raster");
+    glBindFramebuffer(GL_FRAMEBUFFER, s->fbo);
+    glViewport(0, 0, s->w, s->h);
+    const float zero[4] = {0, 0, 0, 0};
+    glClearBufferfv(GL_COLOR, 0, zero);
+    glClearBufferfv(GL_DEPTH, 0, zero); /* reversed Z, as the G-buffer (gl_internal.h) */
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glUseProgram(s->prog_raster);
+    GLint loc = glGetUniformLocation(s->prog_raster, "u_object");
+    for (int i = 0; i < s->count; i++) {
+        const gl_object *go = &r->gs.objects[s->objs[i].index];
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_TRANS, s->objs[i].trans);
+        glUniform1i(loc, s->objs[i].index);
+        glBindVertexArray(go->vao);
+        glDrawElements(GL_TRIANGLES, (GLsizei)(3 * go->triangle_count), GL_UNSIGNED_INT, NULL);
+    }
+    glBindVertexArray(0);
+    glDisable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+    return gl_check(r->ctx, "sam: rasterisation", err);
+}
+
+static sss_result sam_render(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    sam_state *s = state;
+    sss_result res = make_targets(r, s, err);
+    int use_trans = (int)gl_param(r, P_TRANSLUCENCY) && s->count > 0;
+    if (res == SSS_OK && use_trans) res = pass_vertices(r, s, err);
+    if (res == SSS_OK && use_trans) res = pass_raster(r, s, err);
+    if (res != SSS_OK) return res;
+    if (!use_trans) {
+        const float zero[4] = {0, 0, 0, 0};
+        glClearTexImage(s->tex_trans, 0, GL_RGBA, GL_FLOAT, zero);
+    }
+    if (s->surface) {
+        /* the surface technique writes frame.final (reflected light + c_o sqrt(albedo) L_o+) ... */
+        enter(r, s);
+        res = s->surface->render(r, s->surface_state, err);
+        leave(r, s);
+        if (res != SSS_OK) return res;
+        /* ... and the translucency is added to it */
+        gl_timer_begin(&r->timer, "sam_combine");
+        glBindFramebuffer(GL_FRAMEBUFFER, r->frame.fbo_final);
+        glViewport(0, 0, r->width, r->height);
+        glEnable(GL_BLEND);
+        glBlendEquation(GL_FUNC_ADD);
+        glBlendFunc(GL_ONE, GL_ONE);
+        glUseProgram(s->prog_add);
+        glBindTextureUnit(0, r->frame.pos);
+        glBindTextureUnit(1, r->frame.nrm);
+        glBindTextureUnit(2, r->frame.albedo);
+        glBindTextureUnit(3, s->tex_trans);
+        gl_draw_fullscreen(r);
+        glDisable(GL_BLEND);
+    } else {
+        gl_timer_begin(&r->timer, "sam_combine");
+        glBindFramebuffer(GL_FRAMEBUFFER, r->frame.fbo_final);
+        glViewport(0, 0, r->width, r->height);
+        glDisable(GL_BLEND);
+        glUseProgram(s->prog_combine);
+        glBindTextureUnit(0, r->frame.pos);
+        glBindTextureUnit(1, r->frame.nrm);
+        glBindTextureUnit(2, r->frame.albedo);
+        glBindTextureUnit(3, r->frame.refl);
+        glBindTextureUnit(4, s->tex_trans);
+        glBindTextureUnit(5, s->tex_trans);
+        glUniform1i(glGetUniformLocation(s->prog_combine, "u_use_screen"), 0);
+        glUniform1i(glGetUniformLocation(s->prog_combine, "u_use_trans"), 1);
+        gl_draw_fullscreen(r);
+    }
+    gl_timer_end(&r->timer);
+    return gl_check(r->ctx, "sam: combination", err);
+}
+
+static void sam_destroy(sss_gl_renderer *r, void *state)
+{
+    sam_state *s = state;
+    surface_destroy(r, s);
+    for (int i = 0; i < s->count; i++) sam_object_free(&s->objs[i]);
+    free(s->objs);
+    s->objs = NULL;
+    s->count = 0;
+    free_targets(s);
+    for (int p = 0; p < PASS_COUNT; p++)
+        if (s->prog[p]) glDeleteProgram(s->prog[p]);
+    GLuint p3[3] = {s->prog_raster, s->prog_add, s->prog_combine};
+    for (int p = 0; p < 3; p++)
+        if (p3[p]) glDeleteProgram(p3[p]);
+}
+
+static GLuint sam_buffer(sss_gl_renderer *r, void *state, const char *name)
+{
+    sam_state *s = state;
+    if (strcmp(name, "translucency") == 0 || strcmp(name, "translucency_full") == 0) return s->tex_trans;
+    if (s->surface && s->surface->buffer) {
+        enter(r, s);
+        GLuint t = s->surface->buffer(r, s->surface_state, name);
+        leave(r, s);
+        return t;
+    }
+    return 0;
+}
+
+static void sam_stats(sss_gl_renderer *r, void *state, sss_gl_stats *out)
+{
+    sam_state *s = state;
+    if (s->surface && s->surface->stats) {
+        enter(r, s);
+        s->surface->stats(r, s->surface_state, out);
+        leave(r, s);
+    }
+    size_t bytes = 0;
+    for (int i = 0; i < s->count; i++) bytes += s->objs[i].bytes;
+    out->buffer_bytes += bytes;
+    out->texture_bytes += s->target_bytes;
+    out->per_pixel_bytes += s->target_bytes / ((size_t)r->width * (size_t)r->height);
+}
+
+const gl_technique gl_technique_sam = {
+    .info = {"sam",
+             "Maisch & Ropinski 2017: per-vertex translucency from n back-side links with precomputed form "
+             "factors (Spatial Adjacency Maps) + ssss for the front side",
+             params, P_COUNT},
+    .needs = GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION | GL_NEED_MIPS,
+    .state_size = sizeof(sam_state),
+    .create = sam_create,
+    .resize = sam_resize,
+    .render = sam_render,
+    .destroy = sam_destroy,
+    .buffer = sam_buffer,
+    .stats = sam_stats,
+};

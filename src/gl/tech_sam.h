@@ -1,0 +1,46 @@
+/* gl/tech_sam.h — internals of the technique "sam" (seed 001): the GPU data of one subsurface object
+ * (tech_sam_data.c) and the technique's passes (tech_sam.c). */
+#ifndef SSS_GL_TECH_SAM_H
+#define SSS_GL_TECH_SAM_H
+
+#include "gl/gl_internal.h"
+#include "sss/sam.h"
+
+/* Binding points of shaders/sam_vertex.comp.glsl (10..19; the shared ones are 0..9). */
+enum {
+    SAM_SSBO_TOPO = 10,
+    SAM_SSBO_GEOM = 11,
+    SAM_SSBO_LINKS = 12,
+    SAM_SSBO_COEF = 13,
+    SAM_SSBO_LD = 14,
+    SAM_SSBO_TRANS = 15,
+    SAM_SSBO_RD = 16,
+    SAM_SSBO_POS = 17,
+    SAM_SSBO_NRM = 18,
+    SAM_SSBO_UV = 19
+};
+
+typedef struct sam_object {
+    int index;                 /* gs.objects / scene->objects index */
+    uint32_t vertices, n;
+    int deforming;             /* animated: K' path (Eq. 15) + link updates (section 3.4) */
+    uint32_t adj_list, inc_off, inc_list, idx; /* section offsets of the topology buffer */
+    GLuint topo, geom, links, coef, ld, trans, rd;
+    float rd_rmax;
+    int rd_size;
+    size_t bytes;
+    uint32_t linked;           /* vertices with at least one link */
+    double build_seconds;      /* 0 when read from a file */
+} sam_object;
+
+typedef struct sam_data_desc {
+    uint32_t n, samples;
+    uint64_t seed;
+    const char *file;          /* a .sam file for the objects whose mesh it matches, or NULL */
+} sam_data_desc;
+
+/* Builds (or reads) the map of scene object `index` and uploads it. */
+sss_result sam_object_create(sss_gl_renderer *r, int index, const sam_data_desc *d, sam_object *out, sss_error *err);
+void sam_object_free(sam_object *o);
+
+#endif
