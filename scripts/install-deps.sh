@@ -10,7 +10,7 @@ PKGS=(
   libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev xvfb xauth
 )
 if [ "${1:-}" = "--dev" ]; then
-  PKGS+=(python3-skimage python3-numpy clang libclang-rt-14-dev valgrind)
+  PKGS+=(python3-skimage python3-numpy clang libclang-rt-14-dev valgrind chromium)
 fi
 
 missing=()

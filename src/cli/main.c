@@ -19,6 +19,7 @@ static const command commands[] = {
     {"reference", sss_cmd_reference, "render a scene's CPU ground truth (the subsurface integral)"},
     {"render", sss_cmd_render, "render a scene in real time with OpenGL (headless) to an image"},
     {"techniques", sss_cmd_techniques, "list the real-time techniques"},
+    {"eval", sss_cmd_eval, "evaluate techniques against the reference: metrics, timings, sheets, plots, report"},
     {"export", sss_cmd_export, "write a scene for another renderer (export pbrt)"},
     {"sam", sss_cmd_sam, "build or inspect a Spatial Adjacency Map (seed 001) of a mesh"},
 };

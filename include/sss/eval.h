@@ -1,0 +1,203 @@
+/* sss/eval.h — evaluation of the real-time techniques against the CPU ground truth, as the papers
+ * measure them: image quality (DSSIM, PSNR, RMSE; seed 000 section 8.1, Figs. 7 and 10; seed 001
+ * Figs. 10 and 11), frame time per pass (seed 000 section 8.2, Fig. 11), precomputation and memory.
+ *
+ * Does: loads scenes, renders every requested technique (the GL registry's, so new techniques appear
+ * without changes here) at each requested resolution and the reference (sss/reference.h; a cached
+ * EXR next to the scene when asked and present), compares them (sss_image_compare), times every pass
+ * (median of N frames), and writes results.json, results.csv, one comparison sheet per scene, plots
+ * and a self-contained report.html (cairo for the images).
+ * Does not: print (progress and notes go through callbacks), exit, or drop a failing technique: a
+ * technique that cannot be created or rendered is an entry with status "failed" and the error.
+ *
+ * Threading: everything runs on the calling thread (the reference uses its OpenMP workers); the GL
+ * context is created and destroyed inside sss_eval_run.
+ * Memory: sss_eval_run fills a results struct that sss_eval_results_free releases.
+ */
+#ifndef SSS_EVAL_H
+#define SSS_EVAL_H
+
+#include <stddef.h>
+
+#include "sss/common.h"
+#include "sss/gl.h"
+#include "sss/image.h"
+#include "sss/reference.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct sss_eval_size {
+    int width, height;
+} sss_eval_size;
+
+/* Zero-initialised means: every registered technique, each scene at its camera's size, 3 frames,
+ * references rendered at final quality, SAM sweep when `sam` is among the techniques.
+ *
+ * Technique specs are "name" or "name:param=value[:param=value...]" (technique or shared parameters
+ * of sss/gl.h); the whole spec is the entry's label. An unknown name or parameter is not an error of
+ * the run: the entry is reported as failed with the renderer's message.
+ * Scene arguments are "path.json" or "path.json@T": the animation time T in seconds (default 0). */
+typedef struct sss_eval_desc {
+    const char *const *techniques;  /* specs; NULL or 0 count: every registered technique */
+    int technique_count;
+    const sss_eval_size *resolutions; /* quality runs (reference + metrics); 0 count: camera size */
+    int resolution_count;
+    const sss_eval_size *timing_resolutions; /* extra sizes where only frame times are measured */
+    int timing_resolution_count;
+    int frames;                     /* frames per technique; timings are medians; 0 -> 3 */
+    int cached_reference;           /* use <reference_dir>/<scene>_<w>x<h>[_t<T>].exr when present */
+    const char *reference_dir;      /* NULL: "references" in each scene file's folder */
+    sss_reference_quality reference_quality;
+    int reference_threads;          /* 0: all cores */
+    int sam_sweep;                  /* 0: auto (sam among the techniques), 1: always, -1: never */
+    const int *sam_counts;          /* back-side sample counts; NULL: 3, 10, 20, 50 (seed 001 Fig. 10) */
+    int sam_count_count;
+    const char *save_references_dir; /* if set, rendered (not cached) references are written here as
+                                        half-float EXR with their .json sidecar, ready to commit */
+} sss_eval_desc;
+
+/* Progress: fraction in [0, 1] of the estimated work and a short description of the current step
+ * ("eval_dragon 480x270: reference 35%"). note: one line the user should see (a reference that is
+ * rendered because no cached one exists, a stale cache, a skipped SAM count). Either may be NULL. */
+typedef struct sss_eval_callbacks {
+    void (*progress)(void *user, double fraction, const char *stage);
+    void (*note)(void *user, const char *message);
+    void *user;
+} sss_eval_callbacks;
+
+/* ---- Results --------------------------------------------------------------------------------- */
+
+typedef enum sss_eval_kind {
+    SSS_EVAL_QUALITY = 0, /* rendered at a quality resolution and compared with the reference */
+    SSS_EVAL_TIMING,      /* frame time only (timing_resolutions) */
+    SSS_EVAL_SAM_SWEEP    /* the sam technique at one back-side sample count (seed 001 Fig. 10) */
+} sss_eval_kind;
+
+const char *sss_eval_kind_name(sss_eval_kind kind); /* "quality", "timing", "sam_sweep" */
+
+typedef struct sss_eval_pass {
+    char name[32];
+    double ms; /* median over the frames */
+} sss_eval_pass;
+
+#define SSS_EVAL_LABEL_SIZE 160
+
+typedef struct sss_eval_entry {
+    int scene;                        /* index into sss_eval_results.scenes */
+    sss_eval_kind kind;
+    char label[SSS_EVAL_LABEL_SIZE];  /* the technique spec as given ("sam:n=10" for sweep points) */
+    char technique[64];               /* the technique name of the spec */
+    int width, height;
+    int sam_n;                        /* SAM_SWEEP: back-side samples; 0 otherwise */
+    int ok;                           /* 0: failed, error holds why */
+    char error[SSS_ERROR_MESSAGE_SIZE];
+    int has_metrics;                  /* compared with a reference */
+    sss_image_metrics metrics;
+    int frames;                       /* frames rendered */
+    double total_ms;                  /* median of the per-frame totals */
+    int pass_count;
+    sss_eval_pass passes[SSS_GL_MAX_PASSES];
+    double precompute_ms;             /* sss_gl_renderer_create: upload, LUTs, technique set-up */
+    int has_stats;
+    sss_gl_stats stats;               /* texture_bytes + buffer_bytes is the renderer's GPU memory */
+    sss_image image;                  /* QUALITY at the first resolution only (empty otherwise) */
+    sss_image dssim_map;              /* per-pixel, per-channel DSSIM of image (same rule) */
+} sss_eval_entry;
+
+typedef enum sss_eval_ref_source {
+    SSS_EVAL_REF_NONE = 0, /* not available (failed) */
+    SSS_EVAL_REF_CACHED,
+    SSS_EVAL_REF_RENDERED
+} sss_eval_ref_source;
+
+typedef struct sss_eval_reference {
+    int width, height;
+    sss_eval_ref_source source;
+    char path[1024];                  /* the cached file read, or the file saved (may be empty) */
+    double seconds;                   /* render (or read) time */
+    char quality[8];                  /* "final" / "draft" (cached: from its sidecar, else "unknown") */
+    char error[SSS_ERROR_MESSAGE_SIZE]; /* SSS_EVAL_REF_NONE: why */
+} sss_eval_reference;
+
+typedef struct sss_eval_scene {
+    char *path;                       /* as given, without the @T suffix */
+    char name[128];                   /* file stem, plus "@T" when a time was given */
+    char stem[128];                   /* file stem */
+    double time;
+    int has_time;
+    int width, height;                /* camera size */
+    double exposure;
+    unsigned long long triangles;     /* of all objects' render meshes */
+    int reference_count;
+    sss_eval_reference references[8]; /* one per quality resolution, in order */
+    sss_image reference;              /* at the first quality resolution (empty when unavailable) */
+} sss_eval_scene;
+
+typedef struct sss_eval_results {
+    sss_eval_scene *scenes;
+    int scene_count;
+    sss_eval_entry *entries;
+    int entry_count, entry_capacity;
+    char **labels;                    /* the technique specs evaluated, in order */
+    int label_count;
+    int frames;
+    sss_reference_quality reference_quality;
+    int cached_reference;
+    int gl_ok;                        /* a GL context could be created */
+    char gl_error[SSS_ERROR_MESSAGE_SIZE];
+    char gl_platform[64], gl_renderer[160], gl_version[160], timing_method[64];
+    int gl_software;
+    int sam_available;                /* the registry has sam with a sample-count parameter */
+    int sam_swept;                    /* the sweep ran */
+    char sam_param[32];               /* that parameter's name */
+    char sam_note[256];               /* why not, when unavailable */
+    double seconds;                   /* wall time of sss_eval_run */
+    char created[32];                 /* UTC, ISO 8601 */
+} sss_eval_results;
+
+/* Runs the evaluation. Fails (nothing to free) on invalid arguments, a scene that cannot be loaded
+ * (the message names the file), an EXR that cannot be saved, or out of memory; technique failures
+ * and reference failures are results, not errors. */
+sss_result sss_eval_run(const char *const *scenes, int scene_count, const sss_eval_desc *desc,
+                        const sss_eval_callbacks *cb, sss_eval_results *out, sss_error *err);
+void sss_eval_results_free(sss_eval_results *res);
+
+/* Checks a technique spec's syntax ("name[:param=value...]", value a finite number); the name and
+ * parameters are not looked up. */
+sss_result sss_eval_check_spec(const char *spec, sss_error *err);
+/* Parses "WxH[,WxH...]" (each 11..16384, the SSIM window needs 11). *out is malloc'ed. */
+sss_result sss_eval_parse_sizes(const char *text, sss_eval_size **out, int *count, sss_error *err);
+/* The cached reference's file name: "<dir>/<stem>_<w>x<h>.exr", with "_t<T>" before ".exr" when a
+ * time was given (T printed with %g). */
+int sss_eval_reference_path(const char *dir, const char *stem, int width, int height, int has_time, double time,
+                            char *out, size_t cap);
+
+/* ---- Output ---------------------------------------------------------------------------------- */
+
+/* Everything below into out_dir (created if missing): results.json, results.csv, sheet_<scene>.png per
+ * scene, plot_dssim.png, plot_passes.png, plot_sam_rmse.png, plot_resolution.png and report.html.
+ * Files are written atomically. */
+sss_result sss_eval_write_all(const sss_eval_results *res, const char *out_dir, sss_error *err);
+
+sss_result sss_eval_write_json(const sss_eval_results *res, const char *path, sss_error *err);
+sss_result sss_eval_write_csv(const sss_eval_results *res, const char *path, sss_error *err);
+/* The comparison sheet of one scene (seed 000 Fig. 7): the reference large, each technique with its
+ * label, DSSIM and milliseconds, and its per-pixel DSSIM map (R, G, B = the channels' DSSIM). */
+sss_result sss_eval_write_sheet(const sss_eval_results *res, int scene, const char *path, sss_error *err);
+/* Plots (PNG): DSSIM per technique per scene (grouped bars, seed 000 Fig. 10); stacked milliseconds
+ * per pass (seed 000 Fig. 11); SAM RMSE against back-side samples (seed 001 Fig. 10; says "sam not
+ * available" when it is not); total frame time against resolution (mean over scenes). */
+sss_result sss_eval_plot_dssim(const sss_eval_results *res, const char *path, sss_error *err);
+sss_result sss_eval_plot_passes(const sss_eval_results *res, const char *path, sss_error *err);
+sss_result sss_eval_plot_sam(const sss_eval_results *res, const char *path, sss_error *err);
+sss_result sss_eval_plot_resolution(const sss_eval_results *res, const char *path, sss_error *err);
+/* report.html: one page, images embedded as base64 data URIs, CSS inline, no scripts. Reads the PNGs
+ * named above from out_dir (missing ones are left out with a note). */
+sss_result sss_eval_write_report(const sss_eval_results *res, const char *out_dir, sss_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,317 @@
+/* cli/cmd_eval.c — `sss eval SCENE.json... --out DIR`: every technique against the CPU reference on each
+ * scene (sss/eval.h): results.json/.csv, comparison sheets, plots and report.html; a progress bar with
+ * ETA on a terminal, plain lines otherwise; a summary table on stdout. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli/cli.h"
+#include "sss/eval.h"
+
+#define CMD "eval"
+#define MAX_LIST 256
+
+static void print_usage(FILE *f)
+{
+    fprintf(f,
+            "usage: sss eval SCENE.json[@T]... [--out DIR] [--techniques A,B:param=value,...]\n"
+            "                [--resolutions WxH,...] [--timing-resolutions WxH,...] [--frames N]\n"
+            "                [--cached-reference] [--reference-dir DIR] [--reference-quality draft|final]\n"
+            "                [--reference-threads N] [--sam-sweep | --no-sam-sweep] [--sam-counts 3,10,20,50]\n"
+            "                [--quiet]\n"
+            "\n"
+            "Renders every technique and the CPU reference for each scene, compares them (DSSIM, PSNR, RMSE\n"
+            "on the tone-mapped 8-bit images), times every pass (median of N frames) and writes to DIR:\n"
+            "results.json (schema docs/results.schema.json), results.csv, sheet_<scene>.png (reference,\n"
+            "techniques and their DSSIM maps), plot_dssim.png, plot_passes.png, plot_sam_rmse.png,\n"
+            "plot_resolution.png, and report.html (self-contained). A technique that fails is reported as\n"
+            "failed with its error, not dropped. A summary table goes to stdout.\n"
+            "\n"
+            "options:\n"
+            "  SCENE.json@T          evaluate an animated scene at time T seconds (default 0)\n"
+            "  --out DIR             output folder (default out/eval)\n"
+            "  --techniques LIST     comma-separated specs NAME or NAME:param=value[:param=value]\n"
+            "                        (default: every technique of `sss techniques`)\n"
+            "  --resolutions LIST    sizes compared with the reference, WxH,... (default: the camera's);\n"
+            "                        the first one is used for the sheets\n"
+            "  --timing-resolutions LIST  extra sizes where only frame times are measured\n"
+            "  --frames N            frames per technique; timings are medians (default 3)\n"
+            "  --cached-reference    use <scene folder>/references/<scene>_<W>x<H>[_t<T>].exr when it exists\n"
+            "                        (and its .json sidecar matches the scene file), else render it\n"
+            "  --reference-dir DIR   where cached references are looked up instead\n"
+            "  --reference-quality Q final (default) or draft, for references that are rendered\n"
+            "  --reference-threads N threads of the reference renderer (default: all cores)\n"
+            "  --sam-sweep           RMSE of `sam` against back-side samples n (seed 001 Fig. 10) even when\n"
+            "                        sam is not among the techniques; --no-sam-sweep never\n"
+            "  --sam-counts LIST     the sample counts of the sweep (default 3,10,20,50)\n"
+            "  --quiet               no progress or notes on stderr\n"
+            "\n"
+            "References rendered during the run are saved to DIR/references/ (half-float EXR + .json\n"
+            "sidecar) so that they can be committed next to the scene.\n"
+            "Exit status: 0 results written (also when techniques failed), 1 error, 2 usage error.\n");
+}
+
+typedef struct progress_state {
+    int tty, quiet;
+    double start;
+    char last[256];
+    int bar_shown;
+} progress_state;
+
+/* Stage without the per-frame suffix, for the plain (non-terminal) lines. */
+static void major_stage(const char *stage, char *out, size_t cap)
+{
+    snprintf(out, cap, "%s", stage ? stage : "");
+    const char *cut[] = {": frame ", ": set-up"};
+    for (int i = 0; i < 2; i++) {
+        char *p = strstr(out, cut[i]);
+        if (p) *p = '\0';
+    }
+    char *paren = strstr(out, ": reference (");
+    if (paren) paren[strlen(": reference")] = '\0';
+}
+
+static void on_progress(void *user, double fraction, const char *stage)
+{
+    progress_state *p = user;
+    if (p->quiet) return;
+    if (p->tty) {
+        double elapsed = sss_time_seconds() - p->start;
+        char eta[32] = "--:--";
+        if (fraction > 0.01 && fraction < 1) {
+            int s = (int)(elapsed * (1.0 - fraction) / fraction + 0.5);
+            snprintf(eta, sizeof eta, "%d:%02d", s / 60, s % 60);
+        } else if (fraction >= 1) {
+            snprintf(eta, sizeof eta, "0:00");
+        }
+        char bar[26];
+        int filled = (int)(25.0 * fraction);
+        for (int i = 0; i < 25; i++) bar[i] = i < filled ? '#' : '.';
+        bar[25] = '\0';
+        fprintf(stderr, "\r\033[K[%s] %3d%% ETA %s  %.70s", bar, (int)(100.0 * fraction), eta, stage ? stage : "");
+        fflush(stderr);
+        p->bar_shown = 1;
+    } else {
+        char major[256];
+        major_stage(stage, major, sizeof major);
+        if (strcmp(major, p->last) != 0) {
+            snprintf(p->last, sizeof p->last, "%s", major);
+            fprintf(stderr, "[%3d%%] %s\n", (int)(100.0 * fraction), major);
+        }
+    }
+}
+
+static void on_note(void *user, const char *msg)
+{
+    progress_state *p = user;
+    if (p->quiet) return;
+    if (p->tty && p->bar_shown) fputs("\r\033[K", stderr);
+    fprintf(stderr, "sss eval: %s\n", msg);
+}
+
+/* Splits a comma-separated list in place. */
+static int split_list(char *text, char **items, int max)
+{
+    int n = 0;
+    for (char *tok = strtok(text, ","); tok; tok = strtok(NULL, ",")) {
+        if (n >= max) return -1;
+        items[n++] = tok;
+    }
+    return n;
+}
+
+static void print_summary(const sss_eval_results *res, const char *out_dir)
+{
+    printf("%-22s %-26s %-7s %9s %8s %8s %11s\n", "scene", "technique", "status", "DSSIM", "PSNR", "RMSE", "ms/frame");
+    for (int i = 0; i < res->entry_count; i++) {
+        const sss_eval_entry *e = &res->entries[i];
+        if (e->kind != SSS_EVAL_QUALITY) continue;
+        int pw = res->scenes[e->scene].references[0].width, ph = res->scenes[e->scene].references[0].height;
+        if (e->width != pw || e->height != ph) continue;
+        char d[16] = "-", p[16] = "-", r[16] = "-", ms[24] = "-";
+        if (e->has_metrics) {
+            snprintf(d, sizeof d, "%.4f", e->metrics.dssim);
+            if (isfinite(e->metrics.psnr)) snprintf(p, sizeof p, "%.2f", e->metrics.psnr);
+            else snprintf(p, sizeof p, "inf");
+            snprintf(r, sizeof r, "%.3f", e->metrics.rmse);
+        }
+        if (e->ok) snprintf(ms, sizeof ms, "%.1f", e->total_ms);
+        printf("%-22.22s %-26.26s %-7s %9s %8s %8s %11s\n", res->scenes[e->scene].name, e->label,
+               e->ok ? "ok" : "FAILED", d, p, r, ms);
+    }
+    int failed = 0;
+    for (int i = 0; i < res->entry_count; i++) failed += !res->entries[i].ok;
+    if (failed) {
+        printf("\n%d failed run%s:\n", failed, failed == 1 ? "" : "s");
+        for (int i = 0; i < res->entry_count; i++) {
+            const sss_eval_entry *e = &res->entries[i];
+            if (!e->ok) printf("  %s / %s (%dx%d): %.200s\n", res->scenes[e->scene].name, e->label, e->width, e->height, e->error);
+        }
+    }
+    for (int s = 0; s < res->scene_count; s++)
+        for (int k = 0; k < res->scenes[s].reference_count; k++) {
+            const sss_eval_reference *r = &res->scenes[s].references[k];
+            if (r->source == SSS_EVAL_REF_NONE)
+                printf("reference %s %dx%d unavailable: %s\n", res->scenes[s].name, r->width, r->height, r->error);
+        }
+    printf("\n%d scene%s, %d technique%s, %.1f s; timings: %s\n", res->scene_count, res->scene_count == 1 ? "" : "s",
+           res->label_count, res->label_count == 1 ? "" : "s", res->seconds,
+           res->timing_method[0] ? res->timing_method : (res->gl_ok ? "-" : res->gl_error));
+    printf("wrote %s/report.html (and results.json, results.csv, sheets, plots)\n", out_dir);
+}
+
+int sss_cmd_eval(int argc, char **argv)
+{
+    if (cli_wants_help(argc, argv)) {
+        print_usage(stdout);
+        return CLI_EXIT_OK;
+    }
+    const char *out_dir = "out/eval";
+    const char **scenes = calloc((size_t)argc, sizeof *scenes);
+    char *tech_text = NULL;
+    char *techs[MAX_LIST];
+    int nscenes = 0, quiet = 0, status = CLI_EXIT_USAGE;
+    sss_eval_desc desc;
+    memset(&desc, 0, sizeof desc);
+    sss_eval_size *sizes = NULL, *tsizes = NULL;
+    int sam_counts[64];
+    char save_dir[2048];
+    sss_eval_results res;
+    memset(&res, 0, sizeof res);
+    if (!scenes) return cli_failf(CMD, "out of memory");
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v;
+        sss_error perr = {0};
+        if (strcmp(a, "--out") == 0 || strcmp(a, "-o") == 0) {
+            if (!(out_dir = cli_option_value(CMD, argc, argv, &i))) goto done;
+        } else if (strcmp(a, "--techniques") == 0) {
+            if (!(v = cli_option_value(CMD, argc, argv, &i))) goto done;
+            free(tech_text);
+            tech_text = strdup(v);
+            if (!tech_text) {
+                status = cli_failf(CMD, "out of memory");
+                goto done;
+            }
+            int n = split_list(tech_text, techs, MAX_LIST);
+            if (n <= 0) {
+                cli_usage_error(CMD, "--techniques needs a comma-separated list (at most %d)", MAX_LIST);
+                goto done;
+            }
+            for (int k = 0; k < n; k++)
+                if (sss_eval_check_spec(techs[k], &perr) != SSS_OK) {
+                    cli_usage_error(CMD, "--techniques: %s", perr.message);
+                    goto done;
+                }
+            desc.techniques = (const char *const *)techs;
+            desc.technique_count = n;
+        } else if (strcmp(a, "--resolutions") == 0 || strcmp(a, "--timing-resolutions") == 0) {
+            if (!(v = cli_option_value(CMD, argc, argv, &i))) goto done;
+            int timing = a[2] == 't';
+            sss_eval_size **dst = timing ? &tsizes : &sizes;
+            free(*dst);
+            int n = 0;
+            if (sss_eval_parse_sizes(v, dst, &n, &perr) != SSS_OK) {
+                cli_usage_error(CMD, "%s: %s", a, perr.message);
+                goto done;
+            }
+            if (!timing && n > 8) {
+                cli_usage_error(CMD, "--resolutions: at most 8 sizes");
+                goto done;
+            }
+            if (timing) desc.timing_resolution_count = n;
+            else desc.resolution_count = n;
+        } else if (strcmp(a, "--frames") == 0) {
+            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &desc.frames)) goto done;
+            if (desc.frames < 1 || desc.frames > 10000) {
+                cli_usage_error(CMD, "--frames must be in 1..10000");
+                goto done;
+            }
+        } else if (strcmp(a, "--cached-reference") == 0) {
+            desc.cached_reference = 1;
+        } else if (strcmp(a, "--reference-dir") == 0) {
+            if (!(desc.reference_dir = cli_option_value(CMD, argc, argv, &i))) goto done;
+        } else if (strcmp(a, "--reference-quality") == 0) {
+            if (!(v = cli_option_value(CMD, argc, argv, &i))) goto done;
+            if (strcmp(v, "final") == 0) desc.reference_quality = SSS_REFERENCE_FINAL;
+            else if (strcmp(v, "draft") == 0) desc.reference_quality = SSS_REFERENCE_DRAFT;
+            else {
+                cli_usage_error(CMD, "--reference-quality must be draft or final, got '%s'", v);
+                goto done;
+            }
+        } else if (strcmp(a, "--reference-threads") == 0) {
+            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &desc.reference_threads))
+                goto done;
+            if (desc.reference_threads < 1 || desc.reference_threads > 4096) {
+                cli_usage_error(CMD, "--reference-threads must be in 1..4096");
+                goto done;
+            }
+        } else if (strcmp(a, "--sam-sweep") == 0) {
+            desc.sam_sweep = 1;
+        } else if (strcmp(a, "--no-sam-sweep") == 0) {
+            desc.sam_sweep = -1;
+        } else if (strcmp(a, "--sam-counts") == 0) {
+            if (!(v = cli_option_value(CMD, argc, argv, &i))) goto done;
+            char buf[512];
+            snprintf(buf, sizeof buf, "%s", v);
+            char *items[64];
+            int n = split_list(buf, items, 64);
+            if (n <= 0) {
+                cli_usage_error(CMD, "--sam-counts needs a comma-separated list of at most 64 counts");
+                goto done;
+            }
+            for (int k = 0; k < n; k++) {
+                if (!cli_parse_int(CMD, a, items[k], &sam_counts[k])) goto done;
+                if (sam_counts[k] < 1) {
+                    cli_usage_error(CMD, "--sam-counts: counts must be >= 1");
+                    goto done;
+                }
+            }
+            desc.sam_counts = sam_counts;
+            desc.sam_count_count = n;
+        } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
+            quiet = 1;
+        } else if (a[0] == '-' && a[1]) {
+            cli_usage_error(CMD, "unknown option '%s'", a);
+            goto done;
+        } else {
+            scenes[nscenes++] = a;
+        }
+    }
+    if (nscenes == 0) {
+        cli_usage_error(CMD, "expects at least one scene file");
+        goto done;
+    }
+    desc.resolutions = sizes;
+    desc.timing_resolutions = tsizes;
+    snprintf(save_dir, sizeof save_dir, "%s/references", out_dir);
+    desc.save_references_dir = save_dir;
+
+    progress_state ps;
+    memset(&ps, 0, sizeof ps);
+    ps.tty = isatty(fileno(stderr));
+    ps.quiet = quiet;
+    ps.start = sss_time_seconds();
+    sss_eval_callbacks cb = {on_progress, on_note, &ps};
+    sss_error err = {0};
+    sss_result r = sss_eval_run(scenes, nscenes, &desc, &cb, &res, &err);
+    if (!quiet && ps.tty && ps.bar_shown) fputc('\n', stderr);
+    if (r != SSS_OK) {
+        status = cli_fail(CMD, &err);
+        goto done;
+    }
+    if (sss_eval_write_all(&res, out_dir, &err) != SSS_OK) {
+        status = cli_fail(CMD, &err);
+        goto done;
+    }
+    print_summary(&res, out_dir);
+    status = CLI_EXIT_OK;
+done:
+    sss_eval_results_free(&res);
+    free(sizes);
+    free(tsizes);
+    free(tech_text);
+    free(scenes);
+    return status;
+}

@@ -1,0 +1,89 @@
+/* eval/eval_internal.h — internals of the evaluation module shared by its files. */
+#ifndef SSS_EVAL_INTERNAL_H
+#define SSS_EVAL_INTERNAL_H
+
+#include <cairo.h>
+#include <stdint.h>
+
+#include "sss/eval.h"
+#include "sss/scene.h"
+
+#define EVAL_MAX_QUALITY_SIZES 8
+#define EVAL_MAX_SPEC_PARAMS 32
+
+/* A parsed technique spec "name:param=value:...". */
+typedef struct eval_spec {
+    char name[64];
+    char names[EVAL_MAX_SPEC_PARAMS][64];
+    sss_gl_param_value params[EVAL_MAX_SPEC_PARAMS + 1]; /* +1: room for the SAM sweep's count */
+    int param_count;
+} eval_spec;
+
+sss_result eval_parse_spec(const char *text, eval_spec *out, sss_error *err);
+
+/* Appends a zeroed entry (growing the array); NULL when out of memory. */
+sss_eval_entry *eval_add_entry(sss_eval_results *res);
+
+/* "references" folder of a scene file: <dir of path>/references. */
+void eval_default_reference_dir(const char *scene_path, char *out, size_t cap);
+/* 64-bit FNV-1a of a file's bytes; 0 on read failure. */
+uint64_t eval_file_hash(const char *path);
+
+/* The reference of one scene at one size: cached when desc asks and a fresh one exists, else
+ * rendered (and saved when desc->save_references_dir is set). Fills ref; img is created on success.
+ * Returns SSS_OK also when the reference is unavailable (ref->source NONE, ref->error set); errors
+ * are for failures the run must stop on (saving, memory). */
+typedef struct eval_progress eval_progress;
+sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const sss_eval_desc *desc,
+                          eval_progress *prog, sss_eval_reference *ref, sss_image *img, sss_error *err);
+
+/* Progress bookkeeping (eval_run.c): units done and planned, the callbacks. */
+struct eval_progress {
+    const sss_eval_callbacks *cb;
+    double done, total;  /* work units */
+    double step;         /* units of the current step */
+    char stage[256];
+};
+void eval_progress_update(eval_progress *p, double step_fraction, const char *stage);
+void eval_progress_finish_step(eval_progress *p);
+void eval_note(eval_progress *p, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* ---- Drawing (eval_draw.c) ---- */
+
+typedef struct eval_rgb {
+    double r, g, b;
+} eval_rgb;
+
+eval_rgb eval_palette(int i); /* distinct colours (Tableau 10, then darker variants) */
+/* A cairo image surface holding img tone-mapped with exposure (8-bit sRGB); NULL on failure. */
+cairo_surface_t *eval_surface_from_image(const sss_image *img, double exposure);
+/* The DSSIM map as colours: channel value * gain, clamped to [0, 1] (black = no difference). */
+cairo_surface_t *eval_surface_from_map(const sss_image *map, double gain);
+/* Draws surface scaled into the box (x, y, w, h) keeping its aspect ratio; returns the drawn height. */
+double eval_draw_surface(cairo_t *cr, cairo_surface_t *s, double x, double y, double w, double h);
+/* Text helpers: size in pixels; align 0 left, 0.5 centre, 1 right (x is the anchor); y the baseline. */
+void eval_text(cairo_t *cr, double x, double y, double size, int bold, double align, const char *text);
+double eval_text_width(cairo_t *cr, double size, int bold, const char *text);
+/* Writes an ARGB32/RGB24 surface as PNG atomically (sss_image_write_png8). */
+sss_result eval_write_surface(cairo_surface_t *s, const char *path, sss_error *err);
+/* Surface + context of a white canvas; 0 on failure (both set to NULL). */
+int eval_canvas(int width, int height, cairo_surface_t **s, cairo_t **cr);
+
+/* Nice axis ticks from lo to hi (about `target` of them): step and first tick. */
+void eval_ticks(double lo, double hi, int target, double *first, double *step, int *count);
+/* Number formatting for labels: short, no exponent for usual ranges. */
+void eval_format_number(double v, double step, char *out, size_t cap);
+
+/* Entry lookup: QUALITY/TIMING entry of (scene, label index, size); NULL when absent. */
+const sss_eval_entry *eval_find(const sss_eval_results *res, int scene, sss_eval_kind kind, const char *label,
+                                int width, int height);
+/* "sheet_<stem>.png", "sheet_<stem>_t<T>.png" for a scene with a time. */
+void eval_sheet_file(const sss_eval_scene *s, char *out, size_t cap);
+/* The scene's first quality size (its camera size when no references were planned). */
+void eval_primary_size(const sss_eval_results *res, int scene, int *width, int *height);
+
+#endif

@@ -1,0 +1,243 @@
+/* eval/eval_json.c — results.json (schema docs/results.schema.json, "sss-eval-results/1") and
+ * results.csv (one row per entry). Non-finite numbers never reach a file: they become null (JSON) or
+ * an empty field (CSV); an infinite PSNR (identical images) is null, in JSON with "psnr_infinite": true. */
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/file_util.h"
+#include "eval/eval_internal.h"
+
+static void add_num(cJSON *o, const char *key, double v)
+{
+    if (isfinite(v)) cJSON_AddNumberToObject(o, key, v);
+    else cJSON_AddNullToObject(o, key);
+}
+
+static const char *ref_source(sss_eval_ref_source s)
+{
+    return s == SSS_EVAL_REF_CACHED ? "cached" : s == SSS_EVAL_REF_RENDERED ? "rendered" : "unavailable";
+}
+
+static cJSON *entry_json(const sss_eval_results *res, const sss_eval_entry *e)
+{
+    cJSON *o = cJSON_CreateObject();
+    if (!o) return NULL;
+    cJSON_AddStringToObject(o, "scene", res->scenes[e->scene].name);
+    cJSON_AddNumberToObject(o, "scene_index", e->scene);
+    cJSON_AddStringToObject(o, "kind", sss_eval_kind_name(e->kind));
+    cJSON_AddStringToObject(o, "technique", e->technique);
+    cJSON_AddStringToObject(o, "label", e->label);
+    cJSON *params = cJSON_AddObjectToObject(o, "params");
+    eval_spec spec;
+    if (params && eval_parse_spec(e->label, &spec, NULL) == SSS_OK)
+        for (int i = 0; i < spec.param_count; i++) add_num(params, spec.names[i], spec.params[i].value);
+    cJSON_AddNumberToObject(o, "width", e->width);
+    cJSON_AddNumberToObject(o, "height", e->height);
+    if (e->kind == SSS_EVAL_SAM_SWEEP) cJSON_AddNumberToObject(o, "sam_n", e->sam_n);
+    else cJSON_AddNullToObject(o, "sam_n");
+    cJSON_AddStringToObject(o, "status", e->ok ? "ok" : "failed");
+    if (e->ok) cJSON_AddNullToObject(o, "error");
+    else cJSON_AddStringToObject(o, "error", e->error);
+    if (e->has_metrics) {
+        add_num(o, "dssim", e->metrics.dssim);
+        add_num(o, "psnr", e->metrics.psnr);
+        cJSON_AddBoolToObject(o, "psnr_infinite", isinf(e->metrics.psnr) != 0);
+        add_num(o, "rmse", e->metrics.rmse);
+        add_num(o, "max_abs", e->metrics.max_abs);
+    } else {
+        const char *keys[] = {"dssim", "psnr", "rmse", "max_abs"};
+        for (int i = 0; i < 4; i++) cJSON_AddNullToObject(o, keys[i]);
+        cJSON_AddBoolToObject(o, "psnr_infinite", 0);
+    }
+    cJSON_AddNumberToObject(o, "frames", e->frames);
+    if (e->ok) add_num(o, "ms_total", e->total_ms);
+    else cJSON_AddNullToObject(o, "ms_total");
+    cJSON *passes = cJSON_AddArrayToObject(o, "passes");
+    for (int p = 0; passes && e->ok && p < e->pass_count; p++) {
+        cJSON *po = cJSON_CreateObject();
+        if (!po) continue;
+        cJSON_AddStringToObject(po, "name", e->passes[p].name);
+        add_num(po, "ms", e->passes[p].ms);
+        cJSON_AddItemToArray(passes, po);
+    }
+    /* set-up time exists whenever the renderer was created, even if a frame failed later */
+    if (e->precompute_ms > 0) add_num(o, "precompute_ms", e->precompute_ms);
+    else cJSON_AddNullToObject(o, "precompute_ms");
+    if (e->has_stats) {
+        cJSON *m = cJSON_AddObjectToObject(o, "memory");
+        if (m) {
+            cJSON_AddNumberToObject(m, "gpu_bytes", (double)(e->stats.texture_bytes + e->stats.buffer_bytes));
+            cJSON_AddNumberToObject(m, "texture_bytes", (double)e->stats.texture_bytes);
+            cJSON_AddNumberToObject(m, "buffer_bytes", (double)e->stats.buffer_bytes);
+            cJSON_AddNumberToObject(m, "lut_bytes", (double)e->stats.lut_bytes);
+            cJSON_AddNumberToObject(m, "per_pixel_bytes", (double)e->stats.per_pixel_bytes);
+            cJSON_AddNumberToObject(m, "splat_total", e->stats.splat_total);
+            cJSON_AddNumberToObject(m, "splat_drawn", e->stats.splat_drawn);
+        }
+    } else {
+        cJSON_AddNullToObject(o, "memory");
+    }
+    return o;
+}
+
+static cJSON *results_json(const sss_eval_results *res)
+{
+    cJSON *root = cJSON_CreateObject();
+    if (!root) return NULL;
+    cJSON_AddStringToObject(root, "schema", "sss-eval-results/1");
+    cJSON_AddStringToObject(root, "generator", "sss eval 0.1.0");
+    cJSON_AddStringToObject(root, "created", res->created);
+    add_num(root, "seconds", res->seconds);
+    cJSON *gl = cJSON_AddObjectToObject(root, "gl");
+    if (gl) {
+        cJSON_AddBoolToObject(gl, "available", res->gl_ok);
+        if (res->gl_ok) cJSON_AddNullToObject(gl, "error");
+        else cJSON_AddStringToObject(gl, "error", res->gl_error[0] ? res->gl_error : "no techniques were run");
+        cJSON_AddStringToObject(gl, "platform", res->gl_platform);
+        cJSON_AddStringToObject(gl, "renderer", res->gl_renderer);
+        cJSON_AddStringToObject(gl, "version", res->gl_version);
+        cJSON_AddBoolToObject(gl, "software", res->gl_software);
+        cJSON_AddStringToObject(gl, "timing_method", res->timing_method);
+    }
+    cJSON *set = cJSON_AddObjectToObject(root, "settings");
+    if (set) {
+        cJSON_AddNumberToObject(set, "frames", res->frames);
+        cJSON_AddStringToObject(set, "reference_quality", res->reference_quality == SSS_REFERENCE_DRAFT ? "draft" : "final");
+        cJSON_AddBoolToObject(set, "cached_reference", res->cached_reference);
+        cJSON *t = cJSON_AddArrayToObject(set, "techniques");
+        for (int i = 0; t && i < res->label_count; i++) cJSON_AddItemToArray(t, cJSON_CreateString(res->labels[i]));
+    }
+    cJSON *scenes = cJSON_AddArrayToObject(root, "scenes");
+    for (int i = 0; scenes && i < res->scene_count; i++) {
+        const sss_eval_scene *s = &res->scenes[i];
+        cJSON *o = cJSON_CreateObject();
+        if (!o) continue;
+        cJSON_AddStringToObject(o, "name", s->name);
+        cJSON_AddStringToObject(o, "path", s->path);
+        cJSON_AddNumberToObject(o, "time", s->time);
+        cJSON_AddNumberToObject(o, "width", s->width);
+        cJSON_AddNumberToObject(o, "height", s->height);
+        cJSON_AddNumberToObject(o, "exposure", s->exposure);
+        cJSON_AddNumberToObject(o, "triangles", (double)s->triangles);
+        cJSON *refs = cJSON_AddArrayToObject(o, "references");
+        for (int k = 0; refs && k < s->reference_count; k++) {
+            const sss_eval_reference *r = &s->references[k];
+            cJSON *ro = cJSON_CreateObject();
+            if (!ro) continue;
+            cJSON_AddNumberToObject(ro, "width", r->width);
+            cJSON_AddNumberToObject(ro, "height", r->height);
+            cJSON_AddStringToObject(ro, "source", ref_source(r->source));
+            cJSON_AddStringToObject(ro, "quality", r->quality[0] ? r->quality : "unknown");
+            if (r->path[0]) cJSON_AddStringToObject(ro, "path", r->path);
+            else cJSON_AddNullToObject(ro, "path");
+            add_num(ro, "seconds", r->seconds);
+            if (r->source == SSS_EVAL_REF_NONE) cJSON_AddStringToObject(ro, "error", r->error);
+            else cJSON_AddNullToObject(ro, "error");
+            cJSON_AddItemToArray(refs, ro);
+        }
+        cJSON_AddItemToArray(scenes, o);
+    }
+    cJSON *results = cJSON_AddArrayToObject(root, "results");
+    for (int i = 0; results && i < res->entry_count; i++) {
+        if (res->entries[i].kind == SSS_EVAL_SAM_SWEEP) continue;
+        cJSON *o = entry_json(res, &res->entries[i]);
+        if (o) cJSON_AddItemToArray(results, o);
+    }
+    cJSON *sam = cJSON_AddObjectToObject(root, "sam_sweep");
+    if (sam) {
+        cJSON_AddBoolToObject(sam, "available", res->sam_available);
+        cJSON_AddBoolToObject(sam, "ran", res->sam_swept);
+        if (res->sam_param[0]) cJSON_AddStringToObject(sam, "param", res->sam_param);
+        else cJSON_AddNullToObject(sam, "param");
+        cJSON_AddStringToObject(sam, "note", res->sam_note);
+        cJSON *pts = cJSON_AddArrayToObject(sam, "points");
+        for (int i = 0; pts && i < res->entry_count; i++) {
+            if (res->entries[i].kind != SSS_EVAL_SAM_SWEEP) continue;
+            cJSON *o = entry_json(res, &res->entries[i]);
+            if (o) cJSON_AddItemToArray(pts, o);
+        }
+    }
+    return root;
+}
+
+sss_result sss_eval_write_json(const sss_eval_results *res, const char *path, sss_error *err)
+{
+    cJSON *root = results_json(res);
+    char *text = root ? cJSON_Print(root) : NULL;
+    cJSON_Delete(root);
+    if (!text) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (%s)", path);
+    char tmp[4096];
+    FILE *f = sss_atomic_open(path, tmp, sizeof tmp, err);
+    if (!f) {
+        free(text);
+        return err ? err->code : SSS_ERROR_IO;
+    }
+    fputs(text, f);
+    fputc('\n', f);
+    free(text);
+    return sss_atomic_close(f, tmp, path, err);
+}
+
+/* RFC 4180 field: quoted when it holds a comma, quote or line break. */
+static void csv_field(FILE *f, const char *s)
+{
+    if (!strpbrk(s, ",\"\r\n")) {
+        fputs(s, f);
+        return;
+    }
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"') fputc('"', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+static void csv_num(FILE *f, double v, int ok)
+{
+    if (ok && isfinite(v)) fprintf(f, ",%.6g", v);
+    else fputc(',', f);
+}
+
+sss_result sss_eval_write_csv(const sss_eval_results *res, const char *path, sss_error *err)
+{
+    char tmp[4096];
+    FILE *f = sss_atomic_open(path, tmp, sizeof tmp, err);
+    if (!f) return err ? err->code : SSS_ERROR_IO;
+    fputs("scene,time,kind,technique,label,width,height,sam_n,status,dssim,psnr,rmse,max_abs,frames,ms_total,"
+          "precompute_ms,gpu_bytes,passes,error\n", f);
+    for (int i = 0; i < res->entry_count; i++) {
+        const sss_eval_entry *e = &res->entries[i];
+        const sss_eval_scene *s = &res->scenes[e->scene];
+        csv_field(f, s->name);
+        fprintf(f, ",%g,%s,", s->time, sss_eval_kind_name(e->kind));
+        csv_field(f, e->technique);
+        fputc(',', f);
+        csv_field(f, e->label);
+        fprintf(f, ",%d,%d,", e->width, e->height);
+        if (e->kind == SSS_EVAL_SAM_SWEEP) fprintf(f, "%d", e->sam_n);
+        fprintf(f, ",%s", e->ok ? "ok" : "failed");
+        csv_num(f, e->metrics.dssim, e->has_metrics);
+        csv_num(f, e->metrics.psnr, e->has_metrics); /* empty when infinite (identical images: rmse 0) */
+        csv_num(f, e->metrics.rmse, e->has_metrics);
+        csv_num(f, e->metrics.max_abs, e->has_metrics);
+        fprintf(f, ",%d", e->frames);
+        csv_num(f, e->total_ms, e->ok);
+        csv_num(f, e->precompute_ms, e->precompute_ms > 0);
+        if (e->has_stats) fprintf(f, ",%zu,", e->stats.texture_bytes + e->stats.buffer_bytes);
+        else fputs(",,", f);
+        char passes[2048] = "";
+        size_t at = 0;
+        for (int p = 0; e->ok && p < e->pass_count && at < sizeof passes; p++)
+            at += (size_t)snprintf(passes + at, sizeof passes - at, "%s%s=%.3f", p ? ";" : "", e->passes[p].name,
+                                   e->passes[p].ms);
+        csv_field(f, passes);
+        fputc(',', f);
+        csv_field(f, e->ok ? "" : e->error);
+        fputc('\n', f);
+    }
+    return sss_atomic_close(f, tmp, path, err);
+}

@@ -1,0 +1,461 @@
+/* eval/eval_plot.c — the plots of the report, drawn with cairo: DSSIM per technique per scene as
+ * grouped bars (seed 000 Fig. 10), stacked milliseconds per pass (seed 000 Fig. 11), SAM RMSE against
+ * the number of back-side samples (seed 001 Fig. 10) and frame time against resolution. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "eval/eval_internal.h"
+
+#define FONT 13.0
+#define TITLE_FONT 17.0
+
+typedef struct frame {
+    double x0, y0, x1, y1;   /* plot area in pixels (y0 top) */
+    double xlo, xhi, ylo, yhi; /* data ranges */
+} frame;
+
+static double fx(const frame *f, double v) { return f->x0 + (v - f->xlo) / (f->xhi - f->xlo) * (f->x1 - f->x0); }
+static double fy(const frame *f, double v) { return f->y1 - (v - f->ylo) / (f->yhi - f->ylo) * (f->y1 - f->y0); }
+
+static double nice_max(double v)
+{
+    if (!(v > 0) || !isfinite(v)) return 1.0;
+    double first, step;
+    int count;
+    eval_ticks(0, v * 1.08, 5, &first, &step, &count);
+    return ceil(v * 1.08 / step - 1e-9) * step;
+}
+
+/* Title, y axis with ticks, grid lines and label; x axis line; x ticks when xticks (numeric x). */
+static void draw_axes(cairo_t *cr, const frame *f, const char *xlabel, const char *ylabel, int xticks)
+{
+    double first, step;
+    int count;
+    char buf[64];
+    eval_ticks(f->ylo, f->yhi, 6, &first, &step, &count);
+    cairo_set_line_width(cr, 1);
+    for (int i = 0; i < count; i++) {
+        double v = first + i * step;
+        if (v > f->yhi + 1e-9 * step) break;
+        double y = round(fy(f, v)) + 0.5;
+        cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
+        cairo_move_to(cr, f->x0, y);
+        cairo_line_to(cr, f->x1, y);
+        cairo_stroke(cr);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        cairo_move_to(cr, f->x0 - 5, y);
+        cairo_line_to(cr, f->x0, y);
+        cairo_stroke(cr);
+        eval_format_number(v, step, buf, sizeof buf);
+        eval_text(cr, f->x0 - 8, y + 4, FONT - 1, 0, 1.0, buf);
+    }
+    if (xticks) {
+        eval_ticks(f->xlo, f->xhi, 8, &first, &step, &count);
+        for (int i = 0; i < count; i++) {
+            double v = first + i * step;
+            if (v > f->xhi + 1e-9 * step) break;
+            double x = round(fx(f, v)) + 0.5;
+            cairo_set_source_rgb(cr, 0.92, 0.92, 0.92);
+            cairo_move_to(cr, x, f->y0);
+            cairo_line_to(cr, x, f->y1);
+            cairo_stroke(cr);
+            cairo_set_source_rgb(cr, 0, 0, 0);
+            cairo_move_to(cr, x, f->y1);
+            cairo_line_to(cr, x, f->y1 + 5);
+            cairo_stroke(cr);
+            eval_format_number(v, step, buf, sizeof buf);
+            eval_text(cr, x, f->y1 + 19, FONT - 1, 0, 0.5, buf);
+        }
+    }
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_set_line_width(cr, 1.2);
+    cairo_move_to(cr, f->x0 + 0.5, f->y0);
+    cairo_line_to(cr, f->x0 + 0.5, f->y1 + 0.5);
+    cairo_line_to(cr, f->x1, f->y1 + 0.5);
+    cairo_stroke(cr);
+    if (xlabel) eval_text(cr, (f->x0 + f->x1) / 2, f->y1 + (xticks ? 42 : 38), FONT, 0, 0.5, xlabel);
+    if (ylabel) {
+        cairo_save(cr);
+        cairo_translate(cr, f->x0 - 58, (f->y0 + f->y1) / 2);
+        cairo_rotate(cr, -M_PI / 2);
+        eval_text(cr, 0, 0, FONT, 0, 0.5, ylabel);
+        cairo_restore(cr);
+    }
+}
+
+/* The title, centred on the canvas (whose width fits it: see canvas_width). */
+static void draw_title(cairo_t *cr, int W, const char *title)
+{
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    eval_text(cr, W / 2.0, 34, TITLE_FONT, 1, 0.5, title);
+}
+
+/* Widens W so that the title fits with margins. */
+static int canvas_width(cairo_t *measure, int W, const char *title)
+{
+    int tw = (int)ceil(eval_text_width(measure, TITLE_FONT, 1, title)) + 60;
+    return W > tw ? W : tw;
+}
+
+/* Legend: colour swatches (markers when lines) with labels, top-down from (x, y). */
+static void draw_legend(cairo_t *cr, double x, double y, const char *heading, char **labels, int n, int lines)
+{
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    if (heading) {
+        eval_text(cr, x, y, FONT, 1, 0, heading);
+        y += 20;
+    }
+    for (int i = 0; i < n; i++) {
+        eval_rgb c = eval_palette(i);
+        cairo_set_source_rgb(cr, c.r, c.g, c.b);
+        if (lines) {
+            cairo_set_line_width(cr, 2.5);
+            cairo_move_to(cr, x, y - 5);
+            cairo_line_to(cr, x + 22, y - 5);
+            cairo_stroke(cr);
+            cairo_arc(cr, x + 11, y - 5, 4, 0, 2 * M_PI);
+            cairo_fill(cr);
+        } else {
+            cairo_rectangle(cr, x, y - 11, 22, 12);
+            cairo_fill(cr);
+        }
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        eval_text(cr, x + 30, y, FONT - 1, 0, 0, labels[i]);
+        y += 19;
+    }
+}
+
+static double legend_width(cairo_t *cr, const char *heading, char **labels, int n)
+{
+    double w = heading ? eval_text_width(cr, FONT, 1, heading) : 0;
+    for (int i = 0; i < n; i++) w = fmax(w, 30 + eval_text_width(cr, FONT - 1, 0, labels[i]));
+    return w + 30;
+}
+
+static void draw_fail_mark(cairo_t *cr, double x, double y)
+{
+    cairo_set_source_rgb(cr, 0.8, 0, 0);
+    cairo_set_line_width(cr, 2);
+    cairo_move_to(cr, x - 4, y - 12);
+    cairo_line_to(cr, x + 4, y - 4);
+    cairo_move_to(cr, x + 4, y - 12);
+    cairo_line_to(cr, x - 4, y - 4);
+    cairo_stroke(cr);
+}
+
+static void center_message(cairo_t *cr, const frame *f, const char *msg, const char *detail)
+{
+    cairo_set_source_rgb(cr, 0.4, 0.4, 0.4);
+    eval_text(cr, (f->x0 + f->x1) / 2, (f->y0 + f->y1) / 2, 20, 1, 0.5, msg);
+    if (detail && detail[0]) eval_text(cr, (f->x0 + f->x1) / 2, (f->y0 + f->y1) / 2 + 26, FONT, 0, 0.5, detail);
+}
+
+/* Measuring context for text widths before the canvas size is known. */
+static cairo_t *measure_ctx(cairo_surface_t **s)
+{
+    *s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 4, 4);
+    return cairo_create(*s);
+}
+
+static sss_result finish(cairo_surface_t *s, cairo_t *cr, const char *path, sss_error *err)
+{
+    sss_result r = cairo_status(cr) == CAIRO_STATUS_SUCCESS ? eval_write_surface(s, path, err)
+                                                            : sss_error_set(err, SSS_ERROR_UNSUPPORTED, "%s: cairo: %s",
+                                                                            path, cairo_status_to_string(cairo_status(cr)));
+    cairo_destroy(cr);
+    cairo_surface_destroy(s);
+    return r;
+}
+
+/* ---- DSSIM bars (seed 000 Fig. 10) ---------------------------------------------------------- */
+
+sss_result sss_eval_plot_dssim(const sss_eval_results *res, const char *path, sss_error *err)
+{
+    int ns = res->label_count, ng = res->scene_count;
+    double bw = ns > 8 ? 14 : 20, gap = 28;
+    cairo_surface_t *ms;
+    cairo_t *mc = measure_ctx(&ms);
+    double lw = legend_width(mc, "techniques", res->labels, ns);
+    double glw = 0;
+    for (int g = 0; g < ng; g++) glw = fmax(glw, eval_text_width(mc, FONT, 0, res->scenes[g].name));
+    const char *title = "DSSIM against the reference (lower is better)";
+    double group_w = fmax(ns * bw, glw) + gap;
+    int W = canvas_width(mc, (int)(100 + ng * group_w + 30 + lw), title), H = 460;
+    cairo_destroy(mc);
+    cairo_surface_destroy(ms);
+    cairo_surface_t *s;
+    cairo_t *cr;
+    if (!eval_canvas(W, H, &s, &cr)) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: cannot draw", path);
+    double vmax = 0;
+    for (int i = 0; i < res->entry_count; i++) {
+        const sss_eval_entry *e = &res->entries[i];
+        int pw, ph;
+        eval_primary_size(res, e->scene, &pw, &ph);
+        if (e->kind == SSS_EVAL_QUALITY && e->has_metrics && e->width == pw && e->height == ph)
+            vmax = fmax(vmax, e->metrics.dssim);
+    }
+    frame f = {90, 60, W - lw - 20, H - 70, 0, 1, 0, nice_max(vmax)};
+    draw_title(cr, W, title);
+    draw_axes(cr, &f, NULL, "DSSIM", 0);
+    for (int g = 0; g < ng; g++) {
+        double gx = f.x0 + gap / 2 + g * group_w + (group_w - gap - ns * bw) / 2;
+        int pw, ph;
+        eval_primary_size(res, g, &pw, &ph);
+        for (int k = 0; k < ns; k++) {
+            const sss_eval_entry *e = eval_find(res, g, SSS_EVAL_QUALITY, res->labels[k], pw, ph);
+            double x = gx + k * bw;
+            if (!e || !e->ok) {
+                draw_fail_mark(cr, x + bw / 2, f.y1);
+                continue;
+            }
+            if (!e->has_metrics) continue;
+            eval_rgb c = eval_palette(k);
+            cairo_set_source_rgb(cr, c.r, c.g, c.b);
+            double y = fy(&f, e->metrics.dssim);
+            cairo_rectangle(cr, x + 1, y, bw - 2, f.y1 - y);
+            cairo_fill(cr);
+        }
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        eval_text(cr, f.x0 + gap / 2 + g * group_w + (group_w - gap) / 2, f.y1 + 20, FONT, 0, 0.5, res->scenes[g].name);
+    }
+    cairo_set_source_rgb(cr, 0.8, 0, 0);
+    eval_text(cr, f.x0, H - 16, FONT - 2, 0, 0, "x = failed (see results.json); no bar = no reference");
+    draw_legend(cr, f.x1 + 24, f.y0 + 10, "techniques", res->labels, ns, 0);
+    return finish(s, cr, path, err);
+}
+
+/* ---- Stacked milliseconds per pass (seed 000 Fig. 11) ----------------------------------------- */
+
+sss_result sss_eval_plot_passes(const sss_eval_results *res, const char *path, sss_error *err)
+{
+    /* the union of pass names, in order of appearance */
+    char *names[64];
+    char store[64][32];
+    int np = 0;
+    double vmax = 0;
+    for (int i = 0; i < res->entry_count; i++) {
+        const sss_eval_entry *e = &res->entries[i];
+        int pw, ph;
+        eval_primary_size(res, e->scene, &pw, &ph);
+        if (e->kind != SSS_EVAL_QUALITY || !e->ok || e->width != pw || e->height != ph) continue;
+        vmax = fmax(vmax, e->total_ms);
+        for (int p = 0; p < e->pass_count; p++) {
+            int j = 0;
+            while (j < np && strcmp(names[j], e->passes[p].name) != 0) j++;
+            if (j == np && np < 64) {
+                snprintf(store[np], sizeof store[np], "%s", e->passes[p].name);
+                names[np] = store[np];
+                np++;
+            }
+        }
+    }
+    int ns = res->label_count, ng = res->scene_count;
+    double bw = 22, gap = 30;
+    cairo_surface_t *ms;
+    cairo_t *mc = measure_ctx(&ms);
+    double lw = legend_width(mc, "passes", names, np);
+    double tl = 0;
+    for (int k = 0; k < ns; k++) tl = fmax(tl, eval_text_width(mc, FONT - 2, 0, res->labels[k]));
+    double glw = 0;
+    for (int g = 0; g < ng; g++) glw = fmax(glw, eval_text_width(mc, FONT - 1, 0, res->scenes[g].name));
+    if (tl > 160) tl = 160;
+    const char *title = "Milliseconds per frame by pass (median of the frames)";
+    double group_w = fmax(ns * bw, glw) + gap;
+    int W = canvas_width(mc, (int)(100 + ng * group_w + 30 + lw), title), H = (int)(420 + tl + 40);
+    cairo_destroy(mc);
+    cairo_surface_destroy(ms);
+    cairo_surface_t *s;
+    cairo_t *cr;
+    if (!eval_canvas(W, H, &s, &cr)) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: cannot draw", path);
+    frame f = {90, 60, W - lw - 20, 400, 0, 1, 0, nice_max(vmax)};
+    draw_title(cr, W, title);
+    draw_axes(cr, &f, NULL, "ms", 0);
+    for (int g = 0; g < ng; g++) {
+        double gx = f.x0 + gap / 2 + g * group_w + (group_w - gap - ns * bw) / 2;
+        int pw, ph;
+        eval_primary_size(res, g, &pw, &ph);
+        for (int k = 0; k < ns; k++) {
+            const sss_eval_entry *e = eval_find(res, g, SSS_EVAL_QUALITY, res->labels[k], pw, ph);
+            double x = gx + k * bw;
+            if (!e || !e->ok) draw_fail_mark(cr, x + bw / 2, f.y1);
+            else {
+                double acc = 0;
+                for (int p = 0; p < e->pass_count; p++) {
+                    int j = 0;
+                    while (j < np && strcmp(names[j], e->passes[p].name) != 0) j++;
+                    eval_rgb c = eval_palette(j);
+                    double y0 = fy(&f, acc), y1 = fy(&f, acc + e->passes[p].ms);
+                    acc += e->passes[p].ms;
+                    cairo_set_source_rgb(cr, c.r, c.g, c.b);
+                    cairo_rectangle(cr, x + 2, y1, bw - 4, y0 - y1);
+                    cairo_fill(cr);
+                }
+            }
+            /* technique label, rotated under its bar */
+            cairo_save(cr);
+            cairo_set_source_rgb(cr, 0, 0, 0);
+            cairo_translate(cr, x + bw / 2 + 4, f.y1 + 8);
+            cairo_rotate(cr, M_PI / 2.6);
+            eval_text(cr, 0, 0, FONT - 2, 0, 0, res->labels[k]);
+            cairo_restore(cr);
+        }
+        char buf[200];
+        snprintf(buf, sizeof buf, "%s", res->scenes[g].name);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        double cx = f.x0 + gap / 2 + g * group_w + (group_w - gap) / 2;
+        eval_text(cr, cx, f.y1 + tl * 0.8 + 36, FONT - 1, 1, 0.5, buf);
+        snprintf(buf, sizeof buf, "%llu triangles, %dx%d", res->scenes[g].triangles, pw, ph);
+        eval_text(cr, cx, f.y1 + tl * 0.8 + 52, FONT - 3, 0, 0.5, buf);
+    }
+    draw_legend(cr, f.x1 + 24, f.y0 + 10, "passes", names, np, 0);
+    return finish(s, cr, path, err);
+}
+
+/* ---- Line plots ------------------------------------------------------------------------------- */
+
+typedef struct series {
+    double x[64], y[64];
+    int n;
+} series;
+
+static void draw_series(cairo_t *cr, const frame *f, const series *sv, int count)
+{
+    for (int i = 0; i < count; i++) {
+        eval_rgb c = eval_palette(i);
+        cairo_set_source_rgb(cr, c.r, c.g, c.b);
+        cairo_set_line_width(cr, 2.2);
+        for (int k = 0; k < sv[i].n; k++) {
+            double x = fx(f, sv[i].x[k]), y = fy(f, sv[i].y[k]);
+            if (k == 0) cairo_move_to(cr, x, y);
+            else cairo_line_to(cr, x, y);
+        }
+        cairo_stroke(cr);
+        for (int k = 0; k < sv[i].n; k++) {
+            cairo_arc(cr, fx(f, sv[i].x[k]), fy(f, sv[i].y[k]), 4, 0, 2 * M_PI);
+            cairo_fill(cr);
+        }
+    }
+}
+
+static void sort_series(series *s)
+{
+    for (int i = 1; i < s->n; i++)
+        for (int j = i; j > 0 && s->x[j] < s->x[j - 1]; j--) {
+            double t = s->x[j];
+            s->x[j] = s->x[j - 1];
+            s->x[j - 1] = t;
+            t = s->y[j];
+            s->y[j] = s->y[j - 1];
+            s->y[j - 1] = t;
+        }
+}
+
+static sss_result line_plot(const char *path, const char *title, const char *xlabel, const char *ylabel,
+                            const char *heading, char **labels, const series *sv, int count, const char *empty,
+                            const char *empty_detail, sss_error *err)
+{
+    cairo_surface_t *ms;
+    cairo_t *mc = measure_ctx(&ms);
+    double lw = legend_width(mc, heading, labels, count);
+    int W = canvas_width(mc, (int)(640 + lw), title), H = 440;
+    cairo_destroy(mc);
+    cairo_surface_destroy(ms);
+    cairo_surface_t *s;
+    cairo_t *cr;
+    if (!eval_canvas(W, H, &s, &cr)) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: cannot draw", path);
+    double xmax = 0, ymax = 0;
+    int points = 0;
+    for (int i = 0; i < count; i++)
+        for (int k = 0; k < sv[i].n; k++) {
+            xmax = fmax(xmax, sv[i].x[k]);
+            ymax = fmax(ymax, sv[i].y[k]);
+            points++;
+        }
+    frame f = {90, 60, W - lw - 20, H - 70, 0, nice_max(xmax), 0, nice_max(ymax)};
+    draw_title(cr, W, title);
+    draw_axes(cr, &f, xlabel, ylabel, 1);
+    if (points == 0 || empty_detail) center_message(cr, &f, empty, empty_detail);
+    else {
+        draw_series(cr, &f, sv, count);
+        draw_legend(cr, f.x1 + 24, f.y0 + 10, heading, labels, count, 1);
+    }
+    return finish(s, cr, path, err);
+}
+
+sss_result sss_eval_plot_sam(const sss_eval_results *res, const char *path, sss_error *err)
+{
+    int ng = res->scene_count;
+    series *sv = calloc((size_t)(ng ? ng : 1), sizeof *sv);
+    char **labels = calloc((size_t)(ng ? ng : 1), sizeof *labels);
+    if (!sv || !labels) {
+        free(sv);
+        free(labels);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+    }
+    for (int g = 0; g < ng; g++) {
+        labels[g] = (char *)res->scenes[g].name;
+        for (int i = 0; i < res->entry_count; i++) {
+            const sss_eval_entry *e = &res->entries[i];
+            if (e->scene != g || e->kind != SSS_EVAL_SAM_SWEEP || !e->has_metrics || sv[g].n >= 64) continue;
+            sv[g].x[sv[g].n] = e->sam_n;
+            sv[g].y[sv[g].n] = e->metrics.rmse;
+            sv[g].n++;
+        }
+        sort_series(&sv[g]);
+    }
+    char xlabel[96] = "back-side samples n";
+    if (res->sam_param[0]) snprintf(xlabel, sizeof xlabel, "back-side samples n (sam parameter %s)", res->sam_param);
+    const char *detail = NULL;
+    const char *msg = "no SAM sweep results";
+    if (!res->sam_available) {
+        msg = "sam not available";
+        detail = res->sam_note;
+    } else if (!res->sam_swept) {
+        msg = "SAM sweep not run";
+        detail = "evaluate the sam technique (or pass --sam-sweep) to plot it";
+    }
+    sss_result r = line_plot(path, "SAM: RMSE against back-side samples (seed 001 Fig. 10)", xlabel,
+                             "RMSE (8-bit sRGB)", "scenes", labels, sv, ng, msg, detail, err);
+    free(sv);
+    free(labels);
+    return r;
+}
+
+sss_result sss_eval_plot_resolution(const sss_eval_results *res, const char *path, sss_error *err)
+{
+    int nl = res->label_count;
+    series *sv = calloc((size_t)(nl ? nl : 1), sizeof *sv);
+    if (!sv) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+    /* per technique and size: mean total ms over the scenes where it ran */
+    for (int k = 0; k < nl; k++) {
+        double sum[64] = {0};
+        int cnt[64] = {0};
+        int sizes_w[64], sizes_h[64], nsz = 0;
+        for (int i = 0; i < res->entry_count; i++) {
+            const sss_eval_entry *e = &res->entries[i];
+            if (e->kind == SSS_EVAL_SAM_SWEEP || !e->ok || strcmp(e->label, res->labels[k]) != 0) continue;
+            int j = 0;
+            while (j < nsz && !(sizes_w[j] == e->width && sizes_h[j] == e->height)) j++;
+            if (j == nsz) {
+                if (nsz >= 64) continue;
+                sizes_w[nsz] = e->width;
+                sizes_h[nsz] = e->height;
+                nsz++;
+            }
+            sum[j] += e->total_ms;
+            cnt[j]++;
+        }
+        for (int j = 0; j < nsz; j++) {
+            sv[k].x[sv[k].n] = sizes_w[j] * (double)sizes_h[j] / 1e6;
+            sv[k].y[sv[k].n] = sum[j] / cnt[j];
+            sv[k].n++;
+        }
+        sort_series(&sv[k]);
+    }
+    sss_result r = line_plot(path, "Frame time against resolution (mean over scenes)", "megapixels",
+                             "ms per frame", "techniques", res->labels, sv, nl, "no successful renders", NULL, err);
+    free(sv);
+    return r;
+}

@@ -1,0 +1,182 @@
+/* eval/eval_ref.c — the ground truth of a scene at one size: a cached EXR next to the scene (checked
+ * against the scene file's hash in its .json sidecar), or a fresh sss_reference_render that can be
+ * saved for committing (half-float EXR + sidecar). */
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "core/file_util.h"
+#include "eval/eval_internal.h"
+
+static const char *quality_name(sss_reference_quality q) { return q == SSS_REFERENCE_DRAFT ? "draft" : "final"; }
+
+/* "<exr without .exr>.json" */
+static int sidecar_path(const char *exr, char *out, size_t cap)
+{
+    size_t n = strlen(exr);
+    if (n < 4 || n + 2 >= cap) return 0;
+    memcpy(out, exr, n - 4);
+    memcpy(out + n - 4, ".json", 6);
+    return 1;
+}
+
+/* Reads the sidecar: 1 when it exists and parses; *hash 0 when absent in it. */
+static int read_sidecar(const char *exr, uint64_t *hash, char quality[8])
+{
+    char path[1100];
+    *hash = 0;
+    snprintf(quality, 8, "unknown");
+    if (!sidecar_path(exr, path, sizeof path)) return 0;
+    char *text = NULL;
+    size_t size = 0;
+    if (sss_read_file(path, 1 << 20, &text, &size, NULL) != SSS_OK) return 0;
+    cJSON *root = cJSON_Parse(text);
+    free(text);
+    if (!root) return 0;
+    const cJSON *h = cJSON_GetObjectItemCaseSensitive(root, "scene_fnv1a64");
+    if (cJSON_IsString(h)) *hash = strtoull(h->valuestring, NULL, 16);
+    const cJSON *q = cJSON_GetObjectItemCaseSensitive(root, "quality");
+    if (cJSON_IsString(q) && (strcmp(q->valuestring, "final") == 0 || strcmp(q->valuestring, "draft") == 0))
+        snprintf(quality, 8, "%s", q->valuestring);
+    cJSON_Delete(root);
+    return 1;
+}
+
+static sss_result write_sidecar(const char *exr, const sss_eval_scene *es, int w, int h, const char *quality,
+                                double seconds, sss_error *err)
+{
+    char path[1100], tmp[4096];
+    if (!sidecar_path(exr, path, sizeof path)) return sss_error_set(err, SSS_ERROR_LIMIT, "%s: path too long", exr);
+    FILE *f = sss_atomic_open(path, tmp, sizeof tmp, err);
+    if (!f) return err ? err->code : SSS_ERROR_IO;
+    const char *slash = strrchr(es->path, '/');
+    fprintf(f,
+            "{\n  \"scene\": \"%s\",\n  \"scene_fnv1a64\": \"%016" PRIx64 "\",\n  \"width\": %d,\n  \"height\": %d,\n"
+            "  \"time\": %.17g,\n  \"quality\": \"%s\",\n  \"seconds\": %.3f,\n"
+            "  \"command\": \"sss reference %s%s -o OUT.exr --quality %s\"\n}\n",
+            slash ? slash + 1 : es->path, eval_file_hash(es->path), w, h, es->time, quality, seconds,
+            slash ? slash + 1 : es->path, es->has_time ? " --time T" : "", quality);
+    return sss_atomic_close(f, tmp, path, err);
+}
+
+static sss_result make_dir(const char *dir, sss_error *err)
+{
+    char buf[1024];
+    size_t n = strlen(dir);
+    if (n == 0 || n >= sizeof buf) return sss_error_set(err, SSS_ERROR_LIMIT, "folder name too long: %s", dir);
+    memcpy(buf, dir, n + 1);
+    for (size_t i = 1; i <= n; i++) {
+        if (buf[i] == '/' || buf[i] == '\0') {
+            char c = buf[i];
+            buf[i] = '\0';
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+                return sss_error_set(err, SSS_ERROR_IO, "cannot create folder %s: %s", buf, strerror(errno));
+            buf[i] = c;
+        }
+    }
+    return SSS_OK;
+}
+
+typedef struct ref_fwd {
+    eval_progress *prog;
+    char prefix[200];
+} ref_fwd;
+
+static void ref_progress(void *user, double fraction, const char *stage)
+{
+    ref_fwd *f = user;
+    char s[256];
+    snprintf(s, sizeof s, "%s (%s)", f->prefix, stage ? stage : "");
+    eval_progress_update(f->prog, fraction, s);
+}
+
+sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const sss_eval_desc *desc,
+                          eval_progress *prog, sss_eval_reference *ref, sss_image *img, sss_error *err)
+{
+    int w = view->camera.width, h = view->camera.height;
+    memset(img, 0, sizeof *img);
+    ref->width = w;
+    ref->height = h;
+    ref->source = SSS_EVAL_REF_NONE;
+    char dir[1024];
+    if (desc->reference_dir) snprintf(dir, sizeof dir, "%s", desc->reference_dir);
+    else eval_default_reference_dir(es->path, dir, sizeof dir);
+    char cached[1024];
+    int have_name = sss_eval_reference_path(dir, es->stem, w, h, es->has_time, es->time, cached, sizeof cached);
+    if (desc->cached_reference && have_name) {
+        if (access(cached, R_OK) == 0) {
+            uint64_t hash = 0;
+            char quality[8];
+            int side = read_sidecar(cached, &hash, quality);
+            uint64_t now = eval_file_hash(es->path);
+            if (side && hash && hash != now) {
+                eval_note(prog, "%s: cached reference %s is stale (the scene file changed since it was rendered); "
+                                "rendering it", es->name, cached);
+            } else {
+                double t0 = sss_time_seconds();
+                sss_error rerr = {0};
+                if (sss_image_read(cached, img, &rerr) != SSS_OK) {
+                    eval_note(prog, "%s: cannot read cached reference (%s); rendering it", es->name, rerr.message);
+                } else if (img->width != w || img->height != h) {
+                    eval_note(prog, "%s: cached reference %s is %dx%d, not %dx%d; rendering it", es->name, cached,
+                              img->width, img->height, w, h);
+                    sss_image_free(img);
+                } else if (sss_image_count_nonfinite(img) != 0) {
+                    eval_note(prog, "%s: cached reference %s holds NaN/Inf; rendering it", es->name, cached);
+                    sss_image_free(img);
+                } else {
+                    ref->source = SSS_EVAL_REF_CACHED;
+                    ref->seconds = sss_time_seconds() - t0;
+                    snprintf(ref->path, sizeof ref->path, "%s", cached);
+                    snprintf(ref->quality, sizeof ref->quality, "%s", quality);
+                    if (!side)
+                        eval_note(prog, "%s: using cached reference %s (no sidecar: not checked against the scene)",
+                                  es->name, cached);
+                    return SSS_OK;
+                }
+            }
+        } else {
+            eval_note(prog, "%s: no cached reference %s; rendering it (%s quality)", es->name, cached,
+                      quality_name(desc->reference_quality));
+        }
+    }
+    sss_reference_desc rd;
+    memset(&rd, 0, sizeof rd);
+    rd.quality = desc->reference_quality;
+    rd.threads = desc->reference_threads;
+    rd.time = es->time;
+    ref_fwd fwd;
+    fwd.prog = prog;
+    snprintf(fwd.prefix, sizeof fwd.prefix, "%s %dx%d: reference", es->name, w, h);
+    double t0 = sss_time_seconds();
+    sss_error rerr = {0};
+    if (sss_reference_render(view, &rd, img, ref_progress, &fwd, NULL, &rerr) != SSS_OK) {
+        snprintf(ref->error, sizeof ref->error, "%s", rerr.message);
+        eval_note(prog, "%s: reference failed: %s", es->name, rerr.message);
+        sss_image_free(img);
+        return SSS_OK;
+    }
+    ref->seconds = sss_time_seconds() - t0;
+    ref->source = SSS_EVAL_REF_RENDERED;
+    snprintf(ref->quality, sizeof ref->quality, "%s", quality_name(desc->reference_quality));
+    if (desc->save_references_dir) {
+        char path[1024];
+        if (!sss_eval_reference_path(desc->save_references_dir, es->stem, w, h, es->has_time, es->time, path,
+                                     sizeof path))
+            return sss_error_set(err, SSS_ERROR_LIMIT, "%s: reference path too long", desc->save_references_dir);
+        sss_result r = make_dir(desc->save_references_dir, err);
+        if (r != SSS_OK) return r;
+        /* Half floats keep the committed files small; a value beyond the half range falls back to float. */
+        r = sss_image_write_exr(path, img, 1, err);
+        if (r == SSS_ERROR_LIMIT) r = sss_image_write_exr(path, img, 0, err);
+        if (r == SSS_OK) r = write_sidecar(path, es, w, h, ref->quality, ref->seconds, err);
+        if (r != SSS_OK) return r;
+        snprintf(ref->path, sizeof ref->path, "%s", path);
+    }
+    return SSS_OK;
+}

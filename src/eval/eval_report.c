@@ -1,0 +1,396 @@
+/* eval/eval_report.c — report.html: one self-contained page (PNG images as base64 data URIs, inline
+ * CSS, no scripts, no external references) with the summary, the comparison sheets, the plots and
+ * the tables of results.json; and sss_eval_write_all, which writes every output of a run. */
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "core/file_util.h"
+#include "eval/eval_internal.h"
+
+/* ---- A growing string ------------------------------------------------------------------------- */
+
+typedef struct sbuf {
+    char *data;
+    size_t len, cap;
+    int oom;
+} sbuf;
+
+static void sb_grow(sbuf *b, size_t extra)
+{
+    if (b->oom || b->len + extra + 1 <= b->cap) return;
+    size_t cap = b->cap ? b->cap : 65536;
+    while (cap < b->len + extra + 1) cap *= 2;
+    char *d = realloc(b->data, cap);
+    if (!d) {
+        b->oom = 1;
+        return;
+    }
+    b->data = d;
+    b->cap = cap;
+}
+
+static void sb_put(sbuf *b, const char *s, size_t n)
+{
+    sb_grow(b, n);
+    if (b->oom) return;
+    memcpy(b->data + b->len, s, n);
+    b->len += n;
+    b->data[b->len] = '\0';
+}
+
+static void sb_printf(sbuf *b, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+static void sb_printf(sbuf *b, const char *fmt, ...)
+{
+    char tmp[2048];
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(tmp, sizeof tmp, fmt, ap);
+    va_end(ap);
+    if (n < 0) return;
+    sb_put(b, tmp, (size_t)n < sizeof tmp ? (size_t)n : sizeof tmp - 1);
+}
+
+/* HTML text (also safe inside double-quoted attributes). */
+static void sb_esc(sbuf *b, const char *s)
+{
+    for (; *s; s++) {
+        switch (*s) {
+        case '&': sb_put(b, "&amp;", 5); break;
+        case '<': sb_put(b, "&lt;", 4); break;
+        case '>': sb_put(b, "&gt;", 4); break;
+        case '"': sb_put(b, "&quot;", 6); break;
+        default: sb_put(b, s, 1);
+        }
+    }
+}
+
+static void sb_base64(sbuf *b, const unsigned char *d, size_t n)
+{
+    static const char tab[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    sb_grow(b, (n + 2) / 3 * 4);
+    if (b->oom) return;
+    char *o = b->data + b->len;
+    size_t i = 0;
+    for (; i + 2 < n; i += 3) {
+        unsigned v = (unsigned)d[i] << 16 | (unsigned)d[i + 1] << 8 | d[i + 2];
+        *o++ = tab[v >> 18];
+        *o++ = tab[(v >> 12) & 63];
+        *o++ = tab[(v >> 6) & 63];
+        *o++ = tab[v & 63];
+    }
+    if (i < n) {
+        unsigned v = (unsigned)d[i] << 16 | (i + 1 < n ? (unsigned)d[i + 1] << 8 : 0);
+        *o++ = tab[v >> 18];
+        *o++ = tab[(v >> 12) & 63];
+        *o++ = i + 1 < n ? tab[(v >> 6) & 63] : '=';
+        *o++ = '=';
+    }
+    b->len = (size_t)(o - b->data);
+    b->data[b->len] = '\0';
+}
+
+/* <img> with the PNG file embedded, or a note when it cannot be read. */
+static void sb_image(sbuf *b, const char *dir, const char *file, const char *alt)
+{
+    char path[2048];
+    snprintf(path, sizeof path, "%s/%s", dir, file);
+    char *data = NULL;
+    size_t size = 0;
+    if (sss_read_file(path, 256u << 20, &data, &size, NULL) != SSS_OK) {
+        sb_printf(b, "<p class=\"fail\">image %s is missing</p>\n", file);
+        return;
+    }
+    sb_put(b, "<img alt=\"", 10);
+    sb_esc(b, alt);
+    sb_put(b, "\" src=\"data:image/png;base64,", 29);
+    sb_base64(b, (const unsigned char *)data, size);
+    sb_put(b, "\">\n", 3);
+    free(data);
+}
+
+/* ---- Tables ----------------------------------------------------------------------------------- */
+
+static void fmt_num(char *out, size_t cap, double v, const char *fmt, int ok)
+{
+    if (!ok || !isfinite(v)) snprintf(out, cap, "&ndash;");
+    else snprintf(out, cap, fmt, v);
+}
+
+static void entry_row(sbuf *b, const sss_eval_results *res, const sss_eval_entry *e, int best)
+{
+    char d[32], p[32], r[32], ms[32], pre[32], mem[32];
+    fmt_num(d, sizeof d, e->metrics.dssim, "%.4f", e->has_metrics);
+    if (e->has_metrics && isinf(e->metrics.psnr)) snprintf(p, sizeof p, "&infin;");
+    else fmt_num(p, sizeof p, e->metrics.psnr, "%.2f", e->has_metrics);
+    fmt_num(r, sizeof r, e->metrics.rmse, "%.3f", e->has_metrics);
+    fmt_num(ms, sizeof ms, e->total_ms, "%.1f", e->ok);
+    fmt_num(pre, sizeof pre, e->precompute_ms, "%.0f", e->precompute_ms > 0);
+    fmt_num(mem, sizeof mem, e->has_stats ? (e->stats.texture_bytes + e->stats.buffer_bytes) / 1048576.0 : 0, "%.1f",
+            e->has_stats);
+    sb_put(b, "<tr><td class=\"l\">", 18);
+    sb_esc(b, e->label);
+    sb_printf(b, "</td><td>%dx%d</td>", e->width, e->height);
+    if (e->ok) sb_put(b, "<td class=\"ok\">ok</td>", 22);
+    else {
+        sb_put(b, "<td class=\"fail\">failed</td>", 28);
+    }
+    sb_printf(b, "<td%s>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td class=\"l small\">",
+              best ? " class=\"best\"" : "", d, p, r, ms, pre, mem);
+    if (e->ok)
+        for (int k = 0; k < e->pass_count; k++) sb_printf(b, "%s%s&nbsp;%.1f", k ? ", " : "", e->passes[k].name, e->passes[k].ms);
+    else sb_esc(b, e->error);
+    sb_put(b, "</td></tr>\n", 11);
+    (void)res;
+}
+
+static void sb_puts(sbuf *b, const char *s) { sb_put(b, s, strlen(s)); }
+
+static void table_head(sbuf *b)
+{
+    sb_puts(b,
+            "<table><tr><th class=\"l\">technique</th><th>size</th><th>status</th><th>DSSIM</th><th>PSNR dB</th>"
+           "<th>RMSE</th><th>ms/frame</th><th>set-up ms</th><th>GPU MB</th><th class=\"l\">passes (ms) or error</th></tr>\n");
+}
+
+static const char *CSS =
+    "body{font-family:DejaVu Sans,Helvetica,Arial,sans-serif;margin:24px;color:#222;max-width:1800px}"
+    "h1{font-size:24px}h2{font-size:20px;margin-top:36px;border-bottom:1px solid #ccc}h3{font-size:16px}"
+    "table{border-collapse:collapse;margin:8px 0 16px 0;font-size:13px}"
+    "td,th{border:1px solid #ccc;padding:3px 8px;text-align:right;vertical-align:top}"
+    "th{background:#f0f0f0}.l{text-align:left}.small{font-size:11px;max-width:560px}"
+    ".ok{color:#176e1a}.fail{color:#b00000;font-weight:bold}.best{font-weight:bold;background:#e6f4e6}"
+    "img{max-width:100%;height:auto;border:1px solid #ddd;margin:6px 0}"
+    ".meta td{text-align:left}.note{color:#555;font-size:13px}";
+
+static sss_result build_report(const sss_eval_results *res, const char *dir, sbuf *b)
+{
+    sb_puts(b, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>sss eval report</title>\n<style>");
+    sb_puts(b, CSS);
+    sb_puts(b, "</style></head><body>\n<h1>sss eval: real-time techniques against the ground truth</h1>\n");
+    sb_puts(b, "<table class=\"meta\">");
+    sb_printf(b, "<tr><th class=\"l\">created</th><td>%s (run time %.1f s)</td></tr>", res->created, res->seconds);
+    sb_puts(b, "<tr><th class=\"l\">OpenGL</th><td>");
+    if (res->gl_ok) {
+        sb_esc(b, res->gl_renderer);
+        sb_puts(b, " &mdash; ");
+        sb_esc(b, res->gl_version);
+        sb_puts(b, " (");
+        sb_esc(b, res->gl_platform);
+        sb_puts(b, ")");
+    } else {
+        sb_puts(b, "<span class=\"fail\">");
+        sb_esc(b, res->gl_error[0] ? res->gl_error : "not used");
+        sb_puts(b, "</span>");
+    }
+    sb_puts(b, "</td></tr><tr><th class=\"l\">timing</th><td>");
+    sb_printf(b, "median of %d frame%s per technique; ", res->frames, res->frames == 1 ? "" : "s");
+    sb_esc(b, res->timing_method[0] ? res->timing_method : "no frames timed");
+    sb_printf(b, "</td></tr><tr><th class=\"l\">reference</th><td>sss reference (CPU), %s quality%s</td></tr>",
+              res->reference_quality == SSS_REFERENCE_DRAFT ? "draft" : "final",
+              res->cached_reference ? ", cached images used where present" : "");
+    sb_puts(b, "<tr><th class=\"l\">metrics</th><td>DSSIM = (1 &minus; SSIM)/2 (11&times;11 Gaussian window, "
+               "&sigma; 1.5), PSNR and RMSE on the tone-mapped 8-bit sRGB images (FACTS.md 5)</td></tr></table>\n");
+
+    /* summary: DSSIM per scene and technique, the best of each scene highlighted */
+    sb_puts(b, "<h2>Summary: DSSIM (lower is better)</h2>\n<table><tr><th class=\"l\">scene</th>");
+    for (int k = 0; k < res->label_count; k++) {
+        sb_puts(b, "<th>");
+        sb_esc(b, res->labels[k]);
+        sb_puts(b, "</th>");
+    }
+    sb_puts(b, "</tr>\n");
+    for (int s = 0; s < res->scene_count; s++) {
+        int w, h;
+        eval_primary_size(res, s, &w, &h);
+        double best = INFINITY;
+        for (int k = 0; k < res->label_count; k++) {
+            const sss_eval_entry *e = eval_find(res, s, SSS_EVAL_QUALITY, res->labels[k], w, h);
+            if (e && e->has_metrics && e->metrics.dssim < best) best = e->metrics.dssim;
+        }
+        sb_puts(b, "<tr><td class=\"l\">");
+        sb_esc(b, res->scenes[s].name);
+        sb_puts(b, "</td>");
+        for (int k = 0; k < res->label_count; k++) {
+            const sss_eval_entry *e = eval_find(res, s, SSS_EVAL_QUALITY, res->labels[k], w, h);
+            if (!e || !e->ok) {
+                sb_puts(b, "<td class=\"fail\" title=\"");
+                sb_esc(b, e ? e->error : "not run");
+                sb_puts(b, "\">failed</td>");
+            } else if (!e->has_metrics) sb_puts(b, "<td>&ndash;</td>");
+            else
+                sb_printf(b, "<td%s>%.4f</td>", e->metrics.dssim == best ? " class=\"best\"" : "", e->metrics.dssim);
+        }
+        sb_puts(b, "</tr>\n");
+    }
+    sb_puts(b, "</table>\n");
+
+    sb_puts(b, "<h2>Plots</h2>\n");
+    sb_image(b, dir, "plot_dssim.png", "DSSIM per technique and scene");
+    sb_image(b, dir, "plot_passes.png", "milliseconds per pass");
+    sb_image(b, dir, "plot_sam_rmse.png", "SAM RMSE against back-side samples");
+    sb_image(b, dir, "plot_resolution.png", "frame time against resolution");
+
+    for (int s = 0; s < res->scene_count; s++) {
+        const sss_eval_scene *es = &res->scenes[s];
+        sb_puts(b, "<h2>");
+        sb_esc(b, es->name);
+        sb_puts(b, "</h2>\n<p class=\"note\">");
+        sb_esc(b, es->path);
+        sb_printf(b, ": camera %dx%d, %llu triangles", es->width, es->height, es->triangles);
+        if (es->has_time) sb_printf(b, ", time %g s", es->time);
+        for (int k = 0; k < es->reference_count; k++) {
+            const sss_eval_reference *r = &es->references[k];
+            sb_printf(b, "<br>reference %dx%d: ", r->width, r->height);
+            if (r->source == SSS_EVAL_REF_NONE) {
+                sb_puts(b, "<span class=\"fail\">unavailable: ");
+                sb_esc(b, r->error);
+                sb_puts(b, "</span>");
+            } else {
+                sb_printf(b, "%s, %s quality, %.1f s", r->source == SSS_EVAL_REF_CACHED ? "cached" : "rendered", r->quality,
+                          r->seconds);
+                if (r->path[0]) {
+                    sb_puts(b, " (");
+                    sb_esc(b, r->path);
+                    sb_puts(b, ")");
+                }
+            }
+        }
+        sb_puts(b, "</p>\n");
+        char file[300];
+        eval_sheet_file(es, file, sizeof file);
+        sb_image(b, dir, file, es->name);
+        table_head(b);
+        double best = INFINITY;
+        for (int i = 0; i < res->entry_count; i++) {
+            const sss_eval_entry *e = &res->entries[i];
+            if (e->scene == s && e->kind == SSS_EVAL_QUALITY && e->has_metrics && e->metrics.dssim < best)
+                best = e->metrics.dssim;
+        }
+        for (int i = 0; i < res->entry_count; i++) {
+            const sss_eval_entry *e = &res->entries[i];
+            if (e->scene == s && e->kind != SSS_EVAL_SAM_SWEEP)
+                entry_row(b, res, e, e->kind == SSS_EVAL_QUALITY && e->has_metrics && e->metrics.dssim == best);
+        }
+        sb_puts(b, "</table>\n");
+    }
+
+    sb_puts(b, "<h2>SAM: RMSE against back-side samples (seed 001 Fig. 10)</h2>\n");
+    if (!res->sam_swept) {
+        sb_puts(b, res->sam_available ? "<p class=\"note\">" : "<p class=\"note\">sam not available: ");
+        sb_esc(b, res->sam_note[0] ? res->sam_note : "not run");
+        sb_puts(b, "</p>\n");
+    } else {
+        table_head(b);
+        for (int i = 0; i < res->entry_count; i++)
+            if (res->entries[i].kind == SSS_EVAL_SAM_SWEEP) {
+                entry_row(b, res, &res->entries[i], 0);
+            }
+        sb_puts(b, "</table>\n");
+    }
+
+    int failures = 0;
+    for (int i = 0; i < res->entry_count; i++) failures += !res->entries[i].ok;
+    sb_printf(b, "<h2>Failures (%d)</h2>\n", failures);
+    if (failures) {
+        sb_puts(b, "<table><tr><th class=\"l\">scene</th><th class=\"l\">technique</th><th>size</th><th class=\"l\">error</th></tr>\n");
+        for (int i = 0; i < res->entry_count; i++) {
+            const sss_eval_entry *e = &res->entries[i];
+            if (e->ok) continue;
+            sb_puts(b, "<tr><td class=\"l\">");
+            sb_esc(b, res->scenes[e->scene].name);
+            sb_puts(b, "</td><td class=\"l\">");
+            sb_esc(b, e->label);
+            sb_printf(b, "</td><td>%dx%d</td><td class=\"l\">", e->width, e->height);
+            sb_esc(b, e->error);
+            sb_puts(b, "</td></tr>\n");
+        }
+        sb_puts(b, "</table>\n");
+    } else sb_puts(b, "<p class=\"note\">none</p>\n");
+    sb_puts(b, "<p class=\"note\">Numbers: results.json (schema docs/results.schema.json) and results.csv next to "
+               "this page.</p>\n</body></html>\n");
+    return b->oom ? SSS_ERROR_OUT_OF_MEMORY : SSS_OK;
+}
+
+sss_result sss_eval_write_report(const sss_eval_results *res, const char *out_dir, sss_error *err)
+{
+    sbuf b = {0};
+    if (build_report(res, out_dir, &b) != SSS_OK) {
+        free(b.data);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (report.html)");
+    }
+    char path[2048], tmp[4096];
+    snprintf(path, sizeof path, "%s/report.html", out_dir);
+    FILE *f = sss_atomic_open(path, tmp, sizeof tmp, err);
+    if (!f) {
+        free(b.data);
+        return err ? err->code : SSS_ERROR_IO;
+    }
+    fwrite(b.data, 1, b.len, f);
+    free(b.data);
+    return sss_atomic_close(f, tmp, path, err);
+}
+
+static sss_result make_dirs(const char *dir, sss_error *err)
+{
+    char buf[1024];
+    size_t n = strlen(dir);
+    if (n == 0 || n >= sizeof buf) return sss_error_set(err, SSS_ERROR_LIMIT, "output folder name too long");
+    memcpy(buf, dir, n + 1);
+    for (size_t i = 1; i <= n; i++)
+        if (buf[i] == '/' || buf[i] == '\0') {
+            char c = buf[i];
+            buf[i] = '\0';
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+                return sss_error_set(err, SSS_ERROR_IO, "cannot create folder %s: %s", buf, strerror(errno));
+            buf[i] = c;
+        }
+    return SSS_OK;
+}
+
+sss_result sss_eval_write_all(const sss_eval_results *res, const char *out_dir, sss_error *err)
+{
+    if (!res || !out_dir) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_eval_write_all: bad arguments");
+    sss_result r = make_dirs(out_dir, err);
+    char path[2048];
+    if (r == SSS_OK) {
+        snprintf(path, sizeof path, "%s/results.json", out_dir);
+        r = sss_eval_write_json(res, path, err);
+    }
+    if (r == SSS_OK) {
+        snprintf(path, sizeof path, "%s/results.csv", out_dir);
+        r = sss_eval_write_csv(res, path, err);
+    }
+    for (int s = 0; r == SSS_OK && s < res->scene_count; s++) {
+        char file[300];
+        eval_sheet_file(&res->scenes[s], file, sizeof file);
+        snprintf(path, sizeof path, "%s/%s", out_dir, file);
+        r = sss_eval_write_sheet(res, s, path, err);
+    }
+    if (r == SSS_OK) {
+        snprintf(path, sizeof path, "%s/plot_dssim.png", out_dir);
+        r = sss_eval_plot_dssim(res, path, err);
+    }
+    if (r == SSS_OK) {
+        snprintf(path, sizeof path, "%s/plot_passes.png", out_dir);
+        r = sss_eval_plot_passes(res, path, err);
+    }
+    if (r == SSS_OK) {
+        snprintf(path, sizeof path, "%s/plot_sam_rmse.png", out_dir);
+        r = sss_eval_plot_sam(res, path, err);
+    }
+    if (r == SSS_OK) {
+        snprintf(path, sizeof path, "%s/plot_resolution.png", out_dir);
+        r = sss_eval_plot_resolution(res, path, err);
+    }
+    if (r == SSS_OK) r = sss_eval_write_report(res, out_dir, err);
+    return r;
+}

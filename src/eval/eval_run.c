@@ -1,0 +1,605 @@
+/* eval/eval_run.c — the evaluation loop: scenes x quality sizes x techniques (+ reference, + the SAM
+ * sweep of seed 001 Fig. 10), then timing-only sizes. Failures of a technique become entries. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "eval/eval_internal.h"
+
+/* ---- Progress -------------------------------------------------------------------------------- */
+
+void eval_progress_update(eval_progress *p, double step_fraction, const char *stage)
+{
+    if (stage) snprintf(p->stage, sizeof p->stage, "%s", stage);
+    if (!p->cb || !p->cb->progress) return;
+    if (step_fraction < 0) step_fraction = 0;
+    if (step_fraction > 1) step_fraction = 1;
+    double f = p->total > 0 ? (p->done + step_fraction * p->step) / p->total : 1.0;
+    p->cb->progress(p->cb->user, f > 1 ? 1 : f, p->stage);
+}
+
+void eval_progress_finish_step(eval_progress *p)
+{
+    p->done += p->step;
+    p->step = 0;
+}
+
+void eval_note(eval_progress *p, const char *fmt, ...)
+{
+    if (!p || !p->cb || !p->cb->note) return;
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    p->cb->note(p->cb->user, msg);
+}
+
+/* Work units: one unit = one technique frame of one pixel (techniques cost about the same order on
+ * llvmpipe); a final reference costs about ten such frames, a draft one a quarter of that. The
+ * fractions only drive the progress bar's ETA. */
+#define REF_FINAL_UNITS 10.0
+#define REF_DRAFT_UNITS 2.5
+
+/* ---- Timing statistics ------------------------------------------------------------------------ */
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    if (n <= 0) return 0.0;
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* ---- One technique at one size ----------------------------------------------------------------- */
+
+typedef struct run_ctx {
+    sss_gl_context *gl;
+    const char *gl_error;
+    const char *method; /* timing method the renderer reported */
+    int frames;
+    eval_progress *prog;
+} run_ctx;
+
+static void fail_entry(sss_eval_entry *e, const char *msg)
+{
+    e->ok = 0;
+    snprintf(e->error, sizeof e->error, "%s", msg && msg[0] ? msg : "unknown error");
+}
+
+/* Renders spec on view (already sized) at time t, frames times; fills e (label etc. set by caller).
+ * keep: keep the image in e->image. Returns SSS_ERROR_OUT_OF_MEMORY only for allocation failures of
+ * the bookkeeping; technique failures are recorded in e. */
+static sss_result run_technique(run_ctx *rc, const sss_scene *view, double t, const eval_spec *spec, int nparams,
+                                int frames, sss_eval_entry *e, const char *stage)
+{
+    e->ok = 0;
+    e->frames = 0;
+    if (!rc->gl) {
+        fail_entry(e, rc->gl_error);
+        return SSS_OK;
+    }
+    sss_error err = {0};
+    sss_gl_renderer_desc rd;
+    memset(&rd, 0, sizeof rd);
+    rd.technique = spec->name;
+    rd.width = view->camera.width;
+    rd.height = view->camera.height;
+    rd.params = spec->params;
+    rd.param_count = nparams;
+    rd.timings = 1;
+    char st[256];
+    snprintf(st, sizeof st, "%s: set-up", stage);
+    eval_progress_update(rc->prog, 0.0, st);
+    sss_gl_renderer *r = NULL;
+    double t0 = sss_time_seconds();
+    if (sss_gl_renderer_create(rc->gl, view, &rd, &r, &err) != SSS_OK) {
+        fail_entry(e, err.message);
+        return SSS_OK;
+    }
+    e->precompute_ms = 1000.0 * (sss_time_seconds() - t0);
+    double *series = calloc((size_t)(SSS_GL_MAX_PASSES + 1) * (size_t)frames, sizeof *series);
+    const char *names[SSS_GL_MAX_PASSES];
+    int counts[SSS_GL_MAX_PASSES] = {0};
+    int npass = 0;
+    if (!series) {
+        sss_gl_renderer_destroy(r);
+        return sss_error_set(NULL, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+    }
+    double *totals = series + (size_t)SSS_GL_MAX_PASSES * (size_t)frames;
+    sss_image img = {0};
+    int ok = sss_image_create(&img, rd.width, rd.height, &err) == SSS_OK;
+    for (int f = 0; ok && f < frames; f++) {
+        snprintf(st, sizeof st, "%s: frame %d/%d", stage, f + 1, frames);
+        eval_progress_update(rc->prog, (1.0 + f) / (frames + 1.0), st);
+        if (sss_gl_renderer_render(r, t, &err) != SSS_OK) {
+            ok = 0;
+            break;
+        }
+        sss_gl_timings tm;
+        sss_gl_renderer_timings(r, &tm);
+        if (tm.method) rc->method = tm.method;
+        totals[f] = tm.total_ms;
+        for (int p = 0; p < tm.pass_count; p++) {
+            int j = 0;
+            while (j < npass && strcmp(names[j], tm.passes[p].name) != 0) j++;
+            if (j == npass) {
+                if (npass >= SSS_GL_MAX_PASSES) continue;
+                names[npass++] = tm.passes[p].name;
+            }
+            /* a pass name repeated within a frame adds up */
+            if (counts[j] == f + 1) series[(size_t)j * (size_t)frames + (size_t)f] += tm.passes[p].ms;
+            else {
+                series[(size_t)j * (size_t)frames + (size_t)f] = tm.passes[p].ms;
+                counts[j] = f + 1;
+            }
+        }
+        e->frames = f + 1;
+    }
+    if (ok) ok = sss_gl_renderer_read(r, &img, &err) == SSS_OK;
+    if (ok) {
+        e->ok = 1;
+        e->total_ms = median(totals, frames);
+        e->pass_count = npass;
+        for (int j = 0; j < npass; j++) {
+            snprintf(e->passes[j].name, sizeof e->passes[j].name, "%s", names[j]);
+            /* frames in which the pass did not run count as 0 ms */
+            e->passes[j].ms = median(series + (size_t)j * (size_t)frames, frames);
+        }
+        sss_gl_renderer_stats(r, &e->stats);
+        e->has_stats = 1;
+        e->image = img;
+        img.pixels = NULL;
+    } else {
+        fail_entry(e, err.message);
+    }
+    sss_image_free(&img);
+    free(series);
+    sss_gl_renderer_destroy(r);
+    return SSS_OK;
+}
+
+/* ---- The SAM sweep --------------------------------------------------------------------------- */
+
+static const int default_sam_counts[] = {3, 10, 20, 50};
+
+/* The sam technique's back-side sample count: a parameter named like one of these, else an integer
+ * parameter whose name or doc mentions the back side. */
+static const sss_gl_param_info *find_sam_param(const sss_gl_technique_info *t)
+{
+    static const char *const names[] = {"back_samples", "back_side_samples", "samples", "n", "n_back", "backside_samples"};
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
+        for (int i = 0; i < t->param_count; i++)
+            if (strcmp(t->params[i].name, names[k]) == 0 && t->params[i].type == SSS_GL_PARAM_INT) return &t->params[i];
+    for (int i = 0; i < t->param_count; i++)
+        if (t->params[i].type == SSS_GL_PARAM_INT &&
+            (strstr(t->params[i].name, "back") || (t->params[i].doc && strstr(t->params[i].doc, "back"))))
+            return &t->params[i];
+    return NULL;
+}
+
+/* ---- The run --------------------------------------------------------------------------------- */
+
+static sss_result validate(const sss_eval_desc *d, int scene_count, sss_error *err)
+{
+    if (scene_count < 1) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "eval: no scenes");
+    if (d->frames < 0 || d->frames > 10000)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "eval: frames must be in 1..10000, got %d", d->frames);
+    if (d->resolution_count < 0 || d->resolution_count > EVAL_MAX_QUALITY_SIZES)
+        return sss_error_set(err, SSS_ERROR_LIMIT, "eval: at most %d quality resolutions", EVAL_MAX_QUALITY_SIZES);
+    if (d->timing_resolution_count < 0 || d->technique_count < 0 || d->sam_count_count < 0)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "eval: negative count");
+    const sss_eval_size *lists[2] = {d->resolutions, d->timing_resolutions};
+    int counts[2] = {d->resolution_count, d->timing_resolution_count};
+    for (int l = 0; l < 2; l++)
+        for (int i = 0; i < counts[l]; i++)
+            if (!lists[l] || lists[l][i].width < 11 || lists[l][i].height < 11 ||
+                lists[l][i].width > SSS_SCENE_MAX_IMAGE_SIZE || lists[l][i].height > SSS_SCENE_MAX_IMAGE_SIZE)
+                return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "eval: image sizes must be in 11..%d",
+                                     SSS_SCENE_MAX_IMAGE_SIZE);
+    for (int i = 0; i < d->technique_count; i++) {
+        if (!d->techniques || !d->techniques[i])
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "eval: technique %d is NULL", i);
+        sss_result r = sss_eval_check_spec(d->techniques[i], err);
+        if (r != SSS_OK) return r;
+    }
+    for (int i = 0; i < d->sam_count_count; i++)
+        if (!d->sam_counts || d->sam_counts[i] < 1)
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "eval: SAM sample counts must be >= 1");
+    return SSS_OK;
+}
+
+/* "path.json@T" -> path and time (the suffix counts only when it is a finite number). */
+static sss_result split_scene_arg(const char *arg, sss_eval_scene *s, sss_error *err)
+{
+    const char *at = strrchr(arg, '@');
+    size_t len = strlen(arg);
+    s->time = 0.0;
+    s->has_time = 0;
+    if (at && at[1]) {
+        char *end = NULL;
+        double t = strtod(at + 1, &end);
+        if (end != at + 1 && *end == '\0' && isfinite(t)) {
+            s->time = t;
+            s->has_time = 1;
+            len = (size_t)(at - arg);
+        }
+    }
+    s->path = malloc(len + 1);
+    if (!s->path) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+    memcpy(s->path, arg, len);
+    s->path[len] = '\0';
+    const char *slash = strrchr(s->path, '/');
+    const char *base = slash ? slash + 1 : s->path;
+    const char *dot = strrchr(base, '.');
+    int stem_len = dot && dot != base ? (int)(dot - base) : (int)strlen(base);
+    snprintf(s->stem, sizeof s->stem, "%.*s", stem_len, base);
+    if (s->has_time) snprintf(s->name, sizeof s->name, "%.100s@%g", s->stem, s->time);
+    else snprintf(s->name, sizeof s->name, "%s", s->stem);
+    return SSS_OK;
+}
+
+static void utc_now(char out[32])
+{
+    time_t now = time(NULL);
+    struct tm tmv;
+    if (gmtime_r(&now, &tmv)) strftime(out, 32, "%Y-%m-%dT%H:%M:%SZ", &tmv);
+    else snprintf(out, 32, "unknown");
+}
+
+/* A sized view of a loaded scene (shares its data; never freed). */
+static sss_result sized_view(const sss_scene *scene, int w, int h, sss_scene *view, sss_error *err)
+{
+    *view = *scene;
+    view->camera.width = w;
+    view->camera.height = h;
+    return sss_camera_basis_init(&view->camera, &view->basis, err);
+}
+
+typedef struct run_state {
+    const sss_eval_desc *desc;
+    sss_eval_results *res;
+    sss_scene *scenes;
+    eval_spec *specs;
+    run_ctx rc;
+    eval_progress prog;
+    const int *sam_counts;
+    int sam_count_n;
+    const sss_gl_param_info *sam_param;
+    int sam_spec; /* index of the spec the sweep starts from (the first "sam" spec), -1 for plain sam */
+    int counts_buf[64];
+} run_state;
+
+static sss_result add_result(run_state *st, const sss_eval_entry *e)
+{
+    sss_eval_entry *dst = eval_add_entry(st->res);
+    if (!dst) return sss_error_set(NULL, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+    *dst = *e;
+    return SSS_OK;
+}
+
+static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size size, sss_error *err)
+{
+    sss_eval_results *res = st->res;
+    sss_eval_scene *es = &res->scenes[si];
+    sss_scene view;
+    sss_result r = sized_view(&st->scenes[si], size.width, size.height, &view, err);
+    if (r != SSS_OK) return r;
+    sss_image ref = {0};
+    /* reference */
+    sss_eval_reference *rf = &es->references[k];
+    r = eval_reference(&view, es, st->desc, &st->prog, rf, &ref, err);
+    es->reference_count = k + 1;
+    eval_progress_finish_step(&st->prog);
+    if (r != SSS_OK) return r;
+    sss_eval_entry e;
+    for (int i = 0; i < res->label_count; i++) {
+        memset(&e, 0, sizeof e);
+        e.scene = si;
+        e.kind = SSS_EVAL_QUALITY;
+        snprintf(e.label, sizeof e.label, "%s", res->labels[i]);
+        snprintf(e.technique, sizeof e.technique, "%s", st->specs[i].name);
+        e.width = size.width;
+        e.height = size.height;
+        char stage[256];
+        snprintf(stage, sizeof stage, "%.100s %dx%d: %.120s", es->name, size.width, size.height, e.label);
+        st->prog.step = (st->rc.frames + 1.0) * size.width * size.height;
+        r = run_technique(&st->rc, &view, es->time, &st->specs[i], st->specs[i].param_count, st->rc.frames, &e, stage);
+        eval_progress_finish_step(&st->prog);
+        if (r == SSS_OK && e.ok && ref.pixels) {
+            sss_error cerr = {0};
+            sss_image map = {0};
+            if (sss_image_compare(&ref, &e.image, es->exposure, &e.metrics, k == 0 ? &map : NULL, &cerr) == SSS_OK) {
+                e.has_metrics = 1;
+                e.dssim_map = map;
+            } else {
+                fail_entry(&e, cerr.message);
+            }
+        }
+        if (k != 0 || !e.ok) sss_image_free(&e.image);
+        if (r == SSS_OK) r = add_result(st, &e);
+        if (r != SSS_OK) {
+            sss_image_free(&e.image);
+            sss_image_free(&e.dssim_map);
+            sss_image_free(&ref);
+            return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+        }
+    }
+    /* the SAM sweep at the first quality size (seed 001 Fig. 10: RMSE against back-side samples) */
+    if (k == 0 && res->sam_swept) {
+        eval_spec spec;
+        if (st->sam_spec >= 0) spec = st->specs[st->sam_spec];
+        else eval_parse_spec("sam", &spec, NULL);
+        /* the count replaces a value the spec may give */
+        int np = 0;
+        for (int i = 0; i < spec.param_count; i++)
+            if (strcmp(spec.names[i], st->sam_param->name) != 0) {
+                memmove(spec.names[np], spec.names[i], sizeof spec.names[0]);
+                spec.params[np].value = spec.params[i].value;
+                np++;
+            }
+        for (int i = 0; i < np; i++) spec.params[i].name = spec.names[i];
+        spec.param_count = np;
+        for (int c = 0; c < st->sam_count_n; c++) {
+            int n = st->sam_counts[c];
+            memset(&e, 0, sizeof e);
+            e.scene = si;
+            e.kind = SSS_EVAL_SAM_SWEEP;
+            e.sam_n = n;
+            snprintf(e.technique, sizeof e.technique, "sam");
+            snprintf(e.label, sizeof e.label, "sam:%s=%d", st->sam_param->name, n);
+            e.width = size.width;
+            e.height = size.height;
+            spec.params[np].name = st->sam_param->name;
+            spec.params[np].value = n;
+            char stage[256];
+            snprintf(stage, sizeof stage, "%s %dx%d: SAM sweep %s = %d", es->name, size.width, size.height,
+                     st->sam_param->name, n);
+            st->prog.step = 2.0 * size.width * size.height;
+            r = run_technique(&st->rc, &view, es->time, &spec, np + 1, 1, &e, stage);
+            eval_progress_finish_step(&st->prog);
+            if (r == SSS_OK && e.ok && ref.pixels) {
+                sss_error cerr = {0};
+                if (sss_image_compare(&ref, &e.image, es->exposure, &e.metrics, NULL, &cerr) == SSS_OK)
+                    e.has_metrics = 1;
+                else fail_entry(&e, cerr.message);
+            }
+            sss_image_free(&e.image);
+            if (r == SSS_OK) r = add_result(st, &e);
+            if (r != SSS_OK) {
+                sss_image_free(&ref);
+                return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+            }
+        }
+    }
+    if (k == 0) es->reference = ref;
+    else sss_image_free(&ref);
+    return SSS_OK;
+}
+
+static sss_result run_timing_size(run_state *st, int si, sss_eval_size size, sss_error *err)
+{
+    sss_eval_results *res = st->res;
+    sss_eval_scene *es = &res->scenes[si];
+    sss_scene view;
+    sss_result r = sized_view(&st->scenes[si], size.width, size.height, &view, err);
+    if (r != SSS_OK) return r;
+    for (int i = 0; i < res->label_count; i++) {
+        sss_eval_entry e;
+        memset(&e, 0, sizeof e);
+        e.scene = si;
+        e.kind = SSS_EVAL_TIMING;
+        snprintf(e.label, sizeof e.label, "%s", res->labels[i]);
+        snprintf(e.technique, sizeof e.technique, "%s", st->specs[i].name);
+        e.width = size.width;
+        e.height = size.height;
+        char stage[256];
+        snprintf(stage, sizeof stage, "%.100s %dx%d (timing): %.120s", es->name, size.width, size.height, e.label);
+        st->prog.step = (st->rc.frames + 1.0) * size.width * size.height;
+        r = run_technique(&st->rc, &view, es->time, &st->specs[i], st->specs[i].param_count, st->rc.frames, &e, stage);
+        eval_progress_finish_step(&st->prog);
+        sss_image_free(&e.image);
+        if (r == SSS_OK) r = add_result(st, &e);
+        if (r != SSS_OK) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+    }
+    return SSS_OK;
+}
+
+/* Work units of a reference: almost none when a cached file will be read. */
+static double reference_units(const run_state *st, const sss_eval_scene *es, int w, int h)
+{
+    const sss_eval_desc *d = st->desc;
+    double px = (double)w * h;
+    if (d->cached_reference) {
+        char dir[1024], path[1024];
+        if (d->reference_dir) snprintf(dir, sizeof dir, "%s", d->reference_dir);
+        else eval_default_reference_dir(es->path, dir, sizeof dir);
+        if (sss_eval_reference_path(dir, es->stem, w, h, es->has_time, es->time, path, sizeof path) &&
+            access(path, R_OK) == 0)
+            return 0.01 * px;
+    }
+    return px * (d->reference_quality == SSS_REFERENCE_DRAFT ? REF_DRAFT_UNITS : REF_FINAL_UNITS);
+}
+
+/* Plans the work units (for the progress fraction). */
+static double plan_units(run_state *st)
+{
+    const sss_eval_desc *d = st->desc;
+    double units = 0;
+    for (int si = 0; si < st->res->scene_count; si++) {
+        const sss_eval_scene *es = &st->res->scenes[si];
+        int nq = d->resolution_count ? d->resolution_count : 1;
+        for (int k = 0; k < nq; k++) {
+            int w = d->resolution_count ? d->resolutions[k].width : es->width;
+            int h = d->resolution_count ? d->resolutions[k].height : es->height;
+            double px = (double)w * h;
+            units += reference_units(st, es, w, h);
+            units += st->res->label_count * (st->rc.frames + 1.0) * px;
+            if (k == 0 && st->res->sam_swept) units += st->sam_count_n * 2.0 * px;
+        }
+        for (int k = 0; k < d->timing_resolution_count; k++)
+            units += st->res->label_count * (st->rc.frames + 1.0) * d->timing_resolutions[k].width *
+                     (double)d->timing_resolutions[k].height;
+    }
+    return units;
+}
+
+sss_result sss_eval_run(const char *const *scene_args, int scene_count, const sss_eval_desc *desc_in,
+                        const sss_eval_callbacks *cb, sss_eval_results *out, sss_error *err)
+{
+    if (!out) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_eval_run: out is NULL");
+    memset(out, 0, sizeof *out);
+    sss_eval_desc desc;
+    memset(&desc, 0, sizeof desc);
+    if (desc_in) desc = *desc_in;
+    sss_result r = validate(&desc, scene_count, err);
+    if (r != SSS_OK) return r;
+    if (!scene_args) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_eval_run: no scenes");
+    double t_start = sss_time_seconds();
+    run_state st;
+    memset(&st, 0, sizeof st);
+    st.desc = &desc;
+    st.res = out;
+    st.prog.cb = cb;
+    st.rc.prog = &st.prog;
+    st.rc.frames = desc.frames ? desc.frames : 3;
+    out->frames = st.rc.frames;
+    out->reference_quality = desc.reference_quality;
+    out->cached_reference = desc.cached_reference;
+    utc_now(out->created);
+
+    /* techniques: the given specs, or every registered one */
+    int nl = desc.technique_count ? desc.technique_count : sss_gl_technique_count();
+    out->labels = calloc((size_t)(nl ? nl : 1), sizeof *out->labels);
+    st.specs = calloc((size_t)(nl ? nl : 1), sizeof *st.specs);
+    out->scenes = calloc((size_t)scene_count, sizeof *out->scenes);
+    st.scenes = calloc((size_t)scene_count, sizeof *st.scenes);
+    if (!out->labels || !st.specs || !out->scenes || !st.scenes) {
+        r = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+        goto fail;
+    }
+    for (int i = 0; i < nl; i++) {
+        const char *spec = desc.technique_count ? desc.techniques[i] : sss_gl_technique_at(i)->name;
+        out->labels[i] = strdup(spec);
+        if (!out->labels[i]) {
+            r = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+            goto fail;
+        }
+        out->label_count = i + 1;
+        if ((r = eval_parse_spec(spec, &st.specs[i], err)) != SSS_OK) goto fail;
+    }
+
+    /* scenes */
+    for (int i = 0; i < scene_count; i++) {
+        sss_eval_scene *es = &out->scenes[i];
+        out->scene_count = i + 1;
+        if (!scene_args[i]) {
+            r = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "eval: scene %d is NULL", i);
+            goto fail;
+        }
+        if ((r = split_scene_arg(scene_args[i], es, err)) != SSS_OK) goto fail;
+        if ((r = sss_scene_load(es->path, NULL, &st.scenes[i], err)) != SSS_OK) goto fail;
+        es->width = st.scenes[i].camera.width;
+        es->height = st.scenes[i].camera.height;
+        es->exposure = st.scenes[i].render.exposure;
+        for (size_t o = 0; o < st.scenes[i].object_count; o++) es->triangles += st.scenes[i].objects[o].mesh.triangle_count;
+    }
+
+    /* the SAM sweep: needs the technique and its sample-count parameter */
+    const sss_gl_technique_info *sam = sss_gl_technique_find("sam");
+    st.sam_spec = -1;
+    for (int i = 0; i < nl; i++)
+        if (strcmp(st.specs[i].name, "sam") == 0) {
+            st.sam_spec = i;
+            break;
+        }
+    if (!sam) {
+        snprintf(out->sam_note, sizeof out->sam_note, "no technique 'sam' in this build");
+    } else if (!(st.sam_param = find_sam_param(sam))) {
+        snprintf(out->sam_note, sizeof out->sam_note, "technique sam has no back-side sample count parameter");
+    } else {
+        out->sam_available = 1;
+        snprintf(out->sam_param, sizeof out->sam_param, "%s", st.sam_param->name);
+        out->sam_swept = desc.sam_sweep > 0 || (desc.sam_sweep == 0 && st.sam_spec >= 0);
+        if (!out->sam_swept) snprintf(out->sam_note, sizeof out->sam_note, "SAM sweep not requested");
+    }
+    st.sam_counts = desc.sam_count_count ? desc.sam_counts : default_sam_counts;
+    int ncounts = desc.sam_count_count ? desc.sam_count_count : (int)(sizeof default_sam_counts / sizeof(int));
+    if (out->sam_swept) {
+        /* counts outside the parameter's range are skipped with a note */
+        int m = 0;
+        for (int i = 0; i < ncounts && m < 64; i++) {
+            if (st.sam_counts[i] < st.sam_param->min_value || st.sam_counts[i] > st.sam_param->max_value) {
+                eval_note(&st.prog, "SAM sweep: %s = %d is outside the parameter's range [%g, %g]; skipped",
+                          st.sam_param->name, st.sam_counts[i], st.sam_param->min_value, st.sam_param->max_value);
+                continue;
+            }
+            st.counts_buf[m++] = st.sam_counts[i];
+        }
+        st.sam_counts = st.counts_buf;
+        st.sam_count_n = m;
+    }
+
+    /* one GL context for the run; without it every technique entry fails with the reason */
+    if (nl > 0) {
+        sss_error gerr = {0};
+        if (sss_gl_context_create(NULL, &st.rc.gl, &gerr) != SSS_OK) {
+            snprintf(out->gl_error, sizeof out->gl_error, "no OpenGL context: %.480s", gerr.message);
+            st.rc.gl_error = out->gl_error;
+            eval_note(&st.prog, "%s (every technique is reported as failed)", out->gl_error);
+        } else {
+            sss_gl_context_info info;
+            sss_gl_context_get_info(st.rc.gl, &info);
+            out->gl_ok = 1;
+            out->gl_software = info.software;
+            snprintf(out->gl_platform, sizeof out->gl_platform, "%s", info.platform ? info.platform : "");
+            snprintf(out->gl_renderer, sizeof out->gl_renderer, "%s", info.renderer ? info.renderer : "");
+            snprintf(out->gl_version, sizeof out->gl_version, "%s", info.version ? info.version : "");
+            snprintf(out->timing_method, sizeof out->timing_method, "%s",
+                     info.software ? "glFinish + monotonic clock" : "GL_TIME_ELAPSED queries");
+        }
+    }
+
+    st.prog.total = plan_units(&st);
+    for (int si = 0; si < scene_count; si++) {
+        sss_eval_scene *es = &out->scenes[si];
+        int nq = desc.resolution_count ? desc.resolution_count : 1;
+        for (int k = 0; k < nq; k++) {
+            sss_eval_size size = desc.resolution_count ? desc.resolutions[k] : (sss_eval_size){es->width, es->height};
+            st.prog.step = reference_units(&st, es, size.width, size.height);
+            char stage[256];
+            snprintf(stage, sizeof stage, "%s %dx%d: reference", es->name, size.width, size.height);
+            eval_progress_update(&st.prog, 0.0, stage);
+            if ((r = run_quality_size(&st, si, k, size, err)) != SSS_OK) goto fail;
+        }
+        for (int k = 0; k < desc.timing_resolution_count; k++)
+            if ((r = run_timing_size(&st, si, desc.timing_resolutions[k], err)) != SSS_OK) goto fail;
+    }
+    /* the method the renderer reported (GL_TIME_ELAPSED on GPUs, glFinish on software GL) */
+    if (st.rc.method) snprintf(out->timing_method, sizeof out->timing_method, "%s", st.rc.method);
+    st.prog.done = st.prog.total;
+    eval_progress_update(&st.prog, 0.0, "done");
+    sss_gl_context_destroy(st.rc.gl);
+    for (int i = 0; i < scene_count; i++) sss_scene_free(&st.scenes[i]);
+    free(st.scenes);
+    free(st.specs);
+    out->seconds = sss_time_seconds() - t_start;
+    return SSS_OK;
+fail:
+    sss_gl_context_destroy(st.rc.gl);
+    if (st.scenes)
+        for (int i = 0; i < scene_count; i++) sss_scene_free(&st.scenes[i]);
+    free(st.scenes);
+    free(st.specs);
+    sss_eval_results_free(out);
+    return r;
+}

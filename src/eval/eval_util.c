@@ -1,0 +1,211 @@
+/* eval/eval_util.c — technique specs, size lists, reference file names, results bookkeeping. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "eval/eval_internal.h"
+
+const char *sss_eval_kind_name(sss_eval_kind kind)
+{
+    switch (kind) {
+    case SSS_EVAL_QUALITY: return "quality";
+    case SSS_EVAL_TIMING: return "timing";
+    case SSS_EVAL_SAM_SWEEP: return "sam_sweep";
+    }
+    return "?";
+}
+
+static int valid_name_char(char c)
+{
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
+           c == '.';
+}
+
+sss_result eval_parse_spec(const char *text, eval_spec *out, sss_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!text || !text[0]) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "empty technique spec");
+    const char *p = text;
+    size_t n = strcspn(p, ":");
+    if (n == 0 || n >= sizeof out->name)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "technique spec '%s': bad technique name", text);
+    for (size_t i = 0; i < n; i++)
+        if (!valid_name_char(p[i]))
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "technique spec '%s': bad character '%c' in the name",
+                                 text, p[i]);
+    memcpy(out->name, p, n);
+    p += n;
+    while (*p == ':') {
+        p++;
+        size_t len = strcspn(p, ":");
+        const char *eq = memchr(p, '=', len);
+        if (!eq || eq == p)
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                                 "technique spec '%s': expected name:param=value[:param=value...]", text);
+        if (out->param_count >= EVAL_MAX_SPEC_PARAMS)
+            return sss_error_set(err, SSS_ERROR_LIMIT, "technique spec '%s': more than %d parameters", text,
+                                 EVAL_MAX_SPEC_PARAMS);
+        size_t klen = (size_t)(eq - p);
+        if (klen >= sizeof out->names[0])
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "technique spec '%s': parameter name too long", text);
+        char value[64];
+        size_t vlen = len - klen - 1;
+        if (vlen == 0 || vlen >= sizeof value)
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "technique spec '%s': bad value", text);
+        memcpy(value, eq + 1, vlen);
+        value[vlen] = '\0';
+        char *end = NULL;
+        errno = 0;
+        double v = strtod(value, &end);
+        if (end == value || *end != '\0' || errno == ERANGE || !isfinite(v))
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "technique spec '%s': '%s' is not a finite number",
+                                 text, value);
+        memcpy(out->names[out->param_count], p, klen);
+        out->names[out->param_count][klen] = '\0';
+        out->params[out->param_count].name = out->names[out->param_count];
+        out->params[out->param_count].value = v;
+        out->param_count++;
+        p += len;
+    }
+    if (*p != '\0') return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "technique spec '%s': trailing text", text);
+    return SSS_OK;
+}
+
+sss_result sss_eval_check_spec(const char *spec, sss_error *err)
+{
+    eval_spec s;
+    return eval_parse_spec(spec, &s, err);
+}
+
+sss_result sss_eval_parse_sizes(const char *text, sss_eval_size **out, int *count, sss_error *err)
+{
+    *out = NULL;
+    *count = 0;
+    if (!text || !text[0]) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "empty size list");
+    int cap = 1;
+    for (const char *c = text; *c; c++) cap += *c == ',';
+    sss_eval_size *v = calloc((size_t)cap, sizeof *v);
+    if (!v) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+    const char *p = text;
+    int n = 0;
+    for (;;) {
+        char *end = NULL;
+        errno = 0;
+        long w = strtol(p, &end, 10);
+        long h = 0;
+        int okw = end != p && *end == 'x' && errno == 0;
+        if (okw) {
+            const char *q = end + 1;
+            errno = 0;
+            h = strtol(q, &end, 10);
+            okw = end != q && (*end == ',' || *end == '\0') && errno == 0;
+        }
+        if (!okw || w < 11 || h < 11 || w > SSS_SCENE_MAX_IMAGE_SIZE || h > SSS_SCENE_MAX_IMAGE_SIZE) {
+            free(v);
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                                 "size list '%s': expected WxH[,WxH...] with each side in 11..%d", text,
+                                 SSS_SCENE_MAX_IMAGE_SIZE);
+        }
+        v[n].width = (int)w;
+        v[n].height = (int)h;
+        n++;
+        if (*end == '\0') break;
+        p = end + 1;
+    }
+    *out = v;
+    *count = n;
+    return SSS_OK;
+}
+
+int sss_eval_reference_path(const char *dir, const char *stem, int width, int height, int has_time, double time,
+                            char *out, size_t cap)
+{
+    int n;
+    if (has_time) n = snprintf(out, cap, "%s/%s_%dx%d_t%g.exr", dir, stem, width, height, time);
+    else n = snprintf(out, cap, "%s/%s_%dx%d.exr", dir, stem, width, height);
+    return n > 0 && (size_t)n < cap;
+}
+
+void eval_default_reference_dir(const char *scene_path, char *out, size_t cap)
+{
+    const char *slash = strrchr(scene_path, '/');
+    if (!slash) snprintf(out, cap, "references");
+    else snprintf(out, cap, "%.*s/references", (int)(slash - scene_path), scene_path);
+}
+
+uint64_t eval_file_hash(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return 0;
+    uint64_t h = 1469598103934665603ull; /* FNV-1a 64 */
+    unsigned char buf[8192];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, f)) > 0)
+        for (size_t i = 0; i < n; i++) h = (h ^ buf[i]) * 1099511628211ull;
+    fclose(f);
+    return h;
+}
+
+sss_eval_entry *eval_add_entry(sss_eval_results *res)
+{
+    if (res->entry_count == res->entry_capacity) {
+        int cap = res->entry_capacity ? 2 * res->entry_capacity : 32;
+        sss_eval_entry *e = realloc(res->entries, (size_t)cap * sizeof *e);
+        if (!e) return NULL;
+        res->entries = e;
+        res->entry_capacity = cap;
+    }
+    sss_eval_entry *e = &res->entries[res->entry_count++];
+    memset(e, 0, sizeof *e);
+    return e;
+}
+
+const sss_eval_entry *eval_find(const sss_eval_results *res, int scene, sss_eval_kind kind, const char *label,
+                                int width, int height)
+{
+    for (int i = 0; i < res->entry_count; i++) {
+        const sss_eval_entry *e = &res->entries[i];
+        if (e->scene == scene && e->kind == kind && strcmp(e->label, label) == 0 &&
+            (width <= 0 || (e->width == width && e->height == height)))
+            return e;
+    }
+    return NULL;
+}
+
+void eval_primary_size(const sss_eval_results *res, int scene, int *width, int *height)
+{
+    const sss_eval_scene *s = &res->scenes[scene];
+    if (s->reference_count > 0) {
+        *width = s->references[0].width;
+        *height = s->references[0].height;
+    } else {
+        *width = s->width;
+        *height = s->height;
+    }
+}
+
+void sss_eval_results_free(sss_eval_results *res)
+{
+    if (!res) return;
+    for (int i = 0; i < res->scene_count; i++) {
+        free(res->scenes[i].path);
+        sss_image_free(&res->scenes[i].reference);
+    }
+    free(res->scenes);
+    for (int i = 0; i < res->entry_count; i++) {
+        sss_image_free(&res->entries[i].image);
+        sss_image_free(&res->entries[i].dssim_map);
+    }
+    free(res->entries);
+    for (int i = 0; i < res->label_count; i++) free(res->labels[i]);
+    free(res->labels);
+    memset(res, 0, sizeof *res);
+}
+
+void eval_sheet_file(const sss_eval_scene *s, char *out, size_t cap)
+{
+    if (s->has_time) snprintf(out, cap, "sheet_%s_t%g.png", s->stem, s->time);
+    else snprintf(out, cap, "sheet_%s.png", s->stem);
+}
