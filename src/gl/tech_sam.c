@@ -175,16 +175,26 @@ static sss_result sam_create(sss_gl_renderer *r, void *state, sss_error *err)
     d.samples = (uint32_t)gl_param(r, P_SAMPLES);
     d.seed = (uint64_t)gl_param(r, P_SEED);
     d.file = r->data_file;
-    for (size_t i = 0; i < r->scene->object_count && res == SSS_OK; i++) {
+    sss_error mismatch = {0};
+    d.mismatch = &mismatch;
+    int from_file = 0;
+    /* without translucency no map is needed (nothing is built) */
+    for (size_t i = 0; i < r->scene->object_count && res == SSS_OK && gl_param(r, P_TRANSLUCENCY) != 0.0; i++) {
         if (r->scene->objects[i].material.type != SSS_SCENE_MATERIAL_SUBSURFACE) continue;
         res = sam_object_create(r, (int)i, &d, &s->objs[s->count], err);
-        if (res == SSS_OK) s->build_seconds += s->objs[s->count++].build_seconds;
+        if (res == SSS_OK) {
+            from_file += s->objs[s->count].from_file;
+            s->build_seconds += s->objs[s->count++].build_seconds;
+        }
         else {
             char what[64];
             snprintf(what, sizeof what, "objects[%zu]", i);
             sss_error_prefix(err, what);
         }
     }
+    /* a file that fits none of the objects is a mistake worth reporting (not a silent rebuild) */
+    if (res == SSS_OK && r->data_file && s->count > 0 && from_file == 0)
+        res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s", mismatch.message);
     if (res == SSS_OK) res = make_targets(r, s, err);
     if (res == SSS_OK) res = surface_create(r, s, err);
     return res;

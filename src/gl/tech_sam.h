@@ -31,12 +31,14 @@ typedef struct sam_object {
     size_t bytes;
     uint32_t linked;           /* vertices with at least one link */
     double build_seconds;      /* 0 when read from a file */
+    int from_file;
 } sam_object;
 
 typedef struct sam_data_desc {
     uint32_t n, samples;
     uint64_t seed;
     const char *file;          /* a .sam file for the objects whose mesh it matches, or NULL */
+    sss_error *mismatch;       /* receives why the file does not fit an object (first one only) */
 } sam_data_desc;
 
 /* Builds (or reads) the map of scene object `index` and uploads it. */

@@ -85,6 +85,8 @@ sss_result sam_object_create(sss_gl_renderer *r, int index, const sam_data_desc 
             if (err) *err = e2;
             return res;
         }
+        if (res != SSS_OK && d->mismatch && d->mismatch->code == SSS_OK) *d->mismatch = e2;
+        out->from_file = res == SSS_OK;
     }
     if (res != SSS_OK) {
         sss_sam_desc bd;
