@@ -20,6 +20,7 @@ static const command commands[] = {
     {"render", sss_cmd_render, "render a scene in real time with OpenGL (headless) to an image"},
     {"techniques", sss_cmd_techniques, "list the real-time techniques"},
     {"eval", sss_cmd_eval, "evaluate techniques against the reference: metrics, timings, sheets, plots, report"},
+    {"view", sss_cmd_view, "show a scene in a window: orbit camera, techniques, DSSIM vs reference"},
     {"export", sss_cmd_export, "write a scene for another renderer (export pbrt)"},
     {"sam", sss_cmd_sam, "build or inspect a Spatial Adjacency Map (seed 001) of a mesh"},
 };

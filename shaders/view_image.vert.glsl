@@ -1,0 +1,10 @@
+#version 450 core
+// Viewer: one triangle covering the viewport, with texture coordinates (image row 0 at the top).
+out vec2 v_uv;
+
+void main()
+{
+    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+    v_uv = vec2(p.x, 1.0 - p.y);
+    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}

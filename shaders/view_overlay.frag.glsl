@@ -1,0 +1,6 @@
+#version 450 core
+// Viewer overlay: flat colour, alpha-blended over the image.
+in vec4 v_color;
+out vec4 o_color;
+
+void main() { o_color = v_color; }

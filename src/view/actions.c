@@ -1,0 +1,417 @@
+/* view/actions.c — what the viewer's keys do: switch technique (the registry, so new techniques appear
+ * by themselves), show the translucency or the screen-space part alone, cycle measured media and the
+ * scattering scale, move the light, compute the reference of the current view in the background and
+ * the DSSIM of the frame against it, save screenshots. Failures become overlay messages; the viewer
+ * keeps the last working state. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "sss/material.h"
+#include "view/viewer.h"
+
+const char *const view_buffer_names[VIEW_BUFFER_COUNT] = {"final",        "reflected",         "irradiance",
+                                                          "translucency", "translucency_full", "screen"};
+
+void view_message(viewer *v, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(v->message, sizeof v->message, fmt, ap);
+    va_end(ap);
+    v->message_until = sss_time_seconds() + 5.0;
+    if (v->desc->log) v->desc->log(v->desc->log_user, v->message);
+}
+
+static int find_param(const sss_gl_param_info *p, int n, const char *name)
+{
+    for (int i = 0; i < n; i++)
+        if (strcmp(p[i].name, name) == 0) return i;
+    return -1;
+}
+
+static int technique_knows(const sss_gl_technique_info *info, const char *name)
+{
+    int n = 0;
+    const sss_gl_param_info *shared = sss_gl_shared_params(&n);
+    return find_param(info->params, info->param_count, name) >= 0 || find_param(shared, n, name) >= 0;
+}
+
+/* The value the user asked for (--param) or the technique's default. */
+static double user_value(const viewer *v, const sss_gl_technique_info *info, int index)
+{
+    for (int i = 0; i < v->desc->param_count; i++)
+        if (strcmp(v->desc->params[i].name, info->params[index].name) == 0) return v->desc->params[i].value;
+    return info->params[index].default_value;
+}
+
+sss_result view_make_renderer(viewer *v, int tech, sss_error *err)
+{
+    const sss_gl_technique_info *info = sss_gl_technique_at(tech);
+    if (!info) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "no technique %d", tech);
+    /* --param values go to the techniques that know them (switching must not fail on another's). */
+    int n = v->desc->param_count, kept = 0;
+    sss_gl_param_value *params = calloc((size_t)(n > 0 ? n : 1), sizeof *params);
+    if (!params) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (parameters)");
+    for (int i = 0; i < n; i++)
+        if (!v->r || technique_knows(info, v->desc->params[i].name)) params[kept++] = v->desc->params[i];
+    sss_gl_renderer_desc d;
+    memset(&d, 0, sizeof d);
+    d.technique = info->name;
+    d.width = v->width;
+    d.height = v->height;
+    d.params = params;
+    d.param_count = kept;
+    d.timings = 1;
+    sss_gl_renderer *r = NULL;
+    sss_result res = sss_gl_renderer_create(v->ctx, v->scene, &d, &r, err);
+    free(params);
+    if (res != SSS_OK) return res;
+    sss_gl_renderer_destroy(v->r);
+    v->r = r;
+    v->tech = tech;
+    v->need_render = 1;
+    /* the part switches of the new technique */
+    int p = find_param(info->params, info->param_count, "screen_space");
+    int q = find_param(info->params, info->param_count, "translucency");
+    if (p >= 0 && q >= 0) {
+        sss_gl_renderer_set_param(r, "screen_space", v->part == PART_TRANSLUCENCY ? 0.0 : user_value(v, info, p), NULL);
+        sss_gl_renderer_set_param(r, "translucency", v->part == PART_SCREEN ? 0.0 : user_value(v, info, q), NULL);
+        v->part_buffer = NULL;
+    } else if (v->part == PART_TRANSLUCENCY) {
+        v->part_buffer = "translucency_full";
+    } else if (v->part == PART_SCREEN && strcmp(info->name, "screen") != 0) {
+        v->part_buffer = "screen";
+    } else {
+        v->part_buffer = NULL;
+    }
+    return SSS_OK;
+}
+
+static void switch_technique(viewer *v, int tech, int quiet)
+{
+    sss_error err = {0};
+    const sss_gl_technique_info *info = sss_gl_technique_at(tech);
+    if (view_make_renderer(v, tech, &err) != SSS_OK)
+        view_message(v, "technique %s failed: %s", info ? info->name : "?", err.message);
+    else if (!quiet)
+        view_message(v, "technique %s", info->name);
+}
+
+void view_apply_part(viewer *v, int part)
+{
+    int back = v->part_saved_tech;
+    v->part = part;
+    v->part_saved_tech = -1;
+    if (back >= 0 && back != v->tech) switch_technique(v, back, 1);
+    else switch_technique(v, v->tech, 1); /* re-applies the switches */
+    static const char *const names[3] = {"all parts", "translucency alone", "screen-space part alone"};
+    view_message(v, "%s%s", names[part], v->part_buffer ? " (the technique's buffer)" : "");
+}
+
+/* A part shown through a buffer could not be read: try the next way (translucency -> the
+ * low-resolution buffer; screen -> the "screen" technique), else give up with a message. */
+static void part_buffer_failed(viewer *v)
+{
+    const char *name = sss_gl_technique_at(v->tech)->name;
+    if (v->part == PART_TRANSLUCENCY && v->part_buffer && strcmp(v->part_buffer, "translucency_full") == 0) {
+        v->part_buffer = "translucency";
+        return;
+    }
+    v->part_buffer = NULL;
+    if (v->part == PART_SCREEN) {
+        for (int i = 0; i < sss_gl_technique_count(); i++)
+            if (strcmp(sss_gl_technique_at(i)->name, "screen") == 0 && i != v->tech) {
+                int saved = v->tech;
+                switch_technique(v, i, 1);
+                if (v->tech == i) {
+                    v->part_saved_tech = saved;
+                    view_message(v, "%s has no screen-space switch: showing technique screen", name);
+                    return;
+                }
+            }
+    }
+    view_message(v, "technique %s exposes no %s part (no switch, no buffer)", name,
+                 v->part == PART_SCREEN ? "screen-space" : "translucency");
+    v->part = PART_ALL;
+}
+
+int view_buffer_to_show(viewer *v, sss_image *out)
+{
+    for (int attempt = 0; attempt < 4; attempt++) {
+        const char *name = v->part_buffer ? v->part_buffer : v->buffer > 0 ? view_buffer_names[v->buffer] : NULL;
+        if (!name) return 0;
+        sss_error err = {0};
+        if (sss_gl_renderer_read_buffer(v->r, name, out, &err) == SSS_OK) return 1;
+        if (v->part_buffer) {
+            part_buffer_failed(v);
+        } else {
+            view_message(v, "%s", err.message);
+            v->buffer = 0;
+        }
+    }
+    return 0;
+}
+
+static void next_buffer(viewer *v, int step)
+{
+    /* skip the buffers the technique does not have */
+    for (int k = 1; k < VIEW_BUFFER_COUNT; k++) {
+        int b = ((v->buffer + step * k) % VIEW_BUFFER_COUNT + VIEW_BUFFER_COUNT) % VIEW_BUFFER_COUNT;
+        sss_image tmp = {0};
+        if (b == 0 || sss_gl_renderer_read_buffer(v->r, view_buffer_names[b], &tmp, NULL) == SSS_OK) {
+            sss_image_free(&tmp);
+            v->buffer = b;
+            v->shown_gen = 0;
+            view_message(v, "buffer %s", view_buffer_names[b]);
+            return;
+        }
+    }
+}
+
+/* ---- Scene edits ---------------------------------------------------------------------------- */
+
+void view_invalidate(viewer *v)
+{
+    free(v->view_key);
+    v->view_key = NULL;
+    v->ref = NULL;
+    v->dssim_gen = 0;
+    v->need_render = 1;
+}
+
+void view_camera_changed(viewer *v)
+{
+    sss_camera_basis b;
+    if (sss_camera_basis_init(&v->scene->camera, &b, NULL) == SSS_OK) v->scene->basis = b;
+    view_invalidate(v);
+}
+
+void view_light_changed(viewer *v)
+{
+    /* Light records and shadow maps are built with the renderer: rebuild it on the same scene. */
+    sss_error err = {0};
+    if (view_make_renderer(v, v->tech, &err) != SSS_OK) view_message(v, "light: %s", err.message);
+    view_invalidate(v);
+}
+
+static sss_result edited_json(viewer *v, char **json, sss_error *err)
+{
+    view_edits e;
+    memset(&e, 0, sizeof e);
+    e.camera = &v->scene->camera;
+    e.light0 = v->has_light ? &v->scene->lights[0] : NULL;
+    e.medium = v->medium;
+    e.scale_factor = v->scale_factor;
+    return view_scene_json(v->text, v->text_size, v->scene->name, &e, json, err);
+}
+
+/* Materials changed: the edited file goes through the loader again, then a renderer for it. */
+static void rebuild_scene(viewer *v, int old_medium, double old_scale)
+{
+    sss_error err = {0};
+    char *json = NULL;
+    sss_scene *s = calloc(1, sizeof *s), *old = v->scene;
+    sss_result res = s ? edited_json(v, &json, &err) : sss_error_set(&err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (res == SSS_OK) res = sss_scene_parse(json, strlen(json), old->base_dir, old->name, NULL, s, &err);
+    free(json);
+    if (res == SSS_OK) {
+        v->scene = s;
+        res = view_make_renderer(v, v->tech, &err);
+        if (res != SSS_OK) {
+            v->scene = old;
+            sss_scene_free(s);
+        }
+    }
+    if (res != SSS_OK) {
+        free(s);
+        v->medium = old_medium;
+        v->scale_factor = old_scale;
+        view_message(v, "material change failed: %s", err.message);
+        return;
+    }
+    sss_scene_free(old);
+    free(old);
+    view_invalidate(v);
+    if (v->medium >= 0)
+        view_message(v, "medium %s, scale x%g", sss_measured_medium_at((size_t)v->medium)->name, v->scale_factor);
+    else
+        view_message(v, "the scene's materials, scale x%g", v->scale_factor);
+}
+
+/* ---- Reference and DSSIM -------------------------------------------------------------------- */
+
+sss_result view_current_key(viewer *v, char **key, char **json, sss_error *err)
+{
+    *key = NULL;
+    char *j = NULL;
+    sss_result res = edited_json(v, &j, err);
+    if (res != SSS_OK) return res;
+    size_t n = strlen(j) + 64;
+    *key = malloc(n);
+    if (!*key) {
+        free(j);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (view key)");
+    }
+    snprintf(*key, n, "%s|t=%.17g", j, v->t);
+    if (json) *json = j;
+    else free(j);
+    return SSS_OK;
+}
+
+static char *quality_key(const char *key, int draft)
+{
+    size_t n = strlen(key) + 8;
+    char *k = malloc(n);
+    if (k) snprintf(k, n, "%s|%s", key, draft ? "draft" : "final");
+    return k;
+}
+
+void view_request_reference(viewer *v, int draft)
+{
+    double progress = 0.0;
+    if (v->job) {
+        view_ref_poll(v->job, &progress, NULL);
+        view_message(v, "a reference is being rendered (%.0f%%)", 100.0 * progress);
+        return;
+    }
+    sss_error err = {0};
+    char *key = NULL, *json = NULL;
+    if (view_current_key(v, &key, &json, &err) != SSS_OK) {
+        view_message(v, "reference: %s", err.message);
+        return;
+    }
+    char *qk = quality_key(key, draft);
+    free(key);
+    if (!qk) {
+        free(json);
+        view_message(v, "reference: out of memory");
+        return;
+    }
+    if (view_ref_cache_find(&v->cache, qk)) {
+        free(json);
+        free(qk);
+        view_invalidate(v);
+        view_message(v, "the reference of this view is cached");
+        return;
+    }
+    if (view_ref_start(json, v->scene->base_dir, v->scene->name, v->t, draft, &v->job, &err) != SSS_OK) {
+        free(qk);
+        view_message(v, "reference: %s", err.message);
+    } else {
+        v->job_key = qk;
+        view_message(v, "rendering the %s reference of this view in the background", draft ? "draft" : "final");
+    }
+    free(json);
+}
+
+void view_poll_reference(viewer *v)
+{
+    if (!v->job || !view_ref_poll(v->job, NULL, NULL)) return;
+    sss_error err = {0};
+    sss_image img = {0};
+    sss_result res = view_ref_finish(v->job, &img, &err);
+    v->job = NULL;
+    if (res == SSS_OK) res = view_ref_cache_put(&v->cache, v->job_key, &img, &err);
+    free(v->job_key);
+    v->job_key = NULL;
+    if (res != SSS_OK) view_message(v, "reference failed: %s", err.message);
+    else view_message(v, "reference ready");
+    free(v->view_key); /* look the current view up again */
+    v->view_key = NULL;
+    v->ref = NULL;
+    v->dssim_gen = 0;
+}
+
+void view_update_dssim(viewer *v)
+{
+    if (!v->view_key) {
+        sss_error err = {0};
+        if (view_current_key(v, &v->view_key, NULL, &err) != SSS_OK) return;
+        v->ref = NULL;
+        for (int draft = 0; draft <= 1 && !v->ref; draft++) {
+            char *qk = quality_key(v->view_key, draft);
+            if (qk) v->ref = view_ref_cache_find(&v->cache, qk);
+            if (v->ref) v->ref_draft = draft;
+            free(qk);
+        }
+    }
+    if (!v->ref || v->dssim_gen == v->image_gen || !v->image_gen) return;
+    sss_error err = {0};
+    if (v->frame_img.width != v->width || v->frame_img.height != v->height) {
+        sss_image_free(&v->frame_img);
+        if (sss_image_create(&v->frame_img, v->width, v->height, &err) != SSS_OK) return;
+    }
+    sss_image_metrics m;
+    if (sss_gl_renderer_read(v->r, &v->frame_img, &err) != SSS_OK ||
+        sss_image_compare(&v->frame_img, v->ref, v->scene->render.exposure, &m, NULL, &err) != SSS_OK) {
+        view_message(v, "DSSIM: %s", err.message);
+        v->ref = NULL;
+        return;
+    }
+    v->dssim = m.dssim;
+    v->dssim_gen = v->image_gen;
+}
+
+/* ---- Screenshots ---------------------------------------------------------------------------- */
+
+int view_next_screenshot_name(char *buf, size_t cap)
+{
+    for (int i = 0; i < 10000; i++) {
+        snprintf(buf, cap, "sss-view-%04d.png", i);
+        if (access(buf, F_OK) != 0) return 1;
+    }
+    return 0;
+}
+
+/* ---- The pending actions of the keys -------------------------------------------------------- */
+
+void view_run_actions(viewer *v)
+{
+    int n = sss_gl_technique_count();
+    if (v->act_tech && n > 0) {
+        int t = ((v->tech + v->act_tech) % n + n) % n;
+        v->act_tech = 0;
+        v->part_saved_tech = -1;
+        switch_technique(v, t, 0);
+    }
+    if (v->act_part) {
+        int p = v->act_part - 1;
+        v->act_part = 0;
+        view_apply_part(v, p);
+    }
+    if (v->act_buffer) {
+        next_buffer(v, v->act_buffer);
+        v->act_buffer = 0;
+    }
+    if (v->act_medium || v->act_scale != 0.0) {
+        int old_medium = v->medium;
+        double old_scale = v->scale_factor;
+        if (v->act_medium) {
+            int m = (int)sss_measured_medium_count() + 1; /* -1 (the file's) and the table */
+            v->medium = ((v->medium + 1 + v->act_medium) % m + m) % m - 1;
+        }
+        if (v->act_scale != 0.0) v->scale_factor *= v->act_scale;
+        v->act_medium = 0;
+        v->act_scale = 0.0;
+        rebuild_scene(v, old_medium, old_scale);
+    }
+    if (v->act_light) {
+        if (v->has_light) {
+            view_rotate_light_y(&v->scene->lights[0], v->scene->camera.look_at, 15.0 * v->act_light);
+            v->light_angle = fmod(v->light_angle + 15.0 * v->act_light + 540.0, 360.0) - 180.0;
+            view_light_changed(v);
+            view_message(v, "light 0 at %+.0f degrees about the vertical through look_at", v->light_angle);
+        } else {
+            view_message(v, "the scene has no light to move");
+        }
+        v->act_light = 0;
+    }
+    if (v->act_reference) {
+        view_request_reference(v, v->act_reference == 2 || v->desc->reference_draft);
+        v->act_reference = 0;
+    }
+}

@@ -1,0 +1,88 @@
+/* view/view_internal.h — pieces of the viewer that do not need a window (camera and light motion,
+ * scene edits as JSON, the background reference, overlay text geometry), so tests can reach them. */
+#ifndef SSS_VIEW_INTERNAL_H
+#define SSS_VIEW_INTERNAL_H
+
+#include <pthread.h>
+#include <stddef.h>
+
+#include "sss/image.h"
+#include "sss/scene.h"
+#include "sss/view.h"
+
+/* ---- Camera and light motion (motion.c) ------------------------------------------------------- */
+
+/* Orbit around look_at: azimuth about the camera's up axis (right-handed, degrees), then elevation
+ * towards up; the angle between the view offset and up stays within [1, 179] degrees, and the distance
+ * to look_at is kept. */
+void view_orbit(sss_camera *cam, double azimuth_deg, double elevation_deg);
+/* Pan: moves position and look_at together so that points at look_at's depth follow the cursor by
+ * (dx, dy) pixels (x right, y down) in a width x height image. */
+void view_pan(sss_camera *cam, double dx, double dy, int width, int height);
+/* Zoom: the distance to look_at is multiplied by factor (> 0), kept above 1e-6 of its start. */
+void view_zoom(sss_camera *cam, double factor);
+/* Rotates a light's geometry about the vertical axis (+y, right-handed) through pivot: positions,
+ * spot targets, directions, area-light centre and edges, environment rotate_y. */
+void view_rotate_light_y(sss_light *light, const double pivot[3], double degrees);
+
+/* ---- Scene edits (scene_edit.c) --------------------------------------------------------------- */
+
+typedef struct view_edits {
+    const sss_camera *camera; /* NULL: keep the file's */
+    const sss_light *light0;  /* NULL: keep; else the geometry of lights[0] (type must match) */
+    int medium;               /* -1: every subsurface material as in the file; else the index of a
+                                 measured medium (sss_measured_medium_at) given to all of them */
+    double scale_factor;      /* multiplies every subsurface material's coefficients (0 -> 1): `scale`
+                                 for media and coefficients, 1 / factor on `mfp` */
+} view_edits;
+
+/* The scene file's JSON text with the edits applied (unformatted; free() it). Errors name `name`. */
+sss_result view_scene_json(const char *text, size_t size, const char *name, const view_edits *edits, char **out,
+                           sss_error *err);
+
+/* ---- The reference in the background (reference_job.c) ---------------------------------------- */
+
+typedef struct view_ref_job view_ref_job; /* one render in a worker thread */
+
+/* Starts sss_reference_render of the scene `json` (base_dir for its paths, name for messages) at time
+ * t on a worker thread. */
+sss_result view_ref_start(const char *json, const char *base_dir, const char *name, double time, int draft,
+                          view_ref_job **out, sss_error *err);
+/* 0 while running (progress in [0, 1] and the stage name), 1 when done: then *image receives the
+ * result (moved out) or err the failure. */
+int view_ref_poll(view_ref_job *job, double *progress, const char **stage);
+sss_result view_ref_finish(view_ref_job *job, sss_image *image, sss_error *err); /* joins and frees */
+/* Gives up on a running job: the worker frees it when the render returns. */
+void view_ref_abandon(view_ref_job *job);
+
+/* A few references by key (scene JSON + time + quality), most recent first. */
+#define VIEW_REF_CACHE 8
+typedef struct view_ref_cache {
+    char *keys[VIEW_REF_CACHE];
+    sss_image images[VIEW_REF_CACHE];
+} view_ref_cache;
+
+const sss_image *view_ref_cache_find(view_ref_cache *c, const char *key);
+/* Takes ownership of image (and copies key). */
+sss_result view_ref_cache_put(view_ref_cache *c, const char *key, sss_image *image, sss_error *err);
+void view_ref_cache_free(view_ref_cache *c);
+
+/* ---- Overlay text geometry (overlay_text.c) --------------------------------------------------- */
+
+typedef struct view_text_vertex {
+    float x, y;            /* pixels, origin top left, y down */
+    unsigned char rgba[4];
+} view_text_vertex;
+
+typedef struct view_text {
+    view_text_vertex *vertices; /* 4 per quad */
+    int quads, capacity;
+    float width, height;        /* extent of the text block (pixels, before scale) */
+} view_text;
+
+/* Appends the quads of a multi-line text at (x, y) pixels, with a darkened background rectangle behind
+ * the block; scale multiplies the 6 x 12 pixel font of stb_easy_font. */
+sss_result view_text_build(view_text *t, const char *text, float x, float y, float scale, sss_error *err);
+void view_text_free(view_text *t);
+
+#endif

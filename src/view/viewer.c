@@ -1,0 +1,288 @@
+/* view/viewer.c — sss_view_run: the window, the frame loop (render when something changed or the
+ * animation plays, show the final image or a buffer, screenshot from the back buffer, then the overlay,
+ * then swap) and the fixed-frame mode for tests. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <epoxy/gl.h>
+
+#include "core/file_util.h"
+#include "view/viewer.h"
+
+#define OVERLAY_TEXT_SIZE 8192
+#define FRAMES_MODE_FPS 30.0
+
+static void sleep_ms(int ms)
+{
+    struct timespec ts = {ms / 1000, (long)(ms % 1000) * 1000000L};
+    nanosleep(&ts, NULL);
+}
+
+static void check_size(viewer *v)
+{
+    int fw = 0, fh = 0;
+    sss_gl_window_size(v->ctx, &fw, &fh);
+    if (fw < 1 || fh < 1 || (fw == v->width && fh == v->height)) return; /* minimised or unchanged */
+    sss_error err = {0};
+    if (sss_gl_renderer_resize(v->r, fw, fh, &err) != SSS_OK) {
+        view_message(v, "resize: %s", err.message);
+        return;
+    }
+    v->width = fw;
+    v->height = fh;
+    v->scene->camera.width = fw;
+    v->scene->camera.height = fh;
+    view_camera_changed(v);
+}
+
+/* The image under the overlay: the technique's final frame, or a buffer (a part alone, the B key). */
+static sss_result show_image(viewer *v, sss_error *err)
+{
+    const char *want = v->part_buffer ? v->part_buffer : v->buffer ? view_buffer_names[v->buffer] : NULL;
+    double exposure = v->scene->render.exposure;
+    if (want && v->shown_gen == v->image_gen && v->shown_name == want)
+        return view_gl_redraw_image(&v->gl, exposure, v->width, v->height, err);
+    if (want) {
+        sss_image img = {0};
+        if (view_buffer_to_show(v, &img)) {
+            sss_result res = view_gl_draw_image(&v->gl, &img, exposure, v->width, v->height, err);
+            sss_image_free(&img);
+            v->shown_gen = v->image_gen;
+            v->shown_name = v->part_buffer ? v->part_buffer : view_buffer_names[v->buffer];
+            return res;
+        }
+    }
+    if (v->need_render) { /* a fresh renderer (technique switched just now) has no frame yet */
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        return SSS_OK;
+    }
+    return sss_gl_renderer_present(v->r, err);
+}
+
+static sss_result draw_overlay(viewer *v, sss_error *err)
+{
+    char *text = malloc(OVERLAY_TEXT_SIZE);
+    if (!text) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (overlay)");
+    view_overlay_text(v, text, OVERLAY_TEXT_SIZE);
+    view_text t = {0};
+    float scale = v->width >= 1600 ? 2.0f : 1.0f;
+    sss_result res = view_text_build(&t, text, 4.0f, 4.0f, scale, err);
+    if (res == SSS_OK) res = view_gl_draw_text(&v->gl, &t, v->width, v->height, err);
+    view_text_free(&t);
+    free(text);
+    return res;
+}
+
+/* One frame. Render failures end a fixed-frame run; interactively they become a message. */
+static sss_result frame(viewer *v, int fixed, const char *screenshot, sss_error *err)
+{
+    check_size(v);
+    view_run_actions(v);
+    if (v->playing && !fixed) {
+        double now = glfwGetTime();
+        v->t += now - v->wall_last;
+        v->wall_last = now;
+        view_invalidate(v);
+    }
+    double start = sss_time_seconds();
+    int rendered = 0;
+    if (v->need_render || fixed) {
+        sss_error rerr = {0};
+        if (sss_gl_renderer_render(v->r, v->t, &rerr) != SSS_OK) {
+            v->need_render = 0;
+            if (fixed) {
+                *err = rerr;
+                return rerr.code;
+            }
+            view_message(v, "render: %s", rerr.message);
+        } else {
+            sss_gl_renderer_timings(v->r, &v->timings);
+            v->image_gen++;
+            v->need_render = 0;
+            rendered = 1;
+        }
+    }
+    view_poll_reference(v);
+    view_update_dssim(v);
+    sss_result res = show_image(v, err);
+    if (res != SSS_OK) {
+        if (fixed) return res;
+        view_message(v, "%s", err->message);
+    }
+    /* Screenshots: the back buffer before the overlay is drawn and before the swap. */
+    if (screenshot && (res = view_gl_screenshot(v->width, v->height, screenshot, err)) != SSS_OK) return res;
+    if (v->act_screenshot) {
+        v->act_screenshot = 0;
+        char name[64];
+        sss_error serr = {0};
+        if (!view_next_screenshot_name(name, sizeof name)) view_message(v, "screenshot: sss-view-0000..9999.png all exist");
+        else if (view_gl_screenshot(v->width, v->height, name, &serr) != SSS_OK) view_message(v, "%s", serr.message);
+        else view_message(v, "saved %s", name);
+    }
+    if (v->overlay && (res = draw_overlay(v, err)) != SSS_OK) {
+        if (fixed) return res;
+        view_message(v, "%s", err->message);
+        v->overlay = 0;
+    }
+    sss_gl_window_swap(v->ctx);
+    if (rendered) v->frame_ms = 1000.0 * (sss_time_seconds() - start);
+    view_update_title(v);
+    return SSS_OK;
+}
+
+/* The next comma-separated event of a script into buf; returns the rest (NULL at the end). */
+static const char *next_event(const char *s, char *buf, size_t cap)
+{
+    if (!s || !*s) return NULL;
+    const char *comma = strchr(s, ',');
+    size_t n = comma ? (size_t)(comma - s) : strlen(s);
+    if (n >= cap) n = cap - 1;
+    memcpy(buf, s, n);
+    buf[n] = '\0';
+    return comma ? comma + 1 : s + strlen(s);
+}
+
+static sss_result check_input(viewer *v, const char *input, sss_error *err)
+{
+    char ev[64];
+    int count = 0;
+    for (const char *s = next_event(input, ev, sizeof ev); s; s = next_event(s, ev, sizeof ev), count++)
+        if (!view_input_event(v, ev, 0))
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                                 "input event '%s' is unknown (keys such as tab, shift+m, l, +; orbit:DX:DY, "
+                                 "pan:DX:DY, zoom:STEPS)",
+                                 ev);
+    if (count > v->desc->frames)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "%d input events but %d frames: one input event is applied per frame", count,
+                             v->desc->frames);
+    return SSS_OK;
+}
+
+static sss_result run_fixed(viewer *v, sss_error *err)
+{
+    const sss_view_desc *d = v->desc;
+    const char *script = d->input;
+    char ev[64];
+    if (d->reference) view_request_reference(v, d->reference_draft);
+    for (int k = 0; k < d->frames; k++) {
+        glfwPollEvents();
+        if ((script = next_event(script, ev, sizeof ev))) view_input_event(v, ev, 1);
+        if (v->playing && k > 0) { /* fixed steps: frame k of an animation from the start is at T + k / fps */
+            v->t += 1.0 / FRAMES_MODE_FPS;
+            view_invalidate(v);
+        }
+        if (k == d->frames - 1)
+            while (v->job && !view_ref_poll(v->job, NULL, NULL)) { /* the DSSIM belongs to the last frame */
+                glfwPollEvents();
+                sleep_ms(50);
+            }
+        sss_result res = frame(v, 1, k == d->frames - 1 ? d->screenshot : NULL, err);
+        if (res != SSS_OK) return res;
+        if (glfwWindowShouldClose(v->window)) break;
+    }
+    if (d->reference) {
+        if (v->ref && v->dssim_gen) view_message(v, "DSSIM of the last frame vs the %s reference: %.6f",
+                                                 v->ref_draft ? "draft" : "final", v->dssim);
+        else return sss_error_set(err, SSS_ERROR_NUMERIC, "no DSSIM: %s", v->message);
+    }
+    return SSS_OK;
+}
+
+static void run_interactive(viewer *v)
+{
+    view_install_callbacks(v);
+    if (v->desc->reference) view_request_reference(v, v->desc->reference_draft);
+    while (!glfwWindowShouldClose(v->window)) {
+        int busy = v->need_render || v->playing || v->act_tech || v->act_part || v->act_buffer || v->act_medium ||
+                   v->act_light || v->act_reference || v->act_screenshot || v->act_scale != 0.0;
+        if (busy) glfwPollEvents();
+        else glfwWaitEventsTimeout(v->job ? 0.25 : 1.0);
+        sss_error err = {0};
+        frame(v, 0, NULL, &err);
+    }
+}
+
+static int technique_index(const char *name)
+{
+    for (int i = 0; i < sss_gl_technique_count(); i++)
+        if (strcmp(sss_gl_technique_at(i)->name, name) == 0) return i;
+    return -1;
+}
+
+sss_result sss_view_run(const sss_view_desc *desc, sss_error *err)
+{
+    if (!desc || !desc->scene_path) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_view_run: no scene");
+    if (desc->frames < 0 || (desc->screenshot && desc->frames < 1))
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "a screenshot needs a number of frames >= 1");
+    viewer v;
+    memset(&v, 0, sizeof v);
+    v.desc = desc;
+    v.medium = -1;
+    v.scale_factor = 1.0;
+    v.drag_button = -1;
+    v.part_saved_tech = -1;
+    v.overlay = !desc->no_overlay;
+    v.t = desc->time;
+    v.playing = desc->animate;
+    sss_result res = SSS_OK;
+    v.scene = calloc(1, sizeof *v.scene);
+    if (!v.scene) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene)");
+    res = sss_scene_load(desc->scene_path, NULL, v.scene, err);
+    if (res == SSS_OK) res = sss_read_file(desc->scene_path, SSS_SCENE_MAX_FILE_SIZE, &v.text, &v.text_size, err);
+    const char *tname = desc->technique ? desc->technique : v.scene->render.technique;
+    if (res == SSS_OK && (v.tech = technique_index(tname)) < 0) {
+        char list[256] = "";
+        size_t at = 0;
+        for (int i = 0; i < sss_gl_technique_count() && at < sizeof list; i++)
+            at += (size_t)snprintf(list + at, sizeof list - at, "%s%s", i ? ", " : "", sss_gl_technique_at(i)->name);
+        res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "unknown technique '%s' (known: %s)", tname, list);
+    }
+    if (res == SSS_OK && desc->input) res = check_input(&v, desc->input, err);
+    if (res == SSS_OK) {
+        v.has_light = v.scene->light_count > 0;
+        v.home = v.scene->camera;
+        sss_gl_context_desc cd;
+        memset(&cd, 0, sizeof cd);
+        cd.platform = SSS_GL_PLATFORM_WINDOW;
+        cd.window_width = desc->width > 0 ? desc->width : v.scene->camera.width;
+        cd.window_height = desc->height > 0 ? desc->height : v.scene->camera.height;
+        cd.window_title = desc->scene_path;
+        res = sss_gl_context_create(&cd, &v.ctx, err);
+        if (res == SSS_OK) {
+            v.window = glfwGetCurrentContext(); /* the context's window: it was just made current */
+            sss_gl_window_size(v.ctx, &v.width, &v.height);
+            if (v.width < 1 || v.height < 1) v.width = cd.window_width, v.height = cd.window_height;
+            v.scene->camera.width = v.width;
+            v.scene->camera.height = v.height;
+            view_camera_changed(&v);
+            res = view_make_renderer(&v, v.tech, err);
+        }
+    }
+    if (res == SSS_OK) res = view_gl_init(&v.gl, err);
+    if (res == SSS_OK) {
+        if (desc->frames > 0) res = run_fixed(&v, err);
+        else run_interactive(&v);
+    }
+    if (v.job) view_ref_abandon(v.job); /* the worker finishes on its own and frees its job */
+    free(v.job_key);
+    view_ref_cache_free(&v.cache);
+    free(v.view_key);
+    sss_image_free(&v.frame_img);
+    if (v.ctx) {
+        sss_gl_context_make_current(v.ctx);
+        view_gl_free(&v.gl);
+    }
+    sss_gl_renderer_destroy(v.r);
+    sss_gl_context_destroy(v.ctx);
+    sss_scene_free(v.scene);
+    free(v.scene);
+    free(v.text);
+    return res;
+}

@@ -1,0 +1,108 @@
+/* view/viewer.h — the viewer's state, shared by its loop (viewer.c), input and actions (input.c,
+ * actions.c) and the overlay text (status.c). */
+#ifndef SSS_VIEW_VIEWER_H
+#define SSS_VIEW_VIEWER_H
+
+#include "sss/gl.h"
+#include "sss/scene.h"
+#include "sss/view.h"
+#include "view/view_gl.h"
+#include "view/view_internal.h"
+
+struct GLFWwindow;
+
+enum { PART_ALL = 0, PART_TRANSLUCENCY, PART_SCREEN };
+
+/* Buffers of sss_gl_renderer_read_buffer the B key cycles through ("final" is the normal view). */
+#define VIEW_BUFFER_COUNT 6
+extern const char *const view_buffer_names[VIEW_BUFFER_COUNT];
+
+struct viewer {
+    const sss_view_desc *desc;
+    /* scene: the file's text (edits are applied to it), the live scene the renderer reads */
+    char *text;
+    size_t text_size;
+    sss_scene *scene;
+    sss_camera home;       /* the file's camera (C resets to it) */
+    int has_light;         /* the scene has a lights[0] */
+    int medium;            /* -1: the file's materials; else a measured medium for all */
+    double scale_factor;   /* x2 / /2 on the scattering coefficients */
+    double light_angle;    /* degrees lights[0] was turned about the vertical (-180, 180] */
+    /* GL */
+    sss_gl_context *ctx;
+    struct GLFWwindow *window;
+    sss_gl_renderer *r;
+    view_gl gl;
+    int tech;              /* index in the registry */
+    int part;              /* PART_* */
+    int part_saved_tech;   /* technique before PART_SCREEN switched to "screen", or -1 */
+    const char *part_buffer; /* buffer standing for the part when the technique has no switches */
+    int buffer;            /* index in view_buffer_names (0 final) */
+    int width, height;     /* renderer = framebuffer size */
+    /* time */
+    double t, wall_last;
+    int playing;
+    /* input */
+    int drag_button;       /* -1 none */
+    double mouse_x, mouse_y;
+    int shift;
+    /* pending actions (set by callbacks, run by the loop) */
+    int act_tech, act_part, act_buffer, act_medium, act_light, act_reference, act_screenshot;
+    double act_scale;
+    /* status */
+    int need_render;
+    unsigned image_gen;    /* bumps whenever the rendered image changes */
+    unsigned shown_gen;    /* image_gen of the buffer uploaded for display */
+    const char *shown_name; /* and its name */
+    double frame_ms;
+    sss_gl_timings timings;
+    char message[256];
+    double message_until;
+    int overlay, help;
+    double title_at;
+    /* reference and DSSIM */
+    view_ref_job *job;
+    char *job_key;
+    view_ref_cache cache;
+    char *view_key;        /* key of the current view (NULL: recompute) */
+    const sss_image *ref;  /* cached reference of the current view, or NULL */
+    double dssim;
+    unsigned dssim_gen;    /* image_gen the dssim belongs to (0: none) */
+    int ref_draft;
+    sss_image frame_img;
+};
+
+typedef struct viewer viewer;
+
+/* input.c */
+void view_install_callbacks(viewer *v);
+/* One scripted event: a key ("tab", "shift+m", "l", "+", "space", ...), "orbit:DX:DY" / "pan:DX:DY"
+ * (a left / right drag by DX, DY framebuffer pixels) or "zoom:STEPS" (wheel). Returns 0 when the
+ * event is unknown; apply 0 only checks it. */
+int view_input_event(viewer *v, const char *event, int apply);
+/* actions.c: each reports problems through view_message and leaves the viewer usable */
+void view_message(viewer *v, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+sss_result view_make_renderer(viewer *v, int tech, sss_error *err);
+void view_apply_part(viewer *v, int part);
+void view_run_actions(viewer *v);
+void view_light_changed(viewer *v);
+void view_camera_changed(viewer *v);
+/* The view changed (camera, light, materials, size, time): the reference is looked up again. */
+void view_invalidate(viewer *v);
+void view_request_reference(viewer *v, int draft);
+void view_poll_reference(viewer *v);
+void view_update_dssim(viewer *v);
+/* Reads the buffer to display (a part's or the B key's) into out; 0 when the final image is shown. */
+int view_buffer_to_show(viewer *v, sss_image *out);
+/* sss-view-NNNN.png, the first that does not exist in the working folder; 0 when all are taken. */
+int view_next_screenshot_name(char *buf, size_t cap);
+sss_result view_current_key(viewer *v, char **key, char **json, sss_error *err);
+/* status.c */
+void view_overlay_text(viewer *v, char *buf, size_t cap);
+void view_update_title(viewer *v);
+
+#endif
