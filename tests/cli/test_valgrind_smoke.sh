@@ -11,6 +11,10 @@ if ! command -v valgrind >/dev/null 2>&1; then
     echo "skipped: valgrind not installed"
     exit 0
 fi
+if ldd "$SSS" 2>/dev/null | grep -qE "libasan|libtsan|libubsan"; then
+    echo "skipped: $SSS is built with sanitizers, which valgrind cannot run (the sanitizers check it instead)"
+    exit 0
+fi
 D=$ROOT/tests/data
 BAD=$D/bad
 T=$(mktemp -d)
