@@ -40,6 +40,10 @@ cp "$DATA/images/base.png" "$TMP/unreadable.png"
 cp "$BAD/scene_valid.json" "$TMP/unreadable.json"
 sed -i "s|\"../meshes/box_ascii.ply\"|\"$DATA/meshes/box_ascii.ply\"|" "$TMP/unreadable.json"
 chmod 000 "$TMP/unreadable.ply" "$TMP/unreadable.png" "$TMP/unreadable.json"
+# A valid spatial adjacency map and a truncated copy (when sss sam exists).
+if "$SSS" sam build "$DATA/meshes/box_ascii.ply" --medium Marble -o "$TMP/box.sam" >/dev/null 2>&1; then
+    head -c 100 "$TMP/box.sam" >"$TMP/cut.sam"
+fi
 unreadable_is_readable=0
 # root (as in CI) reads chmod 000 files anyway: those rows are skipped then.
 if cat "$TMP/unreadable.ply" >/dev/null 2>&1; then unreadable_is_readable=1; fi
@@ -158,6 +162,21 @@ fail | lut Marble --model foo -o @OUT@/lut.exr | --model;foo
 fail | lut Marble --size 100000 -o @OUT@/lut.exr | size
 fail | lut Marble --size 64 -o @OUT@/no_folder/lut.exr | no_folder/lut\.exr
 fail | lut Marble --size 64 -o @OUT@/lut.tiff | lut\.tiff
+# ---- separable kernels: sss kernel
+fail | kernel Unobtainium | unobtainium
+fail | kernel Marble --taps 4 | 4 taps;odd
+fail | kernel Marble --taps 100000 | 100000 taps
+fail | kernel Marble --method foo | --method;foo
+fail | kernel --artist nope | nope
+fail | kernel Marble --scale 1e300 | sigma_a \+ sigma_s;outside
+# ---- spatial adjacency maps: sss sam
+fail | sam build @BAD@/ply_nan_vertex.ply --medium Marble -o @OUT@/x.sam | ply_nan_vertex\.ply;line 11
+fail | sam build @BAD@/scene_bad_mesh.json -o @OUT@/x.sam | scene_bad_mesh\.json;objects\[0\]\.mesh
+fail | sam build @DATA@/meshes/box_ascii.ply --medium Nope -o @OUT@/x.sam | nope
+fail | sam build @DATA@/meshes/box_ascii.ply --medium Marble -o @OUT@/no_folder/x.sam | no_folder/x\.sam
+fail | sam info @BAD@/ply_empty.ply | ply_empty\.ply;magic
+fail | sam info @TMP@/cut.sam | cut\.sam;truncated
+fail | sam info @TMP@/box.sam @DATA@/meshes/cube_faces.obj | box\.sam;different mesh
 # ---- scenes: every scene command (validation must fail before any rendering)
 fail | @SCENE@ @BAD@/scene_unknown_field.json | scene_unknown_field\.json;camera\.zoom
 fail | @SCENE@ @BAD@/scene_unknown_material_field.json | scene_unknown_material_field\.json;objects\[0\]\.material\.sigmaa
