@@ -209,6 +209,13 @@ static sss_result svd_create(sss_gl_renderer *r, void *state, sss_error *err)
 
 static void set_i(GLuint prog, const char *name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
 
+/* One timer name per pass (at most 8 terms: svd rank <= 8, gauss6 6): tools that merge timings by name
+ * over frames expect each name once per frame. */
+static const char *const names_h[8] = {"ssss_blur_h1", "ssss_blur_h2", "ssss_blur_h3", "ssss_blur_h4",
+                                       "ssss_blur_h5", "ssss_blur_h6", "ssss_blur_h7", "ssss_blur_h8"};
+static const char *const names_v[8] = {"ssss_blur_v1", "ssss_blur_v2", "ssss_blur_v3", "ssss_blur_v4",
+                                       "ssss_blur_v5", "ssss_blur_v6", "ssss_blur_v7", "ssss_blur_v8"};
+
 static sss_result ssss_render(sss_gl_renderer *r, void *state, sss_error *err)
 {
     ssss_state *s = state;
@@ -249,14 +256,14 @@ static sss_result ssss_render(sss_gl_renderer *r, void *state, sss_error *err)
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
     for (int t = 0; t < s->terms; t++) {
-        gl_timer_begin(&r->timer, "ssss_blur_h");
+        gl_timer_begin(&r->timer, names_h[t & 7]);
         glDisable(GL_BLEND);
         glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_tmp);
         glBindTextureUnit(0, s->tex_prep);
         glUniform1i(u_vertical, 0);
         glUniform1i(u_term, t);
         gl_draw_fullscreen(r);
-        gl_timer_begin(&r->timer, "ssss_blur_v");
+        gl_timer_begin(&r->timer, names_v[t & 7]);
         /* the terms add up in the float target (blending does not clamp RGBA32F) */
         glEnable(GL_BLEND);
         glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_sum);
