@@ -9,9 +9,10 @@
  *    2.7 in that ring; the paper: 10% suffices for portrait distances, not for extreme close-ups).
  *    Energy: the rotated gather keeps every pixel's weights and the angles are uniform, so energy is
  *    conserved in expectation (the circle-averaged bilinear tents still sum to 1); per image it moves by
- *    the noise of ~80 lit pixels' random directions (measured -1.0% .. +0.1% for single positions).
- *    Averaged over four dot positions the total is within 1% of the unrotated one (measured -0.2% at
- *    30%, -0.5% at 10%);
+ *    the noise of ~80 lit pixels' random directions (measured -1.0% .. +0.1% for single positions, and
+ *    a small negative bias: independent angles per pass measured -2.6%, so both passes use one angle,
+ *    the rotated frame's two axes). Averaged over three dot positions the total is within 1% of the
+ *    unrotated one (measured -0.3% at 30%, -0.6% at 10%);
  *  - masking: pixels outside every subsurface object (a diffuse wall behind a subsurface sphere) are
  *    exactly the reflected light of the shared illumination pass, also right next to the sphere, and
  *    the SSS sum is zero there; pixels on the sphere do change. */
@@ -64,9 +65,9 @@ static double total_energy(const sss_image *img)
 
 static void test_rotation(void)
 {
-    const double shifts[4] = {0.0, 0.003, 0.007, 0.013}, rot[3] = {0.0, 0.1, 0.3};
+    const double shifts[3] = {0.0, 0.004, 0.011}, rot[3] = {0.0, 0.1, 0.3};
     double energy[3] = {0, 0, 0}, ratio[3] = {0, 0, 0};
-    for (int s = 0; s < 4; s++) {
+    for (int s = 0; s < 3; s++) {
         char json[2048];
         snprintf(json, sizeof json,
                  "{\"camera\": {\"position\": [0, 0, 4], \"look_at\": [0, 0, 0], \"fov\": 20, \"width\": %d, \"height\": %d},"
@@ -98,7 +99,7 @@ static void test_rotation(void)
         sss_scene_free(&scene);
     }
     for (int k = 0; k < 3; k++)
-        printf("rotation %.1f: axes / diagonals in the ring 8-16 px %.3f; energy (4 dot positions) %.6g, %+.2f%%\n",
+        printf("rotation %.1f: axes / diagonals in the ring 8-16 px %.3f; energy (3 dot positions) %.6g, %+.2f%%\n",
                rot[k], ratio[k], energy[k], 100.0 * (energy[k] / energy[0] - 1.0));
     CHECK(ratio[0] > 1.5);
     CHECK(fabs(ratio[2] - 1.0) < 0.2);
