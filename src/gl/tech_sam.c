@@ -63,6 +63,8 @@ typedef struct sam_state {
     double saved[GL_MAX_PARAMS];
     const gl_technique *saved_tech;
     double build_seconds;
+    double key[4];    /* n, samples, seed, translucency the maps were made for */
+    int surface_kind; /* the surface parameter the surface technique was made for */
 } sam_state;
 
 /* ---- The surface technique ------------------------------------------------------------------- */
@@ -152,18 +154,23 @@ static sss_result make_targets(sss_gl_renderer *r, sam_state *s, sss_error *err)
 
 /* ---- Callbacks ---------------------------------------------------------------------------------- */
 
-static sss_result sam_create(sss_gl_renderer *r, void *state, sss_error *err)
+static void free_maps(sam_state *s)
 {
-    sam_state *s = state;
-    static const char *defines[PASS_COUNT] = {"#define PASS 0\n", "#define PASS 1\n", "#define PASS 2\n",
-                                              "#define PASS 3\n", "#define PASS 4\n"};
+    for (int i = 0; i < s->count; i++) sam_object_free(&s->objs[i]);
+    free(s->objs);
+    s->objs = NULL;
+    s->count = 0;
+    s->build_seconds = 0.0;
+    s->have_last = 0;
+}
+
+/* The maps of every subsurface object, for the parameters n, samples, seed (key remembered so that a
+ * change of them rebuilds the maps at the next resize/render). */
+static sss_result make_maps(sss_gl_renderer *r, sam_state *s, sss_error *err)
+{
     sss_result res = SSS_OK;
-    for (int p = 0; p < PASS_COUNT && res == SSS_OK; p++)
-        res = gl_program_compute("sam_vertex.comp.glsl", defines[p], &s->prog[p], err);
-    if (res == SSS_OK) res = gl_program_vf("sam_raster.vert.glsl", "sam_raster.frag.glsl", NULL, &s->prog_raster, err);
-    if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "sam_add.frag.glsl", NULL, &s->prog_add, err);
-    if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "combine.frag.glsl", NULL, &s->prog_combine, err);
-    if (res != SSS_OK) return res;
+    free_maps(s);
+    for (int k = 0; k < 4; k++) s->key[k] = gl_param(r, k == 3 ? P_TRANSLUCENCY : P_N + k);
     int subsurface = 0;
     for (size_t i = 0; i < r->scene->object_count; i++)
         subsurface += r->scene->objects[i].material.type == SSS_SCENE_MATERIAL_SUBSURFACE;
@@ -195,15 +202,42 @@ static sss_result sam_create(sss_gl_renderer *r, void *state, sss_error *err)
     /* a file that fits none of the objects is a mistake worth reporting (not a silent rebuild) */
     if (res == SSS_OK && r->data_file && s->count > 0 && from_file == 0)
         res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s", mismatch.message);
+    return res;
+}
+
+static sss_result sam_create(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    sam_state *s = state;
+    static const char *defines[PASS_COUNT] = {"#define PASS 0\n", "#define PASS 1\n", "#define PASS 2\n",
+                                              "#define PASS 3\n", "#define PASS 4\n"};
+    sss_result res = SSS_OK;
+    for (int p = 0; p < PASS_COUNT && res == SSS_OK; p++)
+        res = gl_program_compute("sam_vertex.comp.glsl", defines[p], &s->prog[p], err);
+    if (res == SSS_OK) res = gl_program_vf("sam_raster.vert.glsl", "sam_raster.frag.glsl", NULL, &s->prog_raster, err);
+    if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "sam_add.frag.glsl", NULL, &s->prog_add, err);
+    if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "combine.frag.glsl", NULL, &s->prog_combine, err);
+    if (res != SSS_OK) return res;
+    res = make_maps(r, s, err);
     if (res == SSS_OK) res = make_targets(r, s, err);
     if (res == SSS_OK) res = surface_create(r, s, err);
+    s->surface_kind = (int)gl_param(r, P_SURFACE);
     return res;
 }
 
 static sss_result sam_resize(sss_gl_renderer *r, void *state, sss_error *err)
 {
     sam_state *s = state;
-    sss_result res = make_targets(r, s, err);
+    sss_result res = SSS_OK;
+    int stale = 0;
+    for (int k = 0; k < 4; k++) stale |= s->key[k] != gl_param(r, k == 3 ? P_TRANSLUCENCY : P_N + k);
+    if (stale) res = make_maps(r, s, err);
+    if (res == SSS_OK && s->surface_kind != (int)gl_param(r, P_SURFACE)) {
+        surface_destroy(r, s);
+        res = surface_create(r, s, err);
+        s->surface_kind = (int)gl_param(r, P_SURFACE);
+        if (res != SSS_OK) return res;
+    }
+    if (res == SSS_OK) res = make_targets(r, s, err);
     if (res == SSS_OK && s->surface && s->surface->resize) {
         enter(r, s);
         res = s->surface->resize(r, s->surface_state, err);
@@ -377,10 +411,7 @@ static void sam_destroy(sss_gl_renderer *r, void *state)
 {
     sam_state *s = state;
     surface_destroy(r, s);
-    for (int i = 0; i < s->count; i++) sam_object_free(&s->objs[i]);
-    free(s->objs);
-    s->objs = NULL;
-    s->count = 0;
+    free_maps(s);
     free_targets(s);
     for (int p = 0; p < PASS_COUNT; p++)
         if (s->prog[p]) glDeleteProgram(s->prog[p]);

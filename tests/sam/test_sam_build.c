@@ -205,6 +205,7 @@ static void test_files(void)
     CHECK(sss_sam_check(&r, &m, &p.material, SSS_PROFILE_DIPOLE, NULL, path, &err) == SSS_ERROR_INVALID_ARGUMENT);
     double tr[16] = {2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1};
     CHECK(sss_sam_check(&r, &m, NULL, SSS_PROFILE_PBD, tr, path, &err) == SSS_ERROR_INVALID_ARGUMENT);
+    sss_sam_free(&r);
     /* truncated: every prefix length class is rejected (header, payload, checksum) */
     long size = file_size(path);
     long cuts[5] = {0, 10, 200, size / 2, size - 1};
