@@ -21,6 +21,9 @@ extern "C" {
 
 #define SSS_MESH_MAX_VERTICES (1u << 26)
 #define SSS_MESH_MAX_TRIANGLES (1u << 27)
+/* Largest size parameter (radius, edge length, ...) of a procedural shape: its coordinates and areas
+ * must stay finite in float (areas reach size^2). */
+#define SSS_MESH_MAX_SHAPE_SIZE 1e18
 
 typedef struct sss_mesh {
     uint32_t vertex_count, triangle_count;

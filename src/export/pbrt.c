@@ -197,6 +197,11 @@ sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *d
         }
         sss_mesh world = {0};
         res = sss_scene_object_world_mesh(&scene->objects[i], d.time, &world, err);
+        if (res != SSS_OK) {
+            char prefix[512]; /* the scene file and the object, like the loader's messages */
+            snprintf(prefix, sizeof prefix, "%s: objects[%zu]", scene->name ? scene->name : "scene", i);
+            sss_error_prefix(err, prefix);
+        }
         if (res == SSS_OK) res = sss_mesh_write_ply(mesh_paths[i], &world, err);
         sss_mesh_free(&world);
         if (res == SSS_OK) written++;

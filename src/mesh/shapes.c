@@ -10,7 +10,8 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-static int positive(double x) { return isfinite(x) && x > 0.0; }
+/* A usable size: positive and small enough that positions and areas stay finite in float. */
+static int positive(double x) { return isfinite(x) && x > 0.0 && x <= SSS_MESH_MAX_SHAPE_SIZE; }
 
 static void set3(float *dst, double x, double y, double z)
 {
@@ -42,7 +43,7 @@ static uint32_t midpoint(mesh_hash *h, double *unit, uint32_t *count, uint32_t a
 sss_result sss_mesh_sphere(double radius, int subdivisions, sss_mesh *out, sss_error *err)
 {
     memset(out, 0, sizeof *out);
-    if (!positive(radius)) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sphere: radius must be positive");
+    if (!positive(radius)) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sphere: radius must be in (0, %g] (got %g)", SSS_MESH_MAX_SHAPE_SIZE, radius);
     if (subdivisions < 0 || subdivisions > 8)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sphere: subdivisions must be in 0..8 (got %d)", subdivisions);
     /* A regular icosahedron: cyclic permutations of (+-1, +-g, 0), g the golden ratio. */
@@ -197,7 +198,7 @@ sss_result sss_mesh_trefoil(double radius, double tube, int segments, sss_mesh *
 sss_result sss_mesh_plane(double size, sss_mesh *out, sss_error *err)
 {
     memset(out, 0, sizeof *out);
-    if (!positive(size)) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "plane: size must be positive");
+    if (!positive(size)) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "plane: size must be in (0, %g] (got %g)", SSS_MESH_MAX_SHAPE_SIZE, size);
     sss_result r = mesh_alloc(out, 4, 2, 1, 1, "plane", err);
     if (r != SSS_OK) return r;
     double h = size / 2.0;
@@ -217,7 +218,7 @@ sss_result sss_mesh_box(const double size[3], sss_mesh *out, sss_error *err)
 {
     memset(out, 0, sizeof *out);
     if (!size || !positive(size[0]) || !positive(size[1]) || !positive(size[2]))
-        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "box: size must be three positive numbers");
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "box: size must be three numbers in (0, %g]", SSS_MESH_MAX_SHAPE_SIZE);
     sss_result r = mesh_alloc(out, 24, 12, 1, 1, "box", err);
     if (r != SSS_OK) return r;
     /* Per face: outward axis n and in-face axes s, t with s x t = n, so the corners (-,-), (+,-),

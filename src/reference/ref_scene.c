@@ -26,8 +26,8 @@ sss_result sss_reference_render(const sss_scene *scene, const sss_reference_desc
         const sss_scene_object *so = &scene->objects[i];
         r = sss_scene_object_world_mesh(so, t, &meshes[i], err);
         if (r != SSS_OK) {
-            char prefix[64];
-            snprintf(prefix, sizeof prefix, "objects[%zu]", i);
+            char prefix[512]; /* the scene file and the object, like the loader's messages */
+            snprintf(prefix, sizeof prefix, "%s: objects[%zu]", scene->name ? scene->name : "scene", i);
             sss_error_prefix(err, prefix);
             break;
         }

@@ -222,12 +222,12 @@ fail | @SCENE@ @TMP@/folder.json | folder\.json
 fail | @SCENE@ @TMP@/unreadable.json | unreadable\.json;permission
 fail | @SCENE@ @TMP@/oversized.json | oversized\.json;larger
 fail  | render @BAD@/scene_unknown_technique.json -o @OUT@/out.png | no_such_technique;scene_unknown_technique\.json;render\.technique
-known | export pbrt @BAD@/scene_overflow_transform.json -o @OUT@/out.pbrt | scene_overflow_transform\.json;objects\[1\];not finite
+fail | export pbrt @BAD@/scene_overflow_transform.json -o @OUT@/out.pbrt | scene_overflow_transform\.json;objects\[1\];not finite
 fail  | render @BAD@/scene_overflow_transform.json -o @OUT@/out.png | scene_overflow_transform\.json;objects\[1\];not finite
-known | reference @BAD@/scene_overflow_transform.json -o @OUT@/out.png | scene_overflow_transform\.json;objects\[1\];not finite
-known | export pbrt @BAD@/scene_sphere_radius_1e39.json -o @OUT@/out.pbrt | scene_sphere_radius_1e39\.json;objects\[1\]
+fail | reference @BAD@/scene_overflow_transform.json -o @OUT@/out.png | scene_overflow_transform\.json;objects\[1\];not finite
+fail | export pbrt @BAD@/scene_sphere_radius_1e39.json -o @OUT@/out.pbrt | scene_sphere_radius_1e39\.json;objects\[1\]
 fail | render @BAD@/scene_sphere_radius_1e39.json -o @OUT@/out.png | scene_sphere_radius_1e39\.json;objects\[1\]
-known | reference @BAD@/scene_sphere_radius_1e39.json -o @OUT@/out.png | scene_sphere_radius_1e39\.json;objects\[1\]
+fail | reference @BAD@/scene_sphere_radius_1e39.json -o @OUT@/out.png | scene_sphere_radius_1e39\.json;objects\[1\]
 fail | reference @BAD@/scene_unknown_technique.json -o @OUT@/no_folder/out.exr | no_folder/out\.exr
 fail | export pbrt @BAD@/scene_valid.json -o @OUT@/no_folder/out.pbrt | no_folder/out
 EOF
