@@ -8,7 +8,6 @@
 BUILD ?= build
 SAN_BUILD ?= build-asan
 JOBS ?= $(shell nproc)
-DEPS_STAMP := $(BUILD)/.deps-ok
 
 FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 60
@@ -42,7 +41,7 @@ bench: deps build
 	@for b in $(BUILD)/bench/bench_*; do echo "== $$b"; $$b; done
 
 fuzz-build:
-	@scripts/install-deps.sh --dev
+	@scripts/install-deps.sh --ci
 	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
 		-DCMAKE_CXX_COMPILER=clang++ -DSSS_FUZZ=ON
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_all

@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages sss needs to build, test and run, if any are missing.
-# Usage: scripts/install-deps.sh [--dev]   (--dev adds tools only developers need, e.g. scikit-image)
+# Usage: scripts/install-deps.sh [--ci | --dev]
+#   --ci   adds what CI's extra jobs use: clang + libFuzzer runtime (make fuzz-ci), valgrind and
+#          chromium (the valgrind smoke test and the report screenshot test skip without them)
+#   --dev  adds, on top, what only developers need (scikit-image to recompute SSIM test vectors)
 set -euo pipefail
 
 PKGS=(
@@ -9,9 +12,10 @@ PKGS=(
   libcairo2-dev libembree-dev
   libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev xvfb xauth
 )
-if [ "${1:-}" = "--dev" ]; then
-  PKGS+=(python3-skimage python3-numpy clang libclang-rt-14-dev valgrind chromium)
-fi
+case "${1:-}" in
+  --ci) PKGS+=(clang libclang-rt-14-dev valgrind chromium) ;;
+  --dev) PKGS+=(clang libclang-rt-14-dev valgrind chromium python3-skimage python3-numpy) ;;
+esac
 
 missing=()
 for p in "${PKGS[@]}"; do
