@@ -33,7 +33,7 @@ struct Material {
 
 struct Light {
     vec4 position;   // xyz; w: type (0 point, 1 spot, 2 directional, 3 VPL)
-    vec4 direction;  // spot axis / direction travelled / VPL normal; w: two-sided
+    vec4 direction;  // spot axis / direction travelled / VPL normal; w: two-sided (VPL), 2 = from an environment map (directional)
     vec4 color;      // intensity (W/sr), or irradiance at normal incidence (directional)
     vec4 spot;       // x: cos total width, y: cos falloff start, z: shadow kind, w: shadow layer
     mat4 shadow_matrix;

@@ -35,14 +35,25 @@ uniform vec3 u_env_scale;
 
 // Environment radiance seen along world direction d (SCENE.md: +y up, u = 0.5 at -z; the inverse of
 // m = (sin t sin p, cos t, -sin t cos p), p = 2 pi (u - 0.5) - rad(rotate_y), t = pi v).
-vec3 environment(vec3 d)
+vec3 environment_lod(vec3 d, float lod)
 {
     d = normalize(d);
     float th = acos(clamp(d.y, -1.0, 1.0));
     float ph = atan(d.x, -d.z);
     float u = (ph + radians(u_env_rotate)) / (2.0 * PI) + 0.5;
     float v = th / PI;
-    return u_env_scale * textureLod(u_env, vec2(fract(u), v), 0.0).rgb;
+    return u_env_scale * textureLod(u_env, vec2(fract(u), v), lod).rgb;
+}
+
+vec3 environment(vec3 d) { return environment_lod(d, 0.0); }
+
+// Specular reflection of the environment map by the dielectric interface (display only): Fresnel at
+// the view angle times the map along the mirror direction, read from a mip level that widens with the
+// roughness (a crude prefilter: the box-filtered equirectangular chain, no visibility).
+vec3 environment_specular(vec3 n, vec3 v, float roughness, float eta)
+{
+    float lod = roughness * log2(float(max(textureSize(u_env, 0).x, 1)));
+    return fr_dielectric(dot(n, v), 1.0, eta) * environment_lod(reflect(-v, n), lod);
 }
 
 void main()
@@ -81,9 +92,11 @@ void main()
             refl += alb / PI * E;
         } else {
             et += (1.0 - fr_dielectric(dot(n, l), 1.0, eta)) * E;
-            if (m.spec.x > 0.5) refl += ggx_brdf(n, v, l, m.spec.y, eta) * E;
+            bool from_env = int(lights[i].position.w) == 2 && lights[i].direction.w > 1.5;
+            if (m.spec.x > 0.5 && !from_env) refl += ggx_brdf(n, v, l, m.spec.y, eta) * E;
         }
     }
+    if (!diffuse && m.spec.x > 0.5 && u_has_env != 0) refl += environment_specular(n, v, m.spec.y, eta);
     o_irr = vec4(diffuse ? vec3(0.0) : et * sqrt(alb), N.w);
     o_refl = vec4(refl, 1.0);
 }

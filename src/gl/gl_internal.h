@@ -98,6 +98,8 @@ enum {
 /* ---- GPU scene (scene_gpu.c, lights.c) -------------------------------------------------------- */
 
 enum { GL_LIGHT_POINT = 0, GL_LIGHT_SPOT = 1, GL_LIGHT_DIRECTIONAL = 2, GL_LIGHT_VPL = 3 };
+/* direction.w of a directional light made from an environment map (median cut). */
+#define GL_LIGHT_FROM_ENVIRONMENT 2.0f
 enum { GL_SHADOW_NONE = 0, GL_SHADOW_CUBE = 1, GL_SHADOW_2D = 2 };
 
 /* std430 records; layouts mirror common.glsl. */

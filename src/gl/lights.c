@@ -202,16 +202,20 @@ static sss_result env_upload(gl_scene *gs, const sss_light *L, int max_size, sss
     }
     for (size_t i = 0; i < (size_t)img.width * img.height * 3; i++)
         if (!isfinite(img.pixels[i]) || img.pixels[i] < 0.0f) img.pixels[i] = 0.0f;
+    /* A full mip chain: the specular reflection of rough interfaces reads coarser levels. */
+    int levels = 1;
+    while ((img.width >> levels) > 0 || (img.height >> levels) > 0) levels++;
     glCreateTextures(GL_TEXTURE_2D, 1, &gs->env_tex);
-    glTextureStorage2D(gs->env_tex, 1, GL_RGB32F, img.width, img.height);
+    glTextureStorage2D(gs->env_tex, levels, GL_RGB32F, img.width, img.height);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     /* row 0 of the texture = the top row of the image (v = 0), so no flip: the shader uses v directly */
     glTextureSubImage2D(gs->env_tex, 0, 0, 0, img.width, img.height, GL_RGB, GL_FLOAT, img.pixels);
-    glTextureParameteri(gs->env_tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glGenerateTextureMipmap(gs->env_tex);
+    glTextureParameteri(gs->env_tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTextureParameteri(gs->env_tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(gs->env_tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTextureParameteri(gs->env_tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    gs->texture_bytes += (size_t)img.width * img.height * 12;
+    gs->texture_bytes += (size_t)img.width * img.height * 12 * 4 / 3; /* with its mip chain */
     gs->env_rotate_y = (float)L->rotate_y;
     for (int k = 0; k < 3; k++) gs->env_scale[k] = (float)L->scale[k];
     sss_image_free(&img);
@@ -339,6 +343,7 @@ sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err)
                 vec3d to_light = vnorm(dir);
                 gl_light_record *g = &gs->lights[n++];
                 g->position[3] = GL_LIGHT_DIRECTIONAL;
+                g->direction[3] = GL_LIGHT_FROM_ENVIRONMENT; /* its specular comes from the map itself */
                 g->direction[0] = (float)-to_light.x;
                 g->direction[1] = (float)-to_light.y;
                 g->direction[2] = (float)-to_light.z;

@@ -13,7 +13,7 @@
 #include "sss/image.h"
 #include "sss/scene.h"
 
-static sss_gl_context *gt_ctx(void)
+static inline sss_gl_context *gt_ctx(void)
 {
     static sss_gl_context *ctx;
     if (!ctx) {
@@ -26,7 +26,7 @@ static sss_gl_context *gt_ctx(void)
     return ctx;
 }
 
-static int gt_load(const char *name, sss_scene *scene)
+static inline int gt_load(const char *name, sss_scene *scene)
 {
     char path[1024];
     snprintf(path, sizeof path, "%s/scenes/%s", SSS_SOURCE_DIR, name);
@@ -39,7 +39,7 @@ static int gt_load(const char *name, sss_scene *scene)
 }
 
 /* Renders with technique (NULL: the scene's) and "name=value" parameters; out is created. */
-static int gt_render(const sss_scene *scene, const char *technique, double time, const sss_gl_param_value *params,
+static inline int gt_render(const sss_scene *scene, const char *technique, double time, const sss_gl_param_value *params,
                      int nparams, sss_image *out)
 {
     sss_error err = {0};
@@ -63,7 +63,7 @@ static int gt_render(const sss_scene *scene, const char *technique, double time,
     return 1;
 }
 
-static int gt_read_ref(const char *name, sss_image *out)
+static inline int gt_read_ref(const char *name, sss_image *out)
 {
     char path[1024];
     snprintf(path, sizeof path, "%s/gl/%s", SSS_TEST_DATA, name);
@@ -75,7 +75,7 @@ static int gt_read_ref(const char *name, sss_image *out)
     return 1;
 }
 
-static double gt_dssim(const sss_image *a, const sss_image *b)
+static inline double gt_dssim(const sss_image *a, const sss_image *b)
 {
     sss_image_metrics m;
     sss_error err = {0};
@@ -86,7 +86,7 @@ static double gt_dssim(const sss_image *a, const sss_image *b)
     return m.dssim;
 }
 
-static void gt_mean(const sss_image *a, double mean[3])
+static inline void gt_mean(const sss_image *a, double mean[3])
 {
     mean[0] = mean[1] = mean[2] = 0.0;
     size_t n = (size_t)a->width * a->height;
