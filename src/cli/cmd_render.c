@@ -98,8 +98,9 @@ static int valid_pattern(const char *s)
 
 typedef struct pass_series {
     const char *name;
-    double *ms;
+    double *ms;     /* one value per frame (frames entries) */
     int count;
+    int last_frame; /* frame of ms[count - 1]: a pass run twice in a frame adds to that frame's value */
 } pass_series;
 
 static sss_result write_timings_json(const char *path, const char *technique, int w, int h, int frames,
@@ -277,6 +278,8 @@ int sss_cmd_render(int argc, char **argv)
                 if (j == npass) {
                     if (npass >= SSS_GL_MAX_PASSES) continue;
                     ps[npass].name = last.passes[p].name;
+                    ps[npass].count = 0;
+                    ps[npass].last_frame = -1;
                     ps[npass].ms = calloc((size_t)frames, sizeof(double));
                     if (!ps[npass].ms) {
                         status = cli_failf(CMD, "out of memory");
@@ -284,7 +287,12 @@ int sss_cmd_render(int argc, char **argv)
                     }
                     npass++;
                 }
-                ps[j].ms[ps[j].count++] = last.passes[p].ms;
+                if (ps[j].last_frame == k) {
+                    ps[j].ms[ps[j].count - 1] += last.passes[p].ms;
+                } else {
+                    ps[j].ms[ps[j].count++] = last.passes[p].ms;
+                    ps[j].last_frame = k;
+                }
             }
         }
         if (!out && !exr) continue;

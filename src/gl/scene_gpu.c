@@ -53,7 +53,8 @@ static int same_material(const sss_scene_material *a, const sss_scene_material *
         return memcmp(a->albedo, b->albedo, sizeof a->albedo) == 0;
     return memcmp(&a->optical, &b->optical, sizeof a->optical) == 0 && a->profile == b->profile &&
            (a->texture == NULL) == (b->texture == NULL) && (!a->texture || strcmp(a->texture, b->texture) == 0) &&
-           a->has_specular == b->has_specular && a->roughness == b->roughness;
+           a->has_specular == b->has_specular && a->roughness == b->roughness &&
+           (a->profile != SSS_SCENE_PROFILE_ARTIST || memcmp(&a->artist, &b->artist, sizeof a->artist) == 0);
 }
 
 static void col_major_from_rows(const double m[16], float out[16])
