@@ -45,27 +45,6 @@ static const sss_gl_param_info params[P_COUNT] = {
                   "link updates per frame of deforming objects through adjacency (section 3.4: 1)"},
 };
 
-enum { PASS_DEFORM = 0, PASS_AREA, PASS_UPDATE, PASS_LIGHT, PASS_TRANSFER, PASS_COUNT };
-
-typedef struct sam_state {
-    GLuint prog[PASS_COUNT], prog_raster, prog_add, prog_combine;
-    sam_object *objs;
-    int count;
-    int w, h;
-    GLuint tex_trans, tex_depth, fbo;
-    size_t target_bytes;
-    double last_time;
-    int have_last;
-    /* the surface technique, run with its own parameter table */
-    const gl_technique *surface;
-    void *surface_state;
-    double surface_params[GL_MAX_PARAMS];
-    double saved[GL_MAX_PARAMS];
-    const gl_technique *saved_tech;
-    double build_seconds;
-    double key[4];    /* n, samples, seed, translucency the maps were made for */
-    int surface_kind; /* the surface parameter the surface technique was made for */
-} sam_state;
 
 /* ---- The surface technique ------------------------------------------------------------------- */
 
@@ -208,10 +187,10 @@ static sss_result make_maps(sss_gl_renderer *r, sam_state *s, sss_error *err)
 static sss_result sam_create(sss_gl_renderer *r, void *state, sss_error *err)
 {
     sam_state *s = state;
-    static const char *defines[PASS_COUNT] = {"#define PASS 0\n", "#define PASS 1\n", "#define PASS 2\n",
+    static const char *defines[SAM_PASS_COUNT] = {"#define PASS 0\n", "#define PASS 1\n", "#define PASS 2\n",
                                               "#define PASS 3\n", "#define PASS 4\n"};
     sss_result res = SSS_OK;
-    for (int p = 0; p < PASS_COUNT && res == SSS_OK; p++)
+    for (int p = 0; p < SAM_PASS_COUNT && res == SSS_OK; p++)
         res = gl_program_compute("sam_vertex.comp.glsl", defines[p], &s->prog[p], err);
     if (res == SSS_OK) res = gl_program_vf("sam_raster.vert.glsl", "sam_raster.frag.glsl", NULL, &s->prog_raster, err);
     if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "sam_add.frag.glsl", NULL, &s->prog_add, err);
@@ -296,7 +275,7 @@ static sss_result pass_vertices(sss_gl_renderer *r, sam_state *s, sss_error *err
     gl_timer_begin(&r->timer, "sam_deform");
     for (int i = 0; i < s->count; i++) {
         bind_object(r, &s->objs[i]);
-        dispatch(r, s->prog[PASS_DEFORM], &s->objs[i], alpha);
+        dispatch(r, s->prog[SAM_PASS_DEFORM], &s->objs[i], alpha);
     }
     sss_result res = gl_check(r->ctx, "sam: deformation", err);
     if (res != SSS_OK) return res;
@@ -304,22 +283,22 @@ static sss_result pass_vertices(sss_gl_renderer *r, sam_state *s, sss_error *err
     for (int i = 0; i < s->count; i++) {
         if (!s->objs[i].deforming) continue;
         bind_object(r, &s->objs[i]);
-        dispatch(r, s->prog[PASS_AREA], &s->objs[i], alpha);
-        for (int k = 0; k < steps; k++) dispatch(r, s->prog[PASS_UPDATE], &s->objs[i], alpha);
+        dispatch(r, s->prog[SAM_PASS_AREA], &s->objs[i], alpha);
+        for (int k = 0; k < steps; k++) dispatch(r, s->prog[SAM_PASS_UPDATE], &s->objs[i], alpha);
     }
     res = gl_check(r->ctx, "sam: link update", err);
     if (res != SSS_OK) return res;
     gl_timer_begin(&r->timer, "sam_light");
     for (int i = 0; i < s->count; i++) {
         bind_object(r, &s->objs[i]);
-        dispatch(r, s->prog[PASS_LIGHT], &s->objs[i], alpha);
+        dispatch(r, s->prog[SAM_PASS_LIGHT], &s->objs[i], alpha);
     }
     res = gl_check(r->ctx, "sam: vertex irradiance", err);
     if (res != SSS_OK) return res;
     gl_timer_begin(&r->timer, "sam_transfer");
     for (int i = 0; i < s->count; i++) {
         bind_object(r, &s->objs[i]);
-        dispatch(r, s->prog[PASS_TRANSFER], &s->objs[i], alpha);
+        dispatch(r, s->prog[SAM_PASS_TRANSFER], &s->objs[i], alpha);
     }
     s->last_time = r->time;
     s->have_last = 1;
@@ -413,7 +392,7 @@ static void sam_destroy(sss_gl_renderer *r, void *state)
     surface_destroy(r, s);
     free_maps(s);
     free_targets(s);
-    for (int p = 0; p < PASS_COUNT; p++)
+    for (int p = 0; p < SAM_PASS_COUNT; p++)
         if (s->prog[p]) glDeleteProgram(s->prog[p]);
     GLuint p3[3] = {s->prog_raster, s->prog_add, s->prog_combine};
     for (int p = 0; p < 3; p++)

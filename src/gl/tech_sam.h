@@ -41,6 +41,29 @@ typedef struct sam_data_desc {
     sss_error *mismatch;       /* receives why the file does not fit an object (first one only) */
 } sam_data_desc;
 
+/* The technique's state (tests read the per-object buffers through it). */
+enum { SAM_PASS_DEFORM = 0, SAM_PASS_AREA, SAM_PASS_UPDATE, SAM_PASS_LIGHT, SAM_PASS_TRANSFER, SAM_PASS_COUNT };
+
+typedef struct sam_state {
+    GLuint prog[SAM_PASS_COUNT], prog_raster, prog_add, prog_combine;
+    sam_object *objs;
+    int count;
+    int w, h;
+    GLuint tex_trans, tex_depth, fbo;
+    size_t target_bytes;
+    double last_time;
+    int have_last;
+    /* the surface technique, run with its own parameter table */
+    const gl_technique *surface;
+    void *surface_state;
+    double surface_params[GL_MAX_PARAMS];
+    double saved[GL_MAX_PARAMS];
+    const gl_technique *saved_tech;
+    double build_seconds;
+    double key[4];    /* n, samples, seed, translucency the maps were made for */
+    int surface_kind; /* the surface parameter the surface technique was made for */
+} sam_state;
+
 /* Builds (or reads) the map of scene object `index` and uploads it. */
 sss_result sam_object_create(sss_gl_renderer *r, int index, const sam_data_desc *d, sam_object *out, sss_error *err);
 void sam_object_free(sam_object *o);
