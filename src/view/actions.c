@@ -109,7 +109,8 @@ void view_apply_part(viewer *v, int part)
     if (back >= 0 && back != v->tech) switch_technique(v, back, 1);
     else switch_technique(v, v->tech, 1); /* re-applies the switches */
     static const char *const names[3] = {"all parts", "translucency alone", "screen-space part alone"};
-    view_message(v, "%s%s", names[part], v->part_buffer ? " (the technique's buffer)" : "");
+    view_message(v, "%s%s%s%s", names[part], v->part_buffer ? " (through the technique's buffer " : "",
+                 v->part_buffer ? v->part_buffer : "", v->part_buffer ? ")" : "");
 }
 
 /* A part shown through a buffer could not be read: try the next way (translucency -> the
