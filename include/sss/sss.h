@@ -1,5 +1,6 @@
-/* sss/sss.h — the whole sss library (physics, kernels, images, meshes). Include the module headers
- * instead when you need only one concern. */
+/* sss/sss.h — the whole sss library. Include the module headers instead when you need only one
+ * concern: common (errors), material + profile (physics), kernel, image, mesh, scene, reference (CPU
+ * ground truth), export (PBRT), gl (real-time renderer), sam (spatial adjacency maps), eval, view. */
 #ifndef SSS_SSS_H
 #define SSS_SSS_H
 #include "sss/common.h"
@@ -9,4 +10,10 @@
 #include "sss/image.h"
 #include "sss/mesh.h"
 #include "sss/scene.h"
+#include "sss/reference.h"
+#include "sss/export.h"
+#include "sss/gl.h"
+#include "sss/sam.h"
+#include "sss/eval.h"
+#include "sss/view.h"
 #endif
