@@ -153,6 +153,7 @@ static void select_splats(sss_gl_renderer *r, chen_state *s)
     glUniform1f(glGetUniformLocation(s->prog_select, "u_texel_fraction"), (float)gl_param(r, P_TEXEL_FRACTION));
     glUniform1f(glGetUniformLocation(s->prog_select, "u_irradiance_cull"), (float)gl_param(r, P_IRRADIANCE_CULL));
     glUniform1ui(glGetUniformLocation(s->prog_select, "u_capacity"), s->capacity);
+    glUniform1i(glGetUniformLocation(s->prog_select, "u_size"), s->size);
     int top = s->size >> (s->levels - 1);
     if (top < 1) top = 1;
     glDispatchCompute((GLuint)(top + 7) / 8, (GLuint)(top + 7) / 8, 1);

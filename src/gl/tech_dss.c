@@ -19,7 +19,7 @@ static const sss_gl_param_info params[P_COUNT] = {
                   "levels of the multi-resolution G-buffer, l_max (seed 000, section 8: 3)"},
     [P_EPSILON] = {"epsilon", SSS_GL_PARAM_FLOAT, 0.1, 1e-3, 1,
                    "level l serves receivers at least 2^l pixels / epsilon away (seed 000, section 8: 0.1)"},
-    [P_SURFEL_PIXELS] = {"surfel_pixels", SSS_GL_PARAM_FLOAT, 2, 0.5, 1024,
+    [P_SURFEL_PIXELS] = {"surfel_pixels", SSS_GL_PARAM_FLOAT, 4, 0.5, 1024,
                          "tessellation target: projected edge length of a surfel in pixels (DSS: by distance "
                          "and area)"},
     [P_MAX_TESS] = {"max_tessellation", SSS_GL_PARAM_INT, 64, 1, 64,
