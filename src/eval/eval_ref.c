@@ -55,12 +55,14 @@ static sss_result write_sidecar(const char *exr, const sss_eval_scene *es, int w
     FILE *f = sss_atomic_open(path, tmp, sizeof tmp, err);
     if (!f) return err ? err->code : SSS_ERROR_IO;
     const char *slash = strrchr(es->path, '/');
+    char tflag[48] = "";
+    if (es->has_time) snprintf(tflag, sizeof tflag, " --time %g", es->time);
     fprintf(f,
             "{\n  \"scene\": \"%s\",\n  \"scene_fnv1a64\": \"%016" PRIx64 "\",\n  \"width\": %d,\n  \"height\": %d,\n"
             "  \"time\": %.17g,\n  \"quality\": \"%s\",\n  \"seconds\": %.3f,\n"
             "  \"command\": \"sss reference %s%s -o OUT.exr --quality %s\"\n}\n",
             slash ? slash + 1 : es->path, eval_file_hash(es->path), w, h, es->time, quality, seconds,
-            slash ? slash + 1 : es->path, es->has_time ? " --time T" : "", quality);
+            slash ? slash + 1 : es->path, tflag, quality);
     return sss_atomic_close(f, tmp, path, err);
 }
 

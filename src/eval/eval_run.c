@@ -172,11 +172,12 @@ static sss_result run_technique(run_ctx *rc, const sss_scene *view, double t, co
 
 static const int default_sam_counts[] = {3, 10, 20, 50};
 
-/* The sam technique's back-side sample count: a parameter named like one of these, else an integer
- * parameter whose name or doc mentions the back side. */
+/* The sam technique's back-side sample count (seed 001, 4.1: n = 3): a parameter named like one of
+ * these, else an integer parameter whose name or doc mentions the back side. */
 static const sss_gl_param_info *find_sam_param(const sss_gl_technique_info *t)
 {
-    static const char *const names[] = {"back_samples", "back_side_samples", "samples", "n", "n_back", "backside_samples"};
+    /* not "samples": sam's Monte Carlo pairs per form factor */
+    static const char *const names[] = {"back_samples", "back_side_samples", "backside_samples", "n_back", "n"};
     for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
         for (int i = 0; i < t->param_count; i++)
             if (strcmp(t->params[i].name, names[k]) == 0 && t->params[i].type == SSS_GL_PARAM_INT) return &t->params[i];
