@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include "cli/cli.h"
@@ -90,7 +91,12 @@ static void on_progress(void *user, double fraction, const char *stage)
         int filled = (int)(25.0 * fraction);
         for (int i = 0; i < 25; i++) bar[i] = i < filled ? '#' : '.';
         bar[25] = '\0';
-        fprintf(stderr, "\r\033[K[%s] %3d%% ETA %s  %.70s", bar, (int)(100.0 * fraction), eta, stage ? stage : "");
+        /* one line: the stage is cut to the terminal's width so that \r keeps overwriting it */
+        struct winsize ws;
+        int cols = ioctl(fileno(stderr), TIOCGWINSZ, &ws) == 0 && ws.ws_col > 0 ? ws.ws_col : 80;
+        int room = cols - 1 - (27 + 5 + 4 + 10 + 2);
+        if (room < 0) room = 0;
+        fprintf(stderr, "\r\033[K[%s] %3d%% ETA %s  %.*s", bar, (int)(100.0 * fraction), eta, room, stage ? stage : "");
         fflush(stderr);
         p->bar_shown = 1;
     } else {
