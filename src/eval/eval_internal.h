@@ -52,6 +52,28 @@ void eval_note(eval_progress *p, const char *fmt, ...)
 #endif
     ;
 
+/* ---- Running techniques (eval_tech.c) ---- */
+
+typedef struct eval_gl {
+    sss_gl_context *gl;   /* NULL: every technique fails with gl_error */
+    const char *gl_error;
+    const char *method;   /* timing method the renderer reported */
+    int frames;
+    eval_progress *prog;
+} eval_gl;
+
+void eval_fail_entry(sss_eval_entry *e, const char *msg);
+/* Renders spec (its first nparams parameters) on view (already sized) at time t, frames times; fills
+ * e's results (the caller sets label, kind, size) and keeps the image in e->image. Technique failures
+ * are recorded in e; only bookkeeping allocation failures are returned. */
+sss_result eval_run_technique(eval_gl *rc, const sss_scene *view, double t, const eval_spec *spec, int nparams,
+                              int frames, sss_eval_entry *e, const char *stage);
+
+#define EVAL_DEFAULT_SAM_COUNTS 4
+extern const int eval_default_sam_counts[EVAL_DEFAULT_SAM_COUNTS]; /* 3, 10, 20, 50 (seed 001 Fig. 10) */
+/* sam's back-side sample count parameter, or NULL. */
+const sss_gl_param_info *eval_find_sam_param(const sss_gl_technique_info *t);
+
 /* ---- Drawing (eval_draw.c) ---- */
 
 typedef struct eval_rgb {
