@@ -116,9 +116,12 @@ static GLuint array_texture(GLenum format, int size, int layers, size_t *bytes)
 
 static sss_result make_targets(sss_gl_renderer *r, mertens_state *s, sss_error *err)
 {
-    GLint w = 0;
-    if (s->tex_est) glGetTextureLevelParameteriv(s->tex_est, 0, GL_TEXTURE_WIDTH, &w);
-    if (!s->tex_est || w != r->width) {
+    GLint w = 0, h = 0;
+    if (s->tex_est) {
+        glGetTextureLevelParameteriv(s->tex_est, 0, GL_TEXTURE_WIDTH, &w);
+        glGetTextureLevelParameteriv(s->tex_est, 0, GL_TEXTURE_HEIGHT, &h);
+    }
+    if (!s->tex_est || w != r->width || h != r->height) {
         if (s->tex_est) glDeleteTextures(1, &s->tex_est);
         if (s->fbo_est) glDeleteFramebuffers(1, &s->fbo_est);
         s->tex_est = gl_texture_2d(GL_RGBA32F, r->width, r->height, 1, NULL);
