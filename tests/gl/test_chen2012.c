@@ -17,68 +17,9 @@
  *    techniques beat the screen-space ones, here `ssss` and `screen`. */
 #include <unistd.h>
 
-#include "gl_test_util.h"
+#include "splat_plane_util.h"
 #include "sss/kernel.h"
 #include "sss/material.h"
-
-/* A 2 x 2 plane in the xz-plane facing +y as an OBJ grid of 32 x 32 cells (2048 triangles, within the
- * default splat mesh budget, so the splat mesh is this grid): the surfels then tile it about a pixel
- * apart. (The procedural plane's two triangles reach only 1/64 of their 2.8-unit edge, the
- * tessellation limit: their surfels' pattern, 5 pixels wide, made a 32-pixel window's mean depend on
- * where the window falls by 3%.) */
-static char grid_path[256];
-
-static int write_grid(void)
-{
-    snprintf(grid_path, sizeof grid_path, "/tmp/sss_test_chen_%ld.obj", (long)getpid());
-    FILE *f = fopen(grid_path, "w");
-    if (!f) return 0;
-    int n = 32;
-    for (int j = 0; j <= n; j++)
-        for (int i = 0; i <= n; i++) fprintf(f, "v %g 0 %g\n", -1.0 + 2.0 * i / n, -1.0 + 2.0 * j / n);
-    for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++) {
-            int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 1, d = c + 1;
-            fprintf(f, "f %d %d %d\nf %d %d %d\n", a, c, b, b, c, d); /* counter-clockwise seen from +y */
-        }
-    return fclose(f) == 0;
-}
-
-/* Skin1 at 200 mm per unit (the red kernel reaches ~0.08 units) seen head-on from 1 unit, directional
- * light(s) travelling straight down. */
-static int plane_scene(int two_lights, int which, sss_scene *scene)
-{
-    char json[2048];
-    const char *l1 = "{\"type\": \"directional\", \"direction\": [0, -1, 0], \"radiance\": [1, 1, 1]}";
-    const char *l2 = "{\"type\": \"directional\", \"direction\": [0.3, -1, 0.2], \"radiance\": [0.5, 0.7, 0.9]}";
-    char lights[512];
-    if (two_lights) snprintf(lights, sizeof lights, "%s, %s", l1, l2);
-    else snprintf(lights, sizeof lights, "%s", which == 0 ? l1 : l2);
-    snprintf(json, sizeof json,
-             "{\"camera\": {\"position\": [0, 1, 0], \"look_at\": [0, 0, 0], \"up\": [0, 0, -1], \"fov\": 30,"
-             " \"width\": 64, \"height\": 64},"
-             " \"objects\": [{\"mesh\": \"%s\","
-             " \"material\": {\"type\": \"subsurface\", \"medium\": \"Skin1\", \"scale\": 200.0, \"eta\": 1.33}}],"
-             " \"lights\": [%s]}",
-             grid_path, lights);
-    sss_error err = {0};
-    if (sss_scene_parse(json, strlen(json), ".", "plane", NULL, scene, &err) != SSS_OK) {
-        fprintf(stderr, "%s\n", err.message);
-        return 0;
-    }
-    return 1;
-}
-
-/* Mean of the central half of the image per channel. */
-static void centre_mean(const sss_image *im, double m[3])
-{
-    m[0] = m[1] = m[2] = 0.0;
-    int n = 0;
-    for (int y = im->height / 4; y < 3 * im->height / 4; y++)
-        for (int x = im->width / 4; x < 3 * im->width / 4; x++, n++)
-            for (int c = 0; c < 3; c++) m[c] += im->pixels[3 * ((size_t)y * im->width + x) + c];
-    for (int c = 0; c < 3; c++) m[c] /= n;
-}
 
 static void test_plane_energy(void)
 {
@@ -258,7 +199,7 @@ static double scene_dssim(const char *file, const char *ref_name, const char *te
 int main(void)
 {
     (void)gt_mean;
-    CHECK(write_grid());
+    CHECK(write_grid("chen"));
     test_plane_energy();
     test_levels();
     test_lights_add();
