@@ -58,7 +58,9 @@ void main()
         float texel = exp2(float(level));
         float area_scale = (w * w) / (texel * texel);
         float bright = u_brightening != 0 ? sqrt(float(i)) : 1.0;
-        ivec2 size = textureSize(t_pos, level);
+        // GL's level size rule from level 0: llvmpipe's textureSize(sampler, lod) returns wrong sizes
+        // when lanes of a SIMD group disagree on lod (masked lanes included), which showed as seams.
+        ivec2 size = max(size0 >> level, ivec2(1));
         vec3 layer_sum = vec3(0.0);
         int side = u_nl - 1;
         for (int k = 0; k < 4 * side; k++) {
