@@ -20,16 +20,12 @@ void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
     vec3 refl = texelFetch(t_refl, px, 0).rgb;
-    vec4 N = texelFetch(g_nrm, px, 0);
     o_color = vec4(refl, 1.0);
-    if (N.w < 0.5) return;
-    Material m = materials[int(objects[int(N.w - 0.5)].anim.y)];
-    if (m.albedo.w > 0.5) return;
-    vec3 p = texelFetch(g_pos, px, 0).xyz;
-    vec3 v = normalize(u_camera_pos.xyz - p);
+    Material m;
+    vec3 weight;
+    if (!subsurface_exit(g_pos, g_nrm, g_albedo, px, m, weight)) return;
     vec3 s = vec3(0.0);
     if (u_use_screen != 0) s += texelFetch(t_screen, px, 0).rgb;
     if (u_use_trans != 0) s += texelFetch(t_trans, px, 0).rgb;
-    vec3 alb = texelFetch(g_albedo, px, 0).rgb;
-    o_color = vec4(refl + exit_factor(m, normalize(N.xyz), v) * sqrt(alb) * s, 1.0);
+    o_color = vec4(refl + weight * s, 1.0);
 }

@@ -281,3 +281,19 @@ float exit_factor(Material m, vec3 n, vec3 v)
     float ft = 1.0 - fr_dielectric(max(cos_o, 1e-4), 1.0, m.params.x);
     return ft / (PI * m.params.y);
 }
+
+// The exit side of one G-buffer pixel for the techniques' final passes: true on a subsurface object,
+// with its material and weight = c_o sqrt(albedo) (the albedo's exit half; seed 000 pass 7), so that
+// the pixel shows reflected + weight * (scattered irradiance); false on diffuse objects and background.
+bool subsurface_exit(sampler2D g_pos, sampler2D g_nrm, sampler2D g_albedo, ivec2 px, out Material m,
+                     out vec3 weight)
+{
+    vec4 N = texelFetch(g_nrm, px, 0);
+    weight = vec3(0.0);
+    if (N.w < 0.5) return false;
+    m = materials[int(objects[int(N.w - 0.5)].anim.y)];
+    if (m.albedo.w > 0.5) return false;
+    vec3 v = normalize(u_camera_pos.xyz - texelFetch(g_pos, px, 0).xyz);
+    weight = exit_factor(m, normalize(N.xyz), v) * sqrt(texelFetch(g_albedo, px, 0).rgb);
+    return true;
+}

@@ -29,17 +29,13 @@ void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
     vec3 refl = texelFetch(t_refl, px, 0).rgb;
-    vec4 N = texelFetch(g_nrm, px, 0);
     o_color = vec4(refl, 1.0);
-    if (N.w < 0.5) return;
-    Material m = materials[int(objects[int(N.w - 0.5)].anim.y)];
-    if (m.albedo.w > 0.5) return;
+    Material m;
+    vec3 weight;
+    if (!subsurface_exit(g_pos, g_nrm, g_albedo, px, m, weight)) return;
     vec3 s = texelFetch(t_level0, px, 0).rgb;
     if (u_levels > 1) s += upsampled(t_level1, 1);
     if (u_levels > 2) s += upsampled(t_level2, 2);
     if (u_levels > 3) s += upsampled(t_level3, 3);
-    vec3 p = texelFetch(g_pos, px, 0).xyz;
-    vec3 v = normalize(u_camera_pos.xyz - p);
-    vec3 alb = texelFetch(g_albedo, px, 0).rgb;
-    o_color = vec4(refl + exit_factor(m, normalize(N.xyz), v) * sqrt(alb) * s, 1.0);
+    o_color = vec4(refl + weight * s, 1.0);
 }
