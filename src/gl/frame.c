@@ -310,6 +310,8 @@ sss_result gl_pass_mipmaps(sss_gl_renderer *r, sss_error *err)
     gl_frame *f = &r->frame;
     glUseProgram(r->prog_reduce);
     GLint u_pre = glGetUniformLocation(r->prog_reduce, "u_src_premultiplied");
+    GLint u_level = glGetUniformLocation(r->prog_reduce, "u_dst_level");
+    glUniform2i(glGetUniformLocation(r->prog_reduce, "u_base_size"), f->width, f->height);
     int w = f->width, h = f->height;
     for (int l = 1; l < f->levels; l++) {
         int dw = w > 1 ? w / 2 : 1, dh = h > 1 ? h / 2 : 1;
@@ -322,6 +324,7 @@ sss_result gl_pass_mipmaps(sss_gl_renderer *r, sss_error *err)
             glBindImageTexture(5, f->nrm, l, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         }
         glUniform1i(u_pre, l > 1);
+        glUniform1i(u_level, l);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         glDispatchCompute((GLuint)(dw + 7) / 8, (GLuint)(dh + 7) / 8, 1);
         w = dw;

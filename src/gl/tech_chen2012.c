@@ -124,6 +124,8 @@ static void reduce(chen_state *s)
 {
     glUseProgram(s->prog_reduce);
     GLint u_pre = glGetUniformLocation(s->prog_reduce, "u_src_premultiplied");
+    GLint u_level = glGetUniformLocation(s->prog_reduce, "u_dst_level");
+    glUniform2i(glGetUniformLocation(s->prog_reduce, "u_base_size"), s->size, s->size);
     int w = s->size;
     for (int l = 1; l < s->levels; l++) {
         int dw = w > 1 ? w / 2 : 1;
@@ -134,6 +136,7 @@ static void reduce(chen_state *s)
         glBindImageTexture(4, s->tex_nrm, l - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
         glBindImageTexture(5, s->tex_nrm, l, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         glUniform1i(u_pre, l > 1);
+        glUniform1i(u_level, l);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
         glDispatchCompute((GLuint)(dw + 7) / 8, (GLuint)(dw + 7) / 8, 1);
         w = dw;

@@ -27,6 +27,7 @@ enum {
     P_SHADOW_OFFSET,
     P_FILTERED,
     P_SPLAT_PREINTEGRATED,
+    P_SCREEN_BOUND,
     P_COUNT
 };
 
@@ -58,6 +59,8 @@ static const sss_gl_param_info params[P_COUNT] = {
                     "outer samples bilinear within their mip level (1) or texelFetch (0: blocky copies)"},
     [P_SPLAT_PREINTEGRATED] = {"splat_preintegrated", SSS_GL_PARAM_BOOL, 1, 0, 1,
                                "splats read R'_d(r', A) (1, seed 000) or R_d(r') at the disc-adjusted distance"},
+    [P_SCREEN_BOUND] = {"layer_distance_bound", SSS_GL_PARAM_BOOL, 1, 0, 1,
+                        "outer samples at least d_(i-1)/2 pixels (at their depth) from x_o, where their cell lies"},
 };
 
 #define SPLAT_BYTES 48 /* three vec4: centre + area, normal + object, F_t E + disc radius */
@@ -243,6 +246,7 @@ static sss_result maisch_render(sss_gl_renderer *r, void *state, sss_error *err)
         set_i(s->prog_ss, "u_brightening", (int)gl_param(r, P_BRIGHTENING));
         set_i(s->prog_ss, "u_preintegrated", (int)gl_param(r, P_PREINTEGRATED));
         set_i(s->prog_ss, "u_filtered", (int)gl_param(r, P_FILTERED));
+        set_i(s->prog_ss, "u_screen_bound", (int)gl_param(r, P_SCREEN_BOUND));
         gl_draw_fullscreen(r);
         res = gl_check(r->ctx, "maisch2020: screen-space pass", err);
         if (res != SSS_OK) return res;

@@ -24,6 +24,8 @@ static const sss_gl_param_info params[] = {
      "n.v below which pixels leave the screen-space sum (Eq. 8, 6.2)"},
     {"filtered_layers", SSS_GL_PARAM_BOOL, 1, 0, 1,
      "outer samples bilinear within their mip level (1) or texelFetch (0: blocky copies)"},
+    {"layer_distance_bound", SSS_GL_PARAM_BOOL, 1, 0, 1,
+     "outer samples at least d_(i-1)/2 pixels (at their depth) from x_o, where their cell lies"},
 };
 #define PARAM_COUNT ((int)(sizeof params / sizeof params[0]))
 
