@@ -17,9 +17,10 @@
  * ssss and ssss-svd get the back-lit light from the transmittance through thin parts (Jimenez et al.
  * 2010, from the shadow map); without it ssss measures 0.186, which is what seed 000 compares against
  * (its SSSS [JZJ*15] is the screen-space filter; Fig. 9 adds translucency only in a separate variant).
- * Seed 000's ordering on the back-lit scene is asserted for that configuration: maisch2020 beats screen
- * and ssss without transmittance. With the transmittance (the default, as the SSSS reference code) ssss
- * measures 0.041 here, below maisch2020's 0.052: printed, not asserted either way. */
+ * Here maisch2020 must beat screen and ssss without transmittance. With the transmittance (the default,
+ * as the SSSS reference code) ssss measures 0.041 at this size, below maisch2020's 0.052, whose
+ * quarter-resolution translucency is only 32 x 32 pixels at 128 px: seed 000's full ordering (against
+ * ssss with transmittance too) is asserted at 256 x 256 by test_ordering.c. */
 /* this file uses only some of the shared helpers */
 #pragma GCC diagnostic ignored "-Wunused-function"
 #include "gl_test_util.h"
