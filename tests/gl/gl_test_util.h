@@ -86,6 +86,22 @@ static inline double gt_dssim(const sss_image *a, const sss_image *b)
     return m.dssim;
 }
 
+/* Renders technique with parameters and returns its DSSIM against ref; a failed render, or NaN/Inf in
+ * the image, fails the test (CHECK) and returns 1. */
+static inline double gt_technique_dssim(const sss_scene *scene, const sss_image *ref, const char *tech,
+                                        const sss_gl_param_value *params, int nparams)
+{
+    sss_image img;
+    if (!gt_render(scene, tech, 0.0, params, nparams, &img)) {
+        CHECK_MSG(0, "%s failed to render", tech);
+        return 1.0;
+    }
+    CHECK_MSG(sss_image_count_nonfinite(&img) == 0, "%s wrote NaN or Inf", tech);
+    double d = gt_dssim(&img, ref);
+    sss_image_free(&img);
+    return d;
+}
+
 static inline void gt_mean(const sss_image *a, double mean[3])
 {
     mean[0] = mean[1] = mean[2] = 0.0;

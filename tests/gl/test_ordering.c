@@ -11,19 +11,6 @@
 #pragma GCC diagnostic ignored "-Wunused-function"
 #include "gl_test_util.h"
 
-static double dssim_of(const sss_scene *scene, const sss_image *ref, const char *tech)
-{
-    sss_image img;
-    if (!gt_render(scene, tech, 0.0, NULL, 0, &img)) {
-        CHECK_MSG(0, "%s failed to render", tech);
-        return 1.0;
-    }
-    CHECK(sss_image_count_nonfinite(&img) == 0);
-    double d = gt_dssim(&img, ref);
-    sss_image_free(&img);
-    return d;
-}
-
 int main(void)
 {
     sss_scene scene;
@@ -36,11 +23,11 @@ int main(void)
     const char *losers[2] = {"screen", "ssss"};
     double dw[3], dl[2];
     for (int i = 0; i < 2; i++) {
-        dl[i] = dssim_of(&scene, &ref, losers[i]);
+        dl[i] = gt_technique_dssim(&scene, &ref, losers[i], NULL, 0);
         printf("back-lit 256: %-10s DSSIM %.4f\n", losers[i], dl[i]);
     }
     for (int i = 0; i < 3; i++) {
-        dw[i] = dssim_of(&scene, &ref, winners[i]);
+        dw[i] = gt_technique_dssim(&scene, &ref, winners[i], NULL, 0);
         printf("back-lit 256: %-10s DSSIM %.4f\n", winners[i], dw[i]);
         for (int j = 0; j < 2; j++)
             CHECK_MSG(dw[i] < dl[j], "%s (%.4f) does not beat %s (%.4f) on the back-lit scene", winners[i], dw[i],
