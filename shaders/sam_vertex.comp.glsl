@@ -7,6 +7,10 @@
 //   3 light      L_d(v) = sum over lights F_t(n . l) E sqrt(albedo): every light type, shared shadow maps
 //   4 transfer   Eq. 12 with the form factors (static) or Eq. 15's K' F' R_d (deforming), blended in time
 //                with the previous frame by Eq. 17-18
+// Passes 0, 1 and 3 run on the vertex set bound at 10, 11, 17-19: the render mesh, or the back-side
+// mesh of section 4.4 (a lower-tessellation mesh whose vertices are the sources of Eq. 12). Passes 2 and
+// 4 run on the render mesh's vertices (receivers, geom) and read the sources at 20-21 (sgeom, stopo:
+// the back-side mesh's, or the render mesh's own when the map has none).
 #include "common.glsl"
 
 layout(local_size_x = 64) in;
@@ -21,6 +25,8 @@ layout(std430, binding = 16) readonly buffer RdBlock { float rdtab[]; };   // R_
 layout(std430, binding = 17) readonly buffer PosBlock { float opos[]; };   // object space
 layout(std430, binding = 18) readonly buffer NrmBlock { float onrm[]; };
 layout(std430, binding = 19) readonly buffer UvBlock { float ouv[]; };
+layout(std430, binding = 20) readonly buffer SrcGeomBlock { vec4 sgeom[]; }; // sources: (pos, F'), (normal, 0)
+layout(std430, binding = 21) readonly buffer SrcTopoBlock { uint stopo[]; };  // sources: adjacency offsets | list
 
 uniform uint u_vertices;
 uniform uint u_n;
@@ -31,6 +37,8 @@ uniform int u_rd_size;
 uniform int u_deforming; // 1: approximate form factors of Eq. 15 and criteria per frame
 uniform float u_alpha;   // Eq. 18 (1 on the first frame)
 uniform int u_has_uv;
+uniform uint u_src_adj_list; // offset of the sources' adjacency list in stopo[]
+uniform int u_same;          // 1: the sources are the receivers (no back-side mesh): no self links
 
 const uint NONE = 0xffffffffu;
 
@@ -47,19 +55,22 @@ vec3 rd(float r)
 
 vec3 pos(uint v) { return geom[2u * v].xyz; }
 vec3 nrm(uint v) { return geom[2u * v + 1u].xyz; }
+vec3 spos(uint i) { return sgeom[2u * i].xyz; }
+vec3 snrm(uint i) { return sgeom[2u * i + 1u].xyz; }
+float sarea(uint i) { return sgeom[2u * i].w; }
 
-// Eq. 13 and 14
+// Eq. 13 and 14: source i against receiver o
 bool is_back(uint o, uint i)
 {
     vec3 no = nrm(o);
-    return dot(pos(i) - pos(o), no) < 0.0 && dot(nrm(i), no) < 0.0;
+    return dot(spos(i) - pos(o), no) < 0.0 && dot(snrm(i), no) < 0.0;
 }
 
 float score(uint o, uint j)
 {
     if (!is_back(o, j)) return -1.0;
-    vec3 k = rd(distance(pos(j), pos(o)));
-    return geom[2u * j].w * (k.r + k.g + k.b);
+    vec3 k = rd(distance(spos(j), pos(o)));
+    return sarea(j) * (k.r + k.g + k.b);
 }
 
 void main()
@@ -88,9 +99,9 @@ void main()
         if (b == NONE) continue;
         uint best = b;
         float best_s = score(v, b);
-        for (uint e = topo[b]; e < topo[b + 1u]; e++) {
-            uint j = topo[u_adj_list + e];
-            bool taken = j == v;
+        for (uint e = stopo[b]; e < stopo[b + 1u]; e++) {
+            uint j = stopo[u_src_adj_list + e];
+            bool taken = u_same != 0 && j == v;
             for (uint q = 0u; q < u_n && !taken; q++) taken = links[v * u_n + q] == j;
             if (taken) continue;
             float s = score(v, j);
@@ -122,7 +133,7 @@ void main()
         vec3 c = vec3(coef[3u * s], coef[3u * s + 1u], coef[3u * s + 2u]);
         if (u_deforming != 0) {
             if (!is_back(v, b)) continue; // a link that no longer passes Eq. 13-14 contributes nothing
-            c *= geom[2u * b].w * rd(distance(pos(b), pos(v))); // Eq. 15: K = K' F'_i R_d(|v_i - v_o|)
+            c *= sarea(b) * rd(distance(spos(b), pos(v))); // Eq. 15: K = K' F'_i R_d(|v_i - v_o|)
         }
         t += ld[b].rgb * c; // Eq. 12
     }

@@ -9,7 +9,9 @@
  * profile's upper envelope at the node's smallest possible fan-to-fan distance; nodes wholly in front
  * of the tangent plane or whose normals all face the same way as n_o are skipped), the constants K'
  * of Eq. 15, the per-frame update of the links of a deforming mesh through vertex adjacency (section
- * 3.4), and the versioned .sam file.
+ * 3.4), and the versioned .sam file (docs/sam_format.md). Optionally the links point to the vertices
+ * of a lower-tessellation back-side mesh (section 4.4 and the paper's appendix; desc->backside,
+ * desc->backside_triangles), which the map then carries (file version 2).
  * Does not: lighting, GL (the `sam` technique, src/gl/tech_sam.c, evaluates Eq. 12 on the GPU).
  *
  * Units: positions in scene units; form factors K are dimensionless (an area times R_d): the
@@ -35,7 +37,10 @@ extern "C" {
 #define SSS_SAM_MAX_N 256        /* links per vertex */
 #define SSS_SAM_MAX_SAMPLES 4096 /* Monte Carlo pairs per form factor */
 #define SSS_SAM_NONE UINT32_MAX  /* an unused link slot (fewer than n back-side vertices contribute) */
-#define SSS_SAM_FORMAT_VERSION 1u
+/* The newest .sam version this build reads and writes. Version 1: links index the mesh's own vertices;
+ * version 2 adds a separate back-side mesh (seed 001, section 4.4 and its appendix). A map without a
+ * back-side mesh is still written as version 1, byte for byte as before. */
+#define SSS_SAM_FORMAT_VERSION 2u
 
 /* ---- The radial profile as a table (shared by the build, the update and the GPU) ------------- */
 
@@ -93,6 +98,17 @@ typedef struct sss_sam_desc {
     int brute_force;    /* 1: test every vertex pair (no tree), for tests of the search */
     const double *transform; /* row-major 4x4 recorded in the file (the mesh given is already in scene
                                 units); NULL: identity */
+    /* A lower-tessellation mesh for the back side (seed 001, section 4.4: "a proof of concept that works
+     * on a lower triangulation for back side information", described in its appendix): every vertex of
+     * the mesh links to n vertices of this mesh, chosen by Eq. 13-14 against its vertices and normals,
+     * with its reduced fans (Eq. 16) as the sources of Eq. 11 and in K' (Eq. 15). Its fans are larger,
+     * so n links cover more of the back side. In the same space as the mesh given (scene units for
+     * sss_sam_build, object space for sss_sam_build_object, which poses it like the object's mesh);
+     * needs normals; the map keeps a copy. NULL: the mesh itself (no back-side mesh). */
+    const sss_mesh *backside;
+    /* > 0 (and backside NULL): the back-side mesh is the mesh simplified to at most this many
+     * triangles (sss_mesh_simplify); at or above the mesh's count the map has no back-side mesh. */
+    uint32_t backside_triangles;
 } sss_sam_desc;
 
 typedef struct sss_sam_stats {
@@ -114,6 +130,16 @@ typedef struct sss_sam {
     uint32_t *links;       /* vertex_count * n: b_ok sorted by decreasing K (sum of channels); NONE */
     float *form_factor;    /* vertex_count * n * 3: K_ok (Eq. 11), 0 for NONE */
     float *kprime;         /* vertex_count * n * 3: K'_ok = K_ok / (F'_k R_d(|v_k - v_o|)) (Eq. 15) */
+    /* The back-side mesh (file version 2), at rest in the units of fan_area; back_vertex_count 0: none,
+     * links index the mesh's own vertices (version 1). With one, links index its vertices and F'_k,
+     * v_k in Eq. 15 are its fan areas and positions. */
+    uint32_t back_vertex_count, back_triangle_count;
+    uint64_t back_hash;       /* sss_sam_mesh_hash of the back-side mesh */
+    float *back_positions;    /* 3 * back_vertex_count */
+    float *back_normals;      /* 3 * back_vertex_count, unit length */
+    float *back_uvs;          /* 2 * back_vertex_count, or NULL (the back-side mesh has no UVs) */
+    float *back_fan_area;     /* back_vertex_count: F'_k at rest (Eq. 16 on the back-side mesh) */
+    uint32_t *back_indices;   /* 3 * back_triangle_count (adjacency and fans for deformation, 3.4) */
 } sss_sam;
 
 /* Builds the map for a mesh in scene units (apply the object's transform first) and a profile whose
@@ -121,6 +147,10 @@ typedef struct sss_sam {
 sss_result sss_sam_build(const sss_mesh *mesh, const sss_profile *profile, const sss_sam_desc *desc, sss_sam *out,
                          sss_sam_stats *stats, sss_error *err);
 void sss_sam_free(sss_sam *sam);
+
+/* The mesh the links point to: a view (no copy; do not free) of the map's back-side mesh, or a zeroed
+ * mesh when the map has none (the links then index the map's own mesh). Returns whether it has one. */
+int sss_sam_back_mesh(const sss_sam *sam, sss_mesh *view);
 
 /* FNV-1a 64 over the vertex and triangle counts, positions and indices (little-endian bytes). */
 uint64_t sss_sam_mesh_hash(const sss_mesh *mesh);
@@ -137,6 +167,15 @@ uint64_t sss_sam_update(sss_sam *sam, const sss_mesh *deformed, const sss_mesh_a
  * channel, 0 for unused slots and for links that fail Eq. 13-14; out holds vertex_count * n * 3. */
 void sss_sam_approximate(const sss_sam *sam, const sss_mesh *mesh, const float *fan_area,
                          const sss_sam_profile_table *table, float *out);
+/* The two above for a map with a back-side mesh (sss_sam_update and sss_sam_approximate do nothing
+ * for such a map: they return 0 / write zeros): `back` is the deformed back-side mesh (same topology
+ * as the map's), back_adj its adjacency, back_fan_area receives / holds its deformed F' (may be NULL:
+ * the rest areas). With back NULL they are sss_sam_update and sss_sam_approximate. */
+uint64_t sss_sam_update_back(sss_sam *sam, const sss_mesh *deformed, const sss_mesh *back,
+                             const sss_mesh_adjacency *back_adj, const sss_sam_profile_table *table,
+                             float *back_fan_area);
+void sss_sam_approximate_back(const sss_sam *sam, const sss_mesh *mesh, const sss_mesh *back,
+                              const float *back_fan_area, const sss_sam_profile_table *table, float *out);
 
 /* ---- Scene objects ------------------------------------------------------------------------------- */
 
@@ -160,10 +199,14 @@ sss_result sss_sam_read_object(const char *path, const struct sss_scene *scene, 
 
 /* Binary little-endian: magic "SSSSAM1\n", version, vertex and triangle counts, mesh hash, n, samples,
  * seed, profile model, energy, material (sigma_a, sigma_s, eta, g), transform, then fan areas, links,
- * form factors, K', and an FNV-1a 64 checksum of everything before it. Written atomically. */
+ * form factors, K', and an FNV-1a 64 checksum of everything before it. Written atomically. Version 2
+ * (maps with a back-side mesh) adds to the header the back-side mesh's vertex and triangle counts,
+ * hash and whether it has UVs, and before the checksum its positions, normals, UVs, fan areas and
+ * indices (docs/sam_format.md). Maps without one are written as version 1. */
 sss_result sss_sam_write(const char *path, const sss_sam *sam, sss_error *err);
-/* Checks magic, version, sizes (before allocating: the file size must equal what the header
- * implies), the checksum, link indices and finite values. */
+/* Reads versions 1 and 2. Checks magic, version, sizes (before allocating: the file size must equal
+ * what the header implies), the checksum, link indices (against the back-side mesh in version 2), the
+ * back-side mesh's indices and hash, and finite values. */
 sss_result sss_sam_read(const char *path, sss_sam *out, sss_error *err);
 /* Whether a map belongs to this mesh, material, profile model and transform (NULL: identity); the
  * message names `name` (the .sam file) and what differs. */

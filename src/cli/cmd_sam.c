@@ -39,7 +39,17 @@ static void print_usage(FILE *f)
             "  --threads T      OpenMP threads (default: all cores)\n"
             "  --brute-force    test every vertex pair instead of the tree (for checks; O(V^2))\n"
             "\n"
-            "Prints vertex and triangle counts, the build time, and how much of the mesh the search visited.\n"
+            "back side on a lower-tessellation mesh (seed 001, section 4.4 and its appendix): every vertex links\n"
+            "to n vertices of a coarser mesh of the same surface, whose larger reduced fans (Eq. 16) are the\n"
+            "sources of Eq. 11; n links then cover more of the back side of a finely tessellated mesh, and the\n"
+            "search is faster. The file (version 2) holds the coarse mesh; the renderer lights its vertices.\n"
+            "  --backside-triangles N  the mesh simplified to at most N triangles (meshoptimizer)\n"
+            "  --backside-mesh FILE    a given coarse mesh (.ply/.obj) in the same space as the mesh (a scene\n"
+            "                          object's: object space, posed by its transform)\n"
+            "  --backside-splat        a scene object's splat_mesh, or its mesh simplified to splat_triangles\n"
+            "\n"
+            "Prints vertex and triangle counts, the build time, and how much of the (back-side) mesh the search\n"
+            "visited.\n"
             "Exit status: 0 success, 1 error, 2 usage error.\n",
             SSS_SAM_MAX_N, SSS_SAM_MAX_SAMPLES);
 }
@@ -78,6 +88,9 @@ static void print_map(const sss_sam *s)
         linked += (uint32_t)any;
     }
     printf("linked_vertices %u\nlinks_used %llu of %llu\n", linked, (unsigned long long)used, (unsigned long long)slots);
+    if (s->back_vertex_count)
+        printf("backside_vertices %u\nbackside_triangles %u\nbackside_hash %016llx\n", s->back_vertex_count,
+               s->back_triangle_count, (unsigned long long)s->back_hash);
 }
 
 static int cmd_info(int argc, char **argv)
@@ -134,9 +147,10 @@ static int cmd_info(int argc, char **argv)
 
 static int cmd_build(int argc, char **argv)
 {
-    const char *input = NULL, *output = NULL, *medium = NULL, *model_text = "pbd";
+    const char *input = NULL, *output = NULL, *medium = NULL, *model_text = "pbd", *back_file = NULL;
     double scale = 1.0, eta = 1.33;
-    int n = 3, samples = 64, threads = 0, object = -1, brute = 0, scale_given = 0, eta_given = 0;
+    int n = 3, samples = 64, threads = 0, object = -1, brute = 0, scale_given = 0, eta_given = 0, back_tris = 0;
+    int back_splat = 0;
     long long seed = 0;
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i], *v;
@@ -163,6 +177,13 @@ static int cmd_build(int argc, char **argv)
             seed = (long long)x;
         } else if (strcmp(a, "--brute-force") == 0) {
             brute = 1;
+        } else if (strcmp(a, "--backside-triangles") == 0) {
+            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &back_tris)) return CLI_EXIT_USAGE;
+            if (back_tris < 1) return cli_usage_error(CMD, "--backside-triangles must be >= 1");
+        } else if (strcmp(a, "--backside-mesh") == 0) {
+            if (!(back_file = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
+        } else if (strcmp(a, "--backside-splat") == 0) {
+            back_splat = 1;
         } else if (a[0] == '-' && a[1]) {
             return cli_usage_error(CMD, "unknown option '%s'", a);
         } else if (!input) {
@@ -182,6 +203,9 @@ static int cmd_build(int argc, char **argv)
         return cli_usage_error(CMD, "--medium, --scale and --eta apply to a mesh; a scene object has its material");
     if (!scene_input && object >= 0) return cli_usage_error(CMD, "--object needs a SCENE.json");
     if (!scene_input && !medium) return cli_usage_error(CMD, "missing --medium NAME (the mesh's material)");
+    if ((back_tris > 0) + (back_file != NULL) + back_splat > 1)
+        return cli_usage_error(CMD, "--backside-triangles, --backside-mesh and --backside-splat exclude each other");
+    if (back_splat && !scene_input) return cli_usage_error(CMD, "--backside-splat needs a SCENE.json");
 
     sss_sam_desc desc;
     memset(&desc, 0, sizeof desc);
@@ -190,17 +214,39 @@ static int cmd_build(int argc, char **argv)
     desc.seed = (uint64_t)seed;
     desc.threads = threads;
     desc.brute_force = brute;
+    desc.backside_triangles = (uint32_t)back_tris;
     sss_error err = {0};
     sss_sam s;
     sss_sam_stats st;
     sss_result res;
+    sss_mesh back;
+    memset(&back, 0, sizeof back);
+    if (back_file) {
+        if (sss_mesh_read(back_file, &back, &err) != SSS_OK) return cli_fail(CMD, &err);
+        desc.backside = &back;
+    }
     if (scene_input) {
         sss_scene scene;
-        if (sss_scene_load(input, NULL, &scene, &err) != SSS_OK) return cli_fail(CMD, &err);
+        if (sss_scene_load(input, NULL, &scene, &err) != SSS_OK) {
+            sss_mesh_free(&back);
+            return cli_fail(CMD, &err);
+        }
         int k = object >= 0 ? object : first_subsurface(&scene);
         if (k < 0) {
             sss_scene_free(&scene);
+            sss_mesh_free(&back);
             return cli_failf(CMD, "%s: no subsurface object", input);
+        }
+        const sss_scene_object *o = (size_t)k < scene.object_count ? &scene.objects[k] : NULL;
+        if (back_splat && o) {
+            /* the scene's own low-resolution mesh of the object (SCENE.md: splat_mesh, splat_triangles) */
+            if (o->splat_mesh.vertex_count) desc.backside = &o->splat_mesh;
+            else if (o->splat_triangles) desc.backside_triangles = o->splat_triangles;
+            else {
+                sss_scene_free(&scene);
+                return cli_failf(CMD, "%s: objects[%d] has neither splat_mesh nor splat_triangles (--backside-splat)",
+                                 input, k);
+            }
         }
         res = sss_sam_build_object(&scene, (size_t)k, &desc, &s, &st, &err);
         sss_scene_free(&scene);
@@ -227,6 +273,7 @@ static int cmd_build(int argc, char **argv)
         }
         free(table);
     }
+    sss_mesh_free(&back);
     if (res != SSS_OK) return cli_fail(CMD, &err);
     res = sss_sam_write(output, &s, &err);
     if (res != SSS_OK) {
@@ -235,7 +282,7 @@ static int cmd_build(int argc, char **argv)
     }
     printf("wrote %s\n", output);
     print_map(&s);
-    double pairs = (double)s.vertex_count * s.vertex_count;
+    double pairs = (double)s.vertex_count * (s.back_vertex_count ? s.back_vertex_count : s.vertex_count);
     printf("build_s %.3f\n", st.seconds);
     printf("nodes_visited %llu\nvertices_tested %llu (%.4f%% of all pairs)\nform_factors %llu\n",
            (unsigned long long)st.nodes_visited, (unsigned long long)st.vertices_tested,

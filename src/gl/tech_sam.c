@@ -25,7 +25,19 @@
 
 #include "gl/tech_sam.h"
 
-enum { P_N = 0, P_SAMPLES, P_SEED, P_SURFACE, P_TRANSLUCENCY, P_TEMPORAL, P_BASE, P_UPDATE, P_COUNT };
+enum {
+    P_N = 0,
+    P_SAMPLES,
+    P_SEED,
+    P_SURFACE,
+    P_TRANSLUCENCY,
+    P_TEMPORAL,
+    P_BASE,
+    P_UPDATE,
+    P_BACK_TRIS,
+    P_BACK_SPLAT,
+    P_COUNT
+};
 
 static const sss_gl_param_info params[P_COUNT] = {
     [P_N] = {"n", SSS_GL_PARAM_INT, 3, 1, SSS_SAM_MAX_N,
@@ -43,6 +55,12 @@ static const sss_gl_param_info params[P_COUNT] = {
                 "alpha = 1 - base^dt, dt the animation time between frames in seconds (Eq. 18: 1e-10)"},
     [P_UPDATE] = {"update_steps", SSS_GL_PARAM_INT, 1, 0, 64,
                   "link updates per frame of deforming objects through adjacency (section 3.4: 1)"},
+    [P_BACK_TRIS] = {"backside_triangles", SSS_GL_PARAM_INT, 0, 0, 1e9,
+                     "maps built at creation: back side on the mesh simplified to this many triangles (seed 001, "
+                     "4.4 and appendix); 0: the mesh itself. A .sam file carries its own"},
+    [P_BACK_SPLAT] = {"backside_splat", SSS_GL_PARAM_BOOL, 0, 0, 1,
+                      "maps built at creation: back side on the object's splat_mesh (or its mesh simplified to "
+                      "splat_triangles)"},
 };
 
 
@@ -143,13 +161,16 @@ static void free_maps(sam_state *s)
     s->have_last = 0;
 }
 
-/* The maps of every subsurface object, for the parameters n, samples, seed (key remembered so that a
- * change of them rebuilds the maps at the next resize/render). */
+/* The parameters the maps are made for (tech_sam.h: key). */
+static const int key_param[SAM_KEYS] = {P_N, P_SAMPLES, P_SEED, P_TRANSLUCENCY, P_BACK_TRIS, P_BACK_SPLAT};
+
+/* The maps of every subsurface object, for the parameters n, samples, seed, backside_* (key remembered
+ * so that a change of them rebuilds the maps at the next resize/render). */
 static sss_result make_maps(sss_gl_renderer *r, sam_state *s, sss_error *err)
 {
     sss_result res = SSS_OK;
     free_maps(s);
-    for (int k = 0; k < 4; k++) s->key[k] = gl_param(r, k == 3 ? P_TRANSLUCENCY : P_N + k);
+    for (int k = 0; k < SAM_KEYS; k++) s->key[k] = gl_param(r, key_param[k]);
     int subsurface = 0;
     for (size_t i = 0; i < r->scene->object_count; i++)
         subsurface += r->scene->objects[i].material.type == SSS_SCENE_MATERIAL_SUBSURFACE;
@@ -160,6 +181,11 @@ static sss_result make_maps(sss_gl_renderer *r, sam_state *s, sss_error *err)
     d.n = (uint32_t)gl_param(r, P_N);
     d.samples = (uint32_t)gl_param(r, P_SAMPLES);
     d.seed = (uint64_t)gl_param(r, P_SEED);
+    d.backside_triangles = (uint32_t)gl_param(r, P_BACK_TRIS);
+    d.backside_splat = (int)gl_param(r, P_BACK_SPLAT);
+    if (d.backside_triangles > 0 && d.backside_splat)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "sam: parameters backside_triangles and backside_splat exclude each other");
     d.file = r->data_file;
     sss_error mismatch = {0};
     d.mismatch = &mismatch;
@@ -208,7 +234,7 @@ static sss_result sam_resize(sss_gl_renderer *r, void *state, sss_error *err)
     sam_state *s = state;
     sss_result res = SSS_OK;
     int stale = 0;
-    for (int k = 0; k < 4; k++) stale |= s->key[k] != gl_param(r, k == 3 ? P_TRANSLUCENCY : P_N + k);
+    for (int k = 0; k < SAM_KEYS; k++) stale |= s->key[k] != gl_param(r, key_param[k]);
     if (stale) res = make_maps(r, s, err);
     if (res == SSS_OK && s->surface_kind != (int)gl_param(r, P_SURFACE)) {
         surface_destroy(r, s);
@@ -225,37 +251,50 @@ static sss_result sam_resize(sss_gl_renderer *r, void *state, sss_error *err)
     return res;
 }
 
-static void bind_object(const sss_gl_renderer *r, const sam_object *o)
+/* Binds one object's buffers. The per-vertex passes 0, 1, 3 run on the vertex set bound at 10, 11,
+ * 17-19: the back-side mesh's when `back` and the map has one (section 4.4), else the render mesh's.
+ * The sources of Eq. 12 (20, 21) are always the back-side mesh when there is one. */
+static void bind_object(const sss_gl_renderer *r, const sam_object *o, int back)
 {
     const gl_object *go = &r->gs.objects[o->index];
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_TOPO, o->topo);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_GEOM, o->geom);
+    int b = back && o->has_back;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_TOPO, b ? o->back_topo : o->topo);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_GEOM, b ? o->back_geom : o->geom);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_LINKS, o->links);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_COEF, o->coef);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_LD, o->ld);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_TRANS, o->trans);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_RD, o->rd);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_POS, go->pos);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_NRM, go->nrm);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_UV, go->uv ? go->uv : go->pos);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_POS, b ? o->back_pos : go->pos);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_NRM, b ? o->back_nrm : go->nrm);
+    GLuint uv = b ? (o->back_uv ? o->back_uv : o->back_pos) : (go->uv ? go->uv : go->pos);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_UV, uv);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_SRC_GEOM, o->has_back ? o->back_geom : o->geom);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SAM_SSBO_SRC_TOPO, o->has_back ? o->back_topo : o->topo);
 }
 
-static void dispatch(const sss_gl_renderer *r, GLuint prog, const sam_object *o, float alpha)
+static void dispatch(const sss_gl_renderer *r, GLuint prog, const sam_object *o, float alpha, int back)
 {
+    int b = back && o->has_back;
+    uint32_t count = b ? o->back_vertices : o->vertices;
+    sam_topo_offsets off = {o->adj_list, o->inc_off, o->inc_list, o->idx};
+    if (b) off = o->back_off;
     glUseProgram(prog);
-    glUniform1ui(glGetUniformLocation(prog, "u_vertices"), o->vertices);
+    glUniform1ui(glGetUniformLocation(prog, "u_vertices"), count);
     glUniform1ui(glGetUniformLocation(prog, "u_n"), o->n);
     glUniform1i(glGetUniformLocation(prog, "u_object"), o->index);
-    glUniform1ui(glGetUniformLocation(prog, "u_adj_list"), o->adj_list);
-    glUniform1ui(glGetUniformLocation(prog, "u_inc_off"), o->inc_off);
-    glUniform1ui(glGetUniformLocation(prog, "u_inc_list"), o->inc_list);
-    glUniform1ui(glGetUniformLocation(prog, "u_idx"), o->idx);
+    glUniform1ui(glGetUniformLocation(prog, "u_adj_list"), off.adj_list);
+    glUniform1ui(glGetUniformLocation(prog, "u_inc_off"), off.inc_off);
+    glUniform1ui(glGetUniformLocation(prog, "u_inc_list"), off.inc_list);
+    glUniform1ui(glGetUniformLocation(prog, "u_idx"), off.idx);
+    glUniform1ui(glGetUniformLocation(prog, "u_src_adj_list"), o->has_back ? o->back_off.adj_list : o->adj_list);
+    glUniform1i(glGetUniformLocation(prog, "u_same"), !o->has_back);
     glUniform1f(glGetUniformLocation(prog, "u_rd_rmax"), o->rd_rmax);
     glUniform1i(glGetUniformLocation(prog, "u_rd_size"), o->rd_size);
     glUniform1i(glGetUniformLocation(prog, "u_deforming"), o->deforming);
     glUniform1f(glGetUniformLocation(prog, "u_alpha"), alpha);
-    glUniform1i(glGetUniformLocation(prog, "u_has_uv"), r->gs.objects[o->index].uv != 0);
-    glDispatchCompute((o->vertices + 63) / 64, 1, 1);
+    glUniform1i(glGetUniformLocation(prog, "u_has_uv"), b ? o->back_uv != 0 : r->gs.objects[o->index].uv != 0);
+    glDispatchCompute((count + 63) / 64, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
@@ -274,31 +313,38 @@ static sss_result pass_vertices(sss_gl_renderer *r, sam_state *s, sss_error *err
     int steps = (int)gl_param(r, P_UPDATE);
     gl_timer_begin(&r->timer, "sam_deform");
     for (int i = 0; i < s->count; i++) {
-        bind_object(r, &s->objs[i]);
-        dispatch(r, s->prog[SAM_PASS_DEFORM], &s->objs[i], alpha);
+        const sam_object *o = &s->objs[i];
+        bind_object(r, o, 0);
+        dispatch(r, s->prog[SAM_PASS_DEFORM], o, alpha, 0); /* receivers */
+        if (o->has_back) { /* sources: the back-side mesh follows the same animation */
+            bind_object(r, o, 1);
+            dispatch(r, s->prog[SAM_PASS_DEFORM], o, alpha, 1);
+        }
     }
     sss_result res = gl_check(r->ctx, "sam: deformation", err);
     if (res != SSS_OK) return res;
     gl_timer_begin(&r->timer, "sam_update");
     for (int i = 0; i < s->count; i++) {
-        if (!s->objs[i].deforming) continue;
-        bind_object(r, &s->objs[i]);
-        dispatch(r, s->prog[SAM_PASS_AREA], &s->objs[i], alpha);
-        for (int k = 0; k < steps; k++) dispatch(r, s->prog[SAM_PASS_UPDATE], &s->objs[i], alpha);
+        const sam_object *o = &s->objs[i];
+        if (!o->deforming) continue;
+        bind_object(r, o, 1);
+        dispatch(r, s->prog[SAM_PASS_AREA], o, alpha, 1); /* F' of the sources (Eq. 16) */
+        bind_object(r, o, 0);
+        for (int k = 0; k < steps; k++) dispatch(r, s->prog[SAM_PASS_UPDATE], o, alpha, 0);
     }
     res = gl_check(r->ctx, "sam: link update", err);
     if (res != SSS_OK) return res;
     gl_timer_begin(&r->timer, "sam_light");
     for (int i = 0; i < s->count; i++) {
-        bind_object(r, &s->objs[i]);
-        dispatch(r, s->prog[SAM_PASS_LIGHT], &s->objs[i], alpha);
+        bind_object(r, &s->objs[i], 1);
+        dispatch(r, s->prog[SAM_PASS_LIGHT], &s->objs[i], alpha, 1); /* L_d at the sources */
     }
     res = gl_check(r->ctx, "sam: vertex irradiance", err);
     if (res != SSS_OK) return res;
     gl_timer_begin(&r->timer, "sam_transfer");
     for (int i = 0; i < s->count; i++) {
-        bind_object(r, &s->objs[i]);
-        dispatch(r, s->prog[SAM_PASS_TRANSFER], &s->objs[i], alpha);
+        bind_object(r, &s->objs[i], 0);
+        dispatch(r, s->prog[SAM_PASS_TRANSFER], &s->objs[i], alpha, 0);
     }
     s->last_time = r->time;
     s->have_last = 1;

@@ -17,8 +17,16 @@ enum {
     SAM_SSBO_RD = 16,
     SAM_SSBO_POS = 17,
     SAM_SSBO_NRM = 18,
-    SAM_SSBO_UV = 19
+    SAM_SSBO_UV = 19,
+    SAM_SSBO_SRC_GEOM = 20, /* the sources of Eq. 12: the back-side mesh's geometry, or the mesh's own */
+    SAM_SSBO_SRC_TOPO = 21
 };
+
+/* Section offsets of a topology buffer: [adjacency offsets (V + 1) | neighbours | incidence offsets
+ * (V + 1) | triangles | indices (3 T)]. */
+typedef struct sam_topo_offsets {
+    uint32_t adj_list, inc_off, inc_list, idx;
+} sam_topo_offsets;
 
 typedef struct sam_object {
     int index;                 /* gs.objects / scene->objects index */
@@ -26,6 +34,14 @@ typedef struct sam_object {
     int deforming;             /* animated: K' path (Eq. 15) + link updates (section 3.4) */
     uint32_t adj_list, inc_off, inc_list, idx; /* section offsets of the topology buffer */
     GLuint topo, geom, links, coef, ld, trans, rd;
+    /* The back-side mesh (seed 001, section 4.4) when the map has one: the links index its vertices,
+     * L_d (ld, back_vertices entries) is evaluated at them. Object-space positions, normals, UVs (0:
+     * none) for the deformation pass; back_geom and back_topo as geom and topo. Without one,
+     * back_vertices == vertices and the sources are the mesh's own (ld has `vertices` entries). */
+    int has_back;
+    uint32_t back_vertices;
+    sam_topo_offsets back_off;
+    GLuint back_topo, back_geom, back_pos, back_nrm, back_uv;
     float rd_rmax;
     int rd_size;
     size_t bytes;
@@ -37,12 +53,16 @@ typedef struct sam_object {
 typedef struct sam_data_desc {
     uint32_t n, samples;
     uint64_t seed;
+    uint32_t backside_triangles; /* maps built here: back side on the mesh simplified (0: none) */
+    int backside_splat;          /* maps built here: back side on the object's splat mesh / splat_triangles */
     const char *file;          /* a .sam file for the objects whose mesh it matches, or NULL */
     sss_error *mismatch;       /* receives why the file does not fit an object (first one only) */
 } sam_data_desc;
 
 /* The technique's state (tests read the per-object buffers through it). */
 enum { SAM_PASS_DEFORM = 0, SAM_PASS_AREA, SAM_PASS_UPDATE, SAM_PASS_LIGHT, SAM_PASS_TRANSFER, SAM_PASS_COUNT };
+
+#define SAM_KEYS 6
 
 typedef struct sam_state {
     GLuint prog[SAM_PASS_COUNT], prog_raster, prog_add, prog_combine;
@@ -60,7 +80,7 @@ typedef struct sam_state {
     double saved[GL_MAX_PARAMS];
     const gl_technique *saved_tech;
     double build_seconds;
-    double key[4];    /* n, samples, seed, translucency the maps were made for */
+    double key[SAM_KEYS]; /* n, samples, seed, translucency, backside_triangles, backside_splat of the maps */
     int surface_kind; /* the surface parameter the surface technique was made for */
 } sam_state;
 

@@ -1,6 +1,7 @@
 /* sam/sam_io.c — the .sam file: a versioned little-endian header that ties the map to its mesh
  * (counts + hash of positions and indices), material, profile model and transform, then the per-vertex
- * data and a checksum. Written atomically; reading checks every size before allocating. */
+ * data and a checksum. Version 2 adds the back-side mesh (sam_back.c); maps without one are written as
+ * version 1. Written atomically; reading checks every size before allocating. docs/sam_format.md. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -96,13 +97,18 @@ static uint64_t fnv(const uint8_t *p, size_t n)
     return h;
 }
 
+#define BACK_HAS_UVS 1u
+
 /* Header layout (320 bytes): magic[8], version u32, header bytes u32, vertex count u32, triangle count
  * u32, n u32, samples u32, mesh hash u64, seed u64, profile model u32, reserved u32, energy f64,
- * sigma_a[3] f64, sigma_s[3] f64, eta f64, g f64, transform[16] f64, padding to 320. */
+ * sigma_a[3] f64, sigma_s[3] f64, eta f64, g f64, transform[16] f64; version 2 only: back-side vertex
+ * count u32, back-side triangle count u32, back-side mesh hash u64, back-side flags u32 (bit 0: UVs),
+ * reserved u32; zero padding to 320. */
 static void put_header(writer *w, const sss_sam *s)
 {
+    int v2 = s->back_vertex_count > 0;
     w_bytes(w, MAGIC, 8);
-    w_u32(w, SSS_SAM_FORMAT_VERSION);
+    w_u32(w, v2 ? 2u : 1u);
     w_u32(w, HEADER_BYTES);
     w_u32(w, s->vertex_count);
     w_u32(w, s->triangle_count);
@@ -119,14 +125,25 @@ static void put_header(writer *w, const sss_sam *s)
     w_f64(w, s->material.g);
     for (int i = 0; i < 16; i++) w_f64(w, s->transform[i]);
     /* 8 + 4*6 + 8*2 + 4*2 + 8 + 8*8 + 8*16 = 256 bytes so far */
+    size_t at = 256;
+    if (v2) {
+        w_u32(w, s->back_vertex_count);
+        w_u32(w, s->back_triangle_count);
+        w_u64(w, s->back_hash);
+        w_u32(w, s->back_uvs ? BACK_HAS_UVS : 0u);
+        w_u32(w, 0);
+        at += 24;
+    }
     uint8_t pad[HEADER_BYTES - 256];
     memset(pad, 0, sizeof pad);
-    w_bytes(w, pad, sizeof pad);
+    w_bytes(w, pad, HEADER_BYTES - at);
 }
 
 sss_result sss_sam_write(const char *path, const sss_sam *sam, sss_error *err)
 {
-    if (!path || !sam || (sam->vertex_count && (!sam->fan_area || !sam->links || !sam->form_factor || !sam->kprime)))
+    if (!path || !sam || (sam->vertex_count && (!sam->fan_area || !sam->links || !sam->form_factor || !sam->kprime)) ||
+        (sam->back_vertex_count && (!sam->back_positions || !sam->back_normals || !sam->back_fan_area ||
+                                    !sam->back_indices || sam->back_triangle_count == 0)))
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sam: nothing to write");
     char tmp[4096];
     FILE *f = sss_atomic_open(path, tmp, sizeof tmp, err);
@@ -138,6 +155,14 @@ sss_result sss_sam_write(const char *path, const sss_sam *sam, sss_error *err)
     for (size_t i = 0; i < slots; i++) w_u32(&w, sam->links[i]);
     w_f32s(&w, sam->form_factor, 3 * slots);
     w_f32s(&w, sam->kprime, 3 * slots);
+    if (sam->back_vertex_count) {
+        size_t bv = sam->back_vertex_count;
+        w_f32s(&w, sam->back_positions, 3 * bv);
+        w_f32s(&w, sam->back_normals, 3 * bv);
+        if (sam->back_uvs) w_f32s(&w, sam->back_uvs, 2 * bv);
+        w_f32s(&w, sam->back_fan_area, bv);
+        for (size_t i = 0; i < 3 * (size_t)sam->back_triangle_count; i++) w_u32(&w, sam->back_indices[i]);
+    }
     uint64_t h = w.hash;
     w_u64(&w, h);
     if (w.failed) {
@@ -146,6 +171,45 @@ sss_result sss_sam_write(const char *path, const sss_sam *sam, sss_error *err)
         return sss_error_set(err, SSS_ERROR_IO, "%s: write failed", path);
     }
     return sss_atomic_close(f, tmp, path, err);
+}
+
+/* The back-side mesh of a version-2 file (sizes already checked against the file's). */
+static sss_result read_back(reader *b, const char *path, uint32_t flags, sss_sam *s, sss_error *err)
+{
+    size_t bv = s->back_vertex_count, bt = s->back_triangle_count;
+    s->back_positions = malloc(sizeof(float) * 3 * bv);
+    s->back_normals = malloc(sizeof(float) * 3 * bv);
+    s->back_fan_area = malloc(sizeof(float) * bv);
+    s->back_indices = malloc(sizeof(uint32_t) * 3 * bt);
+    if (flags & BACK_HAS_UVS) s->back_uvs = malloc(sizeof(float) * 2 * bv);
+    if (!s->back_positions || !s->back_normals || !s->back_fan_area || !s->back_indices ||
+        ((flags & BACK_HAS_UVS) && !s->back_uvs))
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory (back-side mesh)", path);
+    float *arrays[3] = {s->back_positions, s->back_normals, s->back_uvs};
+    size_t sizes[3] = {3 * bv, 3 * bv, s->back_uvs ? 2 * bv : 0};
+    for (int a = 0; a < 3; a++)
+        for (size_t i = 0; i < sizes[a]; i++) {
+            arrays[a][i] = r_f32(b);
+            if (!isfinite(arrays[a][i]))
+                return sss_error_set(err, SSS_ERROR_PARSE, "%s: back-side mesh: vertex %zu is not finite", path,
+                                     i / (a == 2 ? 2 : 3));
+        }
+    for (size_t i = 0; i < bv; i++) {
+        s->back_fan_area[i] = r_f32(b);
+        if (!isfinite(s->back_fan_area[i]) || s->back_fan_area[i] < 0.0f)
+            return sss_error_set(err, SSS_ERROR_PARSE, "%s: back-side mesh: vertex %zu: bad fan area", path, i);
+    }
+    for (size_t i = 0; i < 3 * bt; i++) {
+        s->back_indices[i] = r_u32(b);
+        if (s->back_indices[i] >= bv)
+            return sss_error_set(err, SSS_ERROR_PARSE, "%s: back-side mesh: triangle %zu: index %u out of range", path,
+                                 i / 3, s->back_indices[i]);
+    }
+    sss_mesh view;
+    sss_sam_back_mesh(s, &view);
+    if (sss_sam_mesh_hash(&view) != s->back_hash)
+        return sss_error_set(err, SSS_ERROR_PARSE, "%s: the back-side mesh does not match its recorded hash", path);
+    return SSS_OK;
 }
 
 sss_result sss_sam_read(const char *path, sss_sam *out, sss_error *err)
@@ -162,10 +226,11 @@ sss_result sss_sam_read(const char *path, sss_sam *out, sss_error *err)
     }
     reader r = {head, 8, got};
     uint32_t version = r_u32(&r), hbytes = r_u32(&r);
-    if (version != SSS_SAM_FORMAT_VERSION || hbytes != HEADER_BYTES) {
+    if (version < 1 || version > SSS_SAM_FORMAT_VERSION || hbytes != HEADER_BYTES) {
         fclose(f);
-        return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "%s: .sam version %u (header %u bytes); this build reads version %u",
-                             path, version, hbytes, SSS_SAM_FORMAT_VERSION);
+        return sss_error_set(err, SSS_ERROR_UNSUPPORTED,
+                             "%s: .sam version %u (header %u bytes); this build reads versions 1 to %u", path, version,
+                             hbytes, SSS_SAM_FORMAT_VERSION);
     }
     if (got < HEADER_BYTES) {
         fclose(f);
@@ -187,6 +252,20 @@ sss_result sss_sam_read(const char *path, sss_sam *out, sss_error *err)
     s.material.eta = r_f64(&r);
     s.material.g = r_f64(&r);
     for (int i = 0; i < 16; i++) s.transform[i] = r_f64(&r);
+    uint32_t back_flags = 0;
+    if (version >= 2) {
+        s.back_vertex_count = r_u32(&r);
+        s.back_triangle_count = r_u32(&r);
+        s.back_hash = r_u64(&r);
+        back_flags = r_u32(&r);
+        if (s.back_vertex_count == 0 || s.back_vertex_count > SSS_MESH_MAX_VERTICES || s.back_triangle_count == 0 ||
+            s.back_triangle_count > SSS_MESH_MAX_TRIANGLES || (back_flags & ~BACK_HAS_UVS) != 0) {
+            fclose(f);
+            return sss_error_set(err, SSS_ERROR_PARSE,
+                                 "%s: back-side mesh header out of range (%u vertices, %u triangles, flags %u)", path,
+                                 s.back_vertex_count, s.back_triangle_count, back_flags);
+        }
+    }
     if (s.vertex_count == 0 || s.vertex_count > SSS_MESH_MAX_VERTICES || s.triangle_count == 0 ||
         s.triangle_count > SSS_MESH_MAX_TRIANGLES || s.n < 1 || s.n > SSS_SAM_MAX_N || s.samples < 1 ||
         s.samples > SSS_SAM_MAX_SAMPLES || model > (uint32_t)SSS_PROFILE_GAUSS6) {
@@ -198,7 +277,9 @@ sss_result sss_sam_read(const char *path, sss_sam *out, sss_error *err)
     s.model = (sss_profile_model)model;
     /* The file must hold exactly what the header promises (checked before allocating). */
     uint64_t nv = s.vertex_count, slots = nv * s.n;
-    uint64_t expect = HEADER_BYTES + 4 * nv + 4 * slots + 24 * slots + 8;
+    uint64_t bv = s.back_vertex_count, bt = s.back_triangle_count;
+    uint64_t back_bytes = bv ? 4 * (7 * bv + ((back_flags & BACK_HAS_UVS) ? 2 * bv : 0) + 3 * bt) : 0;
+    uint64_t expect = HEADER_BYTES + 4 * nv + 4 * slots + 24 * slots + back_bytes + 8;
     if (fseek(f, 0, SEEK_END) != 0) {
         fclose(f);
         return sss_error_set(err, SSS_ERROR_IO, "%s: cannot seek", path);
@@ -244,7 +325,8 @@ sss_result sss_sam_read(const char *path, sss_sam *out, sss_error *err)
     }
     for (uint64_t i = 0; res == SSS_OK && i < slots; i++) {
         s.links[i] = r_u32(&b);
-        if (s.links[i] != SSS_SAM_NONE && s.links[i] >= s.vertex_count)
+        /* links index the back-side mesh when there is one */
+        if (s.links[i] != SSS_SAM_NONE && s.links[i] >= (bv ? s.back_vertex_count : s.vertex_count))
             res = sss_error_set(err, SSS_ERROR_PARSE, "%s: vertex %llu: link %u out of range", path,
                                 (unsigned long long)(i / s.n), s.links[i]);
     }
@@ -257,6 +339,7 @@ sss_result sss_sam_read(const char *path, sss_sam *out, sss_error *err)
         s.kprime[i] = r_f32(&b);
         if (!isfinite(s.kprime[i]) || s.kprime[i] < 0.0f) res = sss_error_set(err, SSS_ERROR_PARSE, "%s: bad K'", path);
     }
+    if (res == SSS_OK && bv) res = read_back(&b, path, back_flags, &s, err);
     free(data);
     if (res != SSS_OK) {
         sss_sam_free(&s);

@@ -52,8 +52,23 @@ sss_result sss_sam_build_object(const sss_scene *scene, size_t index, const sss_
     memset(&d, 0, sizeof d);
     if (desc) d = *desc;
     d.transform = obj->transform.matrix;
+    /* a back-side mesh is given in object space: it is posed at rest as the object's mesh */
+    sss_mesh back;
+    memset(&back, 0, sizeof back);
+    if (d.backside) {
+        sss_scene_object rest = *obj;
+        rest.animation.type = SSS_ANIMATION_NONE;
+        res = sss_scene_object_pose_mesh(&rest, d.backside, 0.0, &back, err);
+        if (res != SSS_OK) {
+            sss_error_prefix(err, "back-side mesh");
+            sss_mesh_free(&mesh);
+            return res;
+        }
+        d.backside = &back;
+    }
     res = sss_sam_build(&mesh, &prof, &d, out, stats, err);
     sss_mesh_free(&mesh);
+    sss_mesh_free(&back);
     return res;
 }
 
