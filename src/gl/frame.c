@@ -259,6 +259,22 @@ void gl_draw_objects(sss_gl_renderer *r, GLint object_uniform, int subsurface_on
     glBindVertexArray(0);
 }
 
+void gl_dispatch_splat_triangles(sss_gl_renderer *r, GLuint prog)
+{
+    for (int i = 0; i < r->gs.object_count; i++) {
+        const gl_object *o = &r->gs.objects[i];
+        if (!o->subsurface || o->splat_triangle_count == 0) continue;
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_MESH_POS, o->splat_pos);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_MESH_IDX, o->splat_idx);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_MESH_UV, o->splat_uv ? o->splat_uv : o->splat_pos);
+        glUniform1i(glGetUniformLocation(prog, "u_has_uv"), o->splat_uv != 0);
+        glUniform1i(glGetUniformLocation(prog, "u_object"), i);
+        glUniform1ui(glGetUniformLocation(prog, "u_triangles"), o->splat_triangle_count);
+        glDispatchCompute((o->splat_triangle_count + 63) / 64, 1, 1);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+}
+
 void gl_draw_fullscreen(sss_gl_renderer *r)
 {
     glBindVertexArray(r->vao_empty);

@@ -300,6 +300,10 @@ void gl_update_frame_ubo(sss_gl_renderer *r);
 /* Draws every object (G-buffer style vertex stage must be bound); mask: 1 subsurface only, 2 all. */
 void gl_draw_objects(sss_gl_renderer *r, GLint object_uniform, int subsurface_only);
 void gl_draw_fullscreen(sss_gl_renderer *r);
+/* Runs the bound compute program prog (local size 64) once per triangle of every subsurface object's
+ * splat mesh: binds the mesh SSBOs, sets u_has_uv, u_object, u_triangles; ends with a barrier for
+ * storage and indirect-command reads (maisch2020's splats, dss's surfels). */
+void gl_dispatch_splat_triangles(sss_gl_renderer *r, GLuint prog);
 
 /* Texture helpers: allocate immutable storage, set nearest/clamp sampling, count bytes. */
 GLuint gl_texture_2d(GLenum format, int width, int height, int levels, size_t *bytes);

@@ -169,18 +169,7 @@ static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, sss_error *er
     set_f(s->prog_gen, "u_irradiance_cull", (float)gl_param(r, P_IRRADIANCE_CULL));
     set_f(s->prog_gen, "u_shadow_offset", (float)gl_param(r, P_SHADOW_OFFSET));
     glUniform1ui(glGetUniformLocation(s->prog_gen, "u_capacity"), s->capacity);
-    for (int i = 0; i < r->gs.object_count; i++) {
-        const gl_object *o = &r->gs.objects[i];
-        if (!o->subsurface || o->splat_triangle_count == 0) continue;
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_MESH_POS, o->splat_pos);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_MESH_IDX, o->splat_idx);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_MESH_UV, o->splat_uv ? o->splat_uv : o->splat_pos);
-        set_i(s->prog_gen, "u_has_uv", o->splat_uv != 0);
-        set_i(s->prog_gen, "u_object", i);
-        glUniform1ui(glGetUniformLocation(s->prog_gen, "u_triangles"), o->splat_triangle_count);
-        glDispatchCompute((o->splat_triangle_count + 63) / 64, 1, 1);
-    }
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    gl_dispatch_splat_triangles(r, s->prog_gen);
     sss_result res = gl_check(r->ctx, "maisch2020: splat generation", err);
     if (res != SSS_OK) return res;
 
