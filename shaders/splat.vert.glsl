@@ -13,22 +13,6 @@ layout(std430, binding = 4) readonly buffer SplatBlock { Splat splats[]; };
 
 flat out int v_splat;
 
-// NDC interval covered by a circle (centre (a, z) in the plane of one image axis and the view axis,
-// camera at the origin looking down -z), or [-1, 1] when the camera is too close.
-vec2 axis_bounds(float a, float z, float radius, float scale)
-{
-    float d2 = a * a + z * z;
-    if (-z - radius <= u_misc.w || d2 <= radius * radius) return vec2(-1.0, 1.0);
-    float d = sqrt(d2);
-    float sin_t = radius / d, cos_t = sqrt(max(0.0, 1.0 - sin_t * sin_t));
-    vec2 c = vec2(a, z) / d;
-    vec2 t1 = vec2(c.x * cos_t - c.y * sin_t, c.x * sin_t + c.y * cos_t);
-    vec2 t2 = vec2(c.x * cos_t + c.y * sin_t, -c.x * sin_t + c.y * cos_t);
-    if (t1.y >= 0.0 || t2.y >= 0.0) return vec2(-1.0, 1.0);
-    float p1 = scale * t1.x / -t1.y, p2 = scale * t2.x / -t2.y;
-    return vec2(min(p1, p2), max(p1, p2));
-}
-
 void main()
 {
     Splat s = splats[gl_InstanceID];
