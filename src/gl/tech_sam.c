@@ -185,7 +185,7 @@ static sss_result make_maps(sss_gl_renderer *r, sam_state *s, sss_error *err)
     d.backside_splat = (int)gl_param(r, P_BACK_SPLAT);
     if (d.backside_triangles > 0 && d.backside_splat)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
-                             "sam: parameters backside_triangles and backside_splat exclude each other");
+                             "parameters backside_triangles and backside_splat exclude each other");
     d.file = r->data_file;
     sss_error mismatch = {0};
     d.mismatch = &mismatch;

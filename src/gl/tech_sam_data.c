@@ -159,7 +159,7 @@ sss_result sam_object_create(sss_gl_renderer *r, int index, const sam_data_desc 
             else if (so->splat_triangles) bd.backside_triangles = so->splat_triangles;
             else
                 return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
-                                     "sam: backside_splat: the object has neither splat_mesh nor splat_triangles");
+                                     "backside_splat: the object has neither splat_mesh nor splat_triangles");
         }
         sss_sam_stats st;
         res = sss_sam_build_object(scene, (size_t)index, &bd, &sam, &st, err);

@@ -3,7 +3,9 @@
 # counts equal the mesh's (`sss mesh info`), n links per vertex, the search visits a fraction of the
 # pairs; `sss sam info` reads the file back and accepts the right mesh but rejects another mesh and a
 # truncated file with clear messages; --brute-force gives the same file; `sss render --technique sam
-# --data FILE` uses it and rejects another mesh's file; usage errors exit 2 and write nothing.
+# --data FILE` uses it and rejects another mesh's file; a back-side mesh (--backside-triangles, -mesh,
+# -splat) gives a version-2 file of the documented size that renders as the map built at creation;
+# usage errors exit 2 and write nothing.
 # Usage: bash test_sam.sh <sss-binary> <repo-root>
 set -u
 SSS=$1
@@ -63,9 +65,45 @@ msg=$("$SSS" render "$T/s.json" --technique sam --data "$T/b.sam" -o "$T/c.png" 
 printf '%s\n' "$msg" | grep -q "different mesh" || err "no clear message: $msg"
 [ ! -e "$T/c.png" ] || err "an image was written despite the error"
 
+# back side on a lower-tessellation mesh (seed 001, 4.4): version 2 with the coarse mesh in the file
+out=$("$SSS" sam build "$BUNNY" --medium Marble --scale 2.5 -n 4 --samples 16 --backside-triangles 600 -o "$T/c.sam") ||
+    err "backside build: exit $?"
+[ "$(od -An -tu4 -j8 -N4 "$T/c.sam" | tr -d ' ')" = 2 ] || err "c.sam is not version 2"
+BV=$(val "$out" backside_vertices); BT=$(val "$out" backside_triangles)
+[ -n "$BV" ] && [ "$BT" -le 600 ] && [ "$BV" -lt "$V" ] || err "back-side counts: $out"
+[ "$(val "$out" linked_vertices)" = "$V" ] || err "not every vertex linked to the back-side mesh: $out"
+size=$(wc -c < "$T/c.sam")
+[ "$size" -eq $((320 + 4 * V + 28 * V * 4 + 4 * (7 * BV + 3 * BT) + 8)) ] || err "version-2 file size $size"
+"$SSS" sam info "$T/c.sam" "$BUNNY" | grep -q "^backside_vertices $BV" || err "info does not show the back-side mesh"
+msg=$("$SSS" sam info "$T/c.sam" "$ROOT/assets/dragon_low.ply" 2>&1); rc=$?
+[ $rc -eq 1 ] && printf '%s
+' "$msg" | grep -q "c.sam: built for a different mesh" || err "v2 file, other mesh: $rc $msg"
+# a given coarse mesh: the simplification written out by sss mesh simplify gives the same links
+"$SSS" mesh simplify "$BUNNY" --triangles 600 -o "$T/low.ply" > /dev/null || err "mesh simplify: exit $?"
+"$SSS" sam build "$BUNNY" --medium Marble --scale 2.5 -n 4 --samples 16 --backside-mesh "$T/low.ply" -o "$T/c2.sam" \
+    > /dev/null || err "--backside-mesh: exit $?"
+[ "$(val "$("$SSS" sam info "$T/c2.sam")" backside_vertices)" = "$BV" ] || err "--backside-mesh: other vertex count"
+msg=$("$SSS" sam build "$BUNNY" --medium Marble --backside-mesh "$T/none.ply" -o "$T/u.sam" 2>&1); rc=$?
+[ $rc -eq 1 ] && printf '%s
+' "$msg" | grep -q "none.ply" || err "missing back-side mesh: $rc $msg"
+# a scene object's splat mesh (SCENE.md splat_triangles), rendered from the file
+sed 's/"subdivisions": 2}/"subdivisions": 3}, "splat_triangles": 80/' "$T/s.json" > "$T/sp.json"
+out=$("$SSS" sam build "$T/sp.json" -n 10 --backside-splat -o "$T/sp.sam") || err "--backside-splat: exit $?"
+[ "$(val "$out" backside_triangles)" -le 80 ] && [ "$(val "$out" vertices)" = 642 ] || err "--backside-splat: $out"
+"$SSS" render "$T/sp.json" --technique sam --data "$T/sp.sam" -o "$T/sp.png" || err "render a version-2 file: exit $?"
+"$SSS" render "$T/sp.json" --technique sam --param n=10 --param backside_splat=1 -o "$T/sp2.png" ||
+    err "render with backside_splat: exit $?"
+cmp -s "$T/sp.png" "$T/sp2.png" || err "the file's coarse map and the one built at creation render differently"
+msg=$("$SSS" sam build "$T/s.json" --backside-splat -o "$T/u.sam" 2>&1); rc=$?
+[ $rc -eq 1 ] && printf '%s
+' "$msg" | grep -q "splat_mesh" || err "--backside-splat without a splat mesh: $rc $msg"
+
 # usage errors: exit 2, nothing written
 for args in "build" "build $BUNNY -o $T/u.sam" "build $BUNNY --medium Marble" "build $BUNNY --medium Marble -n 0 -o $T/u.sam" \
-    "build $T/s.json --medium Marble -o $T/u.sam" "frobnicate"; do
+    "build $T/s.json --medium Marble -o $T/u.sam" "frobnicate" \
+    "build $BUNNY --medium Marble --backside-triangles 0 -o $T/u.sam" \
+    "build $BUNNY --medium Marble --backside-splat -o $T/u.sam" \
+    "build $T/s.json --backside-triangles 50 --backside-splat -o $T/u.sam"; do
     "$SSS" sam $args > /dev/null 2>&1; rc=$?
     [ $rc -eq 2 ] || err "sss sam $args: exit $rc, expected 2"
 done
