@@ -55,8 +55,9 @@ static const sss_gl_param_info params[P_COUNT] = {
                    "bicubic B-spline upsampling (Sigg & Hadwiger, 4 taps); 0: bilinear"},
     [P_SHADOW_OFFSET] = {"splat_shadow_offset", SSS_GL_PARAM_FLOAT, 0.5, 0, 10,
                          "splat irradiance looked up this many sqrt(area) above the splat (self-shadowing)"},
-    [P_FILTERED] = {"filtered_layers", SSS_GL_PARAM_BOOL, 1, 0, 1,
-                    "outer samples bilinear within their mip level (1) or texelFetch (0: blocky copies)"},
+    [P_FILTERED] = {"filtered_layers", SSS_GL_PARAM_INT, 1, 0, 2,
+                    "outer samples: 1 bilinear within their mip level; 2 the same, but texels whose mean positions "
+                    "disagree (two surfaces) each at their own position; 0 texelFetch (blocky copies)"},
     [P_SPLAT_PREINTEGRATED] = {"splat_preintegrated", SSS_GL_PARAM_BOOL, 1, 0, 1,
                                "splats read R'_d(r', A) (1, seed 000) or R_d(r') at the disc-adjusted distance"},
     [P_SCREEN_BOUND] = {"layer_distance_bound", SSS_GL_PARAM_BOOL, 1, 0, 1,

@@ -22,8 +22,9 @@ static const sss_gl_param_info params[] = {
      "1: disc-integrated kernel R'_d(r, A) (Eq. 5-6); 0: naive centre sample R_d(r) (Fig. 2)"},
     {"grazing_cutoff", SSS_GL_PARAM_FLOAT, 0.2, 0, 1,
      "n.v below which pixels leave the screen-space sum (Eq. 8, 6.2)"},
-    {"filtered_layers", SSS_GL_PARAM_BOOL, 1, 0, 1,
-     "outer samples bilinear within their mip level (1) or texelFetch (0: blocky copies)"},
+    {"filtered_layers", SSS_GL_PARAM_INT, 1, 0, 2,
+     "outer samples: 1 bilinear within their mip level; 2 the same, but texels whose mean positions "
+     "disagree (two surfaces) each at their own position; 0 texelFetch (blocky copies)"},
     {"layer_distance_bound", SSS_GL_PARAM_BOOL, 1, 0, 1,
      "outer samples at least d_(i-1)/2 pixels (at their depth) from x_o, where their cell lies"},
 };
