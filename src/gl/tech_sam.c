@@ -12,7 +12,9 @@
  *   sam_raster     the per-vertex translucency rasterised (barycentric blend) at full resolution
  *   sam_combine    frame.final += c_o sqrt(albedo) L~_o-
  * The maps come from a .sam file (sss sam build) when the renderer is given one, else they are built
- * at creation with the parameters n and samples.
+ * at creation with the parameters n and samples (and backside_triangles / backside_splat). A map with
+ * a lower-tessellation back-side mesh (seed 001, section 4.4) runs sam_deform on both meshes, and
+ * sam_update's fan areas and sam_light on the back-side mesh, whose vertices are the sources of Eq. 12.
  *
  * Time (Eq. 17-18): alpha = 1 - base^dt with dt the animation time since the previous frame of this
  * renderer. The first frame has no previous value: dt is taken as infinite, alpha = 1, so a
