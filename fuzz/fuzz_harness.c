@@ -9,7 +9,9 @@
 #include <string.h>
 
 #include "sss/image.h"
+#include "sss/material.h"
 #include "sss/mesh.h"
+#include "sss/sam.h"
 #include "sss/scene.h"
 
 static char fuzz_message[640];
@@ -194,9 +196,102 @@ const char *sss_fuzz_pfm(const uint8_t *data, size_t size) { return fuzz_image(d
 const char *sss_fuzz_exr(const uint8_t *data, size_t size) { return fuzz_image(data, size, "fuzz.exr"); }
 const char *sss_fuzz_png(const uint8_t *data, size_t size) { return fuzz_image(data, size, "fuzz.png"); }
 
-/* ---- Scenes ------------------------------------------------------------------------------------ */
-
+/* The folder of the fixture meshes (sss_fuzz_set_fixtures). */
 static const char *fixtures_dir = ".";
+
+/* ---- Spatial Adjacency Maps (.sam) ----------------------------------------------------------- */
+
+/* The file ends with an FNV-1a 64 checksum of everything before it, which random mutations almost
+ * never keep: the harness recomputes it (independently of sam_io.c) so that the fuzzer reaches the
+ * structure behind it. The checksum test itself is in tests/sam. */
+static void sam_fix_checksum(uint8_t *data, size_t size)
+{
+    if (size < 8) return;
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (size_t i = 0; i < size - 8; i++) h = (h ^ data[i]) * 0x100000001b3ull;
+    for (int k = 0; k < 8; k++) data[size - 8 + (size_t)k] = (uint8_t)(h >> (8 * k));
+}
+
+static int sam_is_empty(const sss_sam *s)
+{
+    return !s->vertex_count && !s->triangle_count && !s->n && !s->fan_area && !s->links && !s->form_factor &&
+           !s->kprime && !s->back_vertex_count && !s->back_positions && !s->back_normals && !s->back_uvs &&
+           !s->back_fan_area && !s->back_indices;
+}
+
+static int finite_nonneg(const float *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(v[i]) || v[i] < 0.0f) return 0;
+    return 1;
+}
+
+static const char *check_sam(const sss_sam *s)
+{
+    if (s->vertex_count < 1 || s->vertex_count > SSS_MESH_MAX_VERTICES || s->triangle_count < 1 ||
+        s->triangle_count > SSS_MESH_MAX_TRIANGLES)
+        return broken("map counts %u vertices, %u triangles", s->vertex_count, s->triangle_count);
+    if (s->n < 1 || s->n > SSS_SAM_MAX_N) return broken("n = %u", s->n);
+    if (!s->fan_area || !s->links || !s->form_factor || !s->kprime) return broken("missing arrays");
+    size_t slots = (size_t)s->vertex_count * s->n;
+    uint32_t targets = s->back_vertex_count ? s->back_vertex_count : s->vertex_count;
+    for (size_t i = 0; i < slots; i++)
+        if (s->links[i] != SSS_SAM_NONE && s->links[i] >= targets)
+            return broken("link %zu = %u of %u vertices", i, s->links[i], targets);
+    if (!finite_nonneg(s->fan_area, s->vertex_count) || !finite_nonneg(s->form_factor, 3 * slots) ||
+        !finite_nonneg(s->kprime, 3 * slots))
+        return broken("a fan area, form factor or K' is negative or not finite");
+    if (s->back_vertex_count) {
+        if (!s->back_positions || !s->back_normals || !s->back_fan_area || !s->back_indices || !s->back_triangle_count)
+            return broken("back-side mesh arrays missing");
+        for (size_t i = 0; i < 3 * (size_t)s->back_triangle_count; i++)
+            if (s->back_indices[i] >= s->back_vertex_count) return broken("back-side index %zu out of range", i);
+        for (size_t i = 0; i < 3 * (size_t)s->back_vertex_count; i++)
+            if (!isfinite(s->back_positions[i]) || !isfinite(s->back_normals[i]))
+                return broken("back-side vertex value %zu not finite", i);
+        if (!finite_nonneg(s->back_fan_area, s->back_vertex_count)) return broken("back-side fan area");
+    }
+    return NULL;
+}
+
+const char *sss_fuzz_sam(const uint8_t *data, size_t size)
+{
+    uint8_t *copy = malloc(size ? size : 1);
+    if (!copy) return NULL;
+    if (size) memcpy(copy, data, size);
+    sam_fix_checksum(copy, size);
+    sss_sam sam;
+    memset(&sam, 0xa5, sizeof sam);
+    sss_error err = {0};
+    sss_result r = sss_sam_decode(copy, size, "fuzz.sam", &sam, &err);
+    free(copy);
+    const char *bad = check_error(r, &err, "fuzz.sam");
+    if (r != SSS_OK) {
+        if (!bad && !sam_is_empty(&sam)) bad = broken("failed (%s) but the map is not empty", err.message);
+        return bad;
+    }
+    bad = check_sam(&sam);
+    if (!bad) {
+        /* Matching against a mesh must answer, never crash: the fixture tetrahedron, Marble. */
+        sss_mesh tetra;
+        sss_error e2 = {0};
+        char path[1024];
+        snprintf(path, sizeof path, "%s/tetra.ply", fixtures_dir);
+        if (sss_mesh_read(path, &tetra, &e2) == SSS_OK) {
+            sss_material mat;
+            memset(&mat, 0, sizeof mat);
+            if (sss_material_from_medium("Marble", 1.0, 1.33, &mat, &e2) == SSS_OK) {
+                sss_result rc = sss_sam_check(&sam, &tetra, &mat, sam.model, NULL, "fuzz.sam", &e2);
+                bad = check_error(rc, &e2, "fuzz.sam");
+            }
+            sss_mesh_free(&tetra);
+        }
+    }
+    sss_sam_free(&sam);
+    return bad;
+}
+
+/* ---- Scenes ------------------------------------------------------------------------------------ */
 
 void sss_fuzz_set_fixtures(const char *dir) { fixtures_dir = dir; }
 
@@ -365,6 +460,6 @@ const char *sss_fuzz_scene(const uint8_t *data, size_t size)
 
 const sss_fuzz_target sss_fuzz_targets[] = {
     {"ply", sss_fuzz_ply}, {"obj", sss_fuzz_obj}, {"scene", sss_fuzz_scene}, {"hdr", sss_fuzz_hdr},
-    {"pfm", sss_fuzz_pfm}, {"exr", sss_fuzz_exr}, {"png", sss_fuzz_png},
+    {"pfm", sss_fuzz_pfm}, {"exr", sss_fuzz_exr}, {"png", sss_fuzz_png}, {"sam", sss_fuzz_sam},
 };
 const size_t sss_fuzz_target_count = sizeof sss_fuzz_targets / sizeof sss_fuzz_targets[0];

@@ -208,6 +208,9 @@ sss_result sss_sam_write(const char *path, const sss_sam *sam, sss_error *err);
  * what the header implies), the checksum, link indices (against the back-side mesh in version 2), the
  * back-side mesh's indices and hash, and finite values. */
 sss_result sss_sam_read(const char *path, sss_sam *out, sss_error *err);
+/* The same checks on a .sam file held in memory (size bytes); messages name `name` (NULL: "<memory>").
+ * On failure *out is left empty. */
+sss_result sss_sam_decode(const void *data, size_t size, const char *name, sss_sam *out, sss_error *err);
 /* Whether a map belongs to this mesh, material, profile model and transform (NULL: identity); the
  * message names `name` (the .sam file) and what differs. */
 sss_result sss_sam_check(const sss_sam *sam, const sss_mesh *mesh, const sss_material *material,

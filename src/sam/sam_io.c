@@ -212,74 +212,141 @@ static sss_result read_back(reader *b, const char *path, uint32_t flags, sss_sam
     return SSS_OK;
 }
 
+/* The fixed header: counts, material, transform (into s) and the file size they imply (*expect).
+ * head holds the first got bytes of the input. Nothing is allocated. */
+static sss_result parse_header(const uint8_t *head, size_t got, const char *name, sss_sam *s, uint32_t *back_flags,
+                               uint64_t *expect, sss_error *err)
+{
+    memset(s, 0, sizeof *s);
+    *back_flags = 0;
+    if (got < 16 || memcmp(head, MAGIC, 8) != 0)
+        return sss_error_set(err, SSS_ERROR_PARSE, "%s: not a .sam file (bad magic)", name);
+    reader r = {head, 8, got};
+    uint32_t version = r_u32(&r), hbytes = r_u32(&r);
+    if (version < 1 || version > SSS_SAM_FORMAT_VERSION || hbytes != HEADER_BYTES)
+        return sss_error_set(err, SSS_ERROR_UNSUPPORTED,
+                             "%s: .sam version %u (header %u bytes); this build reads versions 1 to %u", name, version,
+                             hbytes, SSS_SAM_FORMAT_VERSION);
+    if (got < HEADER_BYTES)
+        return sss_error_set(err, SSS_ERROR_PARSE, "%s: truncated header (%zu of %d bytes)", name, got, HEADER_BYTES);
+    s->vertex_count = r_u32(&r);
+    s->triangle_count = r_u32(&r);
+    s->n = r_u32(&r);
+    s->samples = r_u32(&r);
+    s->mesh_hash = r_u64(&r);
+    s->seed = r_u64(&r);
+    uint32_t model = r_u32(&r);
+    (void)r_u32(&r);
+    s->energy = r_f64(&r);
+    for (int c = 0; c < 3; c++) s->material.sigma_a[c] = r_f64(&r);
+    for (int c = 0; c < 3; c++) s->material.sigma_s[c] = r_f64(&r);
+    s->material.eta = r_f64(&r);
+    s->material.g = r_f64(&r);
+    for (int i = 0; i < 16; i++) s->transform[i] = r_f64(&r);
+    if (version >= 2) {
+        s->back_vertex_count = r_u32(&r);
+        s->back_triangle_count = r_u32(&r);
+        s->back_hash = r_u64(&r);
+        *back_flags = r_u32(&r);
+        if (s->back_vertex_count == 0 || s->back_vertex_count > SSS_MESH_MAX_VERTICES || s->back_triangle_count == 0 ||
+            s->back_triangle_count > SSS_MESH_MAX_TRIANGLES || (*back_flags & ~BACK_HAS_UVS) != 0)
+            return sss_error_set(err, SSS_ERROR_PARSE,
+                                 "%s: back-side mesh header out of range (%u vertices, %u triangles, flags %u)", name,
+                                 s->back_vertex_count, s->back_triangle_count, *back_flags);
+    }
+    if (s->vertex_count == 0 || s->vertex_count > SSS_MESH_MAX_VERTICES || s->triangle_count == 0 ||
+        s->triangle_count > SSS_MESH_MAX_TRIANGLES || s->n < 1 || s->n > SSS_SAM_MAX_N || s->samples < 1 ||
+        s->samples > SSS_SAM_MAX_SAMPLES || model > (uint32_t)SSS_PROFILE_GAUSS6)
+        return sss_error_set(err, SSS_ERROR_PARSE,
+                             "%s: header out of range (%u vertices, %u triangles, n = %u, %u samples, model %u)", name,
+                             s->vertex_count, s->triangle_count, s->n, s->samples, model);
+    s->model = (sss_profile_model)model;
+    uint64_t nv = s->vertex_count, slots = nv * s->n;
+    uint64_t bv = s->back_vertex_count, bt = s->back_triangle_count;
+    uint64_t back_bytes = bv ? 4 * (7 * bv + ((*back_flags & BACK_HAS_UVS) ? 2 * bv : 0) + 3 * bt) : 0;
+    *expect = HEADER_BYTES + 4 * nv + 4 * slots + 24 * slots + back_bytes + 8;
+    return SSS_OK;
+}
+
+static sss_result size_error(const char *name, uint64_t size, uint64_t expect, sss_error *err)
+{
+    return sss_error_set(err, SSS_ERROR_PARSE, "%s: %s (%llu bytes; the header promises %llu)", name,
+                         size < expect ? "truncated" : "trailing data", (unsigned long long)size,
+                         (unsigned long long)expect);
+}
+
+sss_result sss_sam_decode(const void *bytes, size_t size, const char *name, sss_sam *out, sss_error *err)
+{
+    if (out) memset(out, 0, sizeof *out);
+    if (!name) name = "<memory>";
+    if ((!bytes && size) || !out) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sam: no input or output");
+    const uint8_t *data = bytes;
+    sss_sam s;
+    uint32_t back_flags;
+    uint64_t expect;
+    sss_result res = parse_header(data, size < HEADER_BYTES ? size : HEADER_BYTES, name, &s, &back_flags, &expect, err);
+    if (res != SSS_OK) return res;
+    /* The input must hold exactly what the header promises (checked before allocating). */
+    if ((uint64_t)size != expect) return size_error(name, size, expect, err);
+    reader b = {data, (size_t)expect - 8, (size_t)expect};
+    uint64_t stored = r_u64(&b);
+    if (stored != fnv(data, (size_t)expect - 8))
+        return sss_error_set(err, SSS_ERROR_PARSE, "%s: checksum mismatch (corrupted file)", name);
+    uint64_t nv = s.vertex_count, slots = nv * s.n, bv = s.back_vertex_count;
+    s.fan_area = malloc(sizeof(float) * nv);
+    s.links = malloc(sizeof(uint32_t) * slots);
+    s.form_factor = malloc(sizeof(float) * 3 * slots);
+    s.kprime = malloc(sizeof(float) * 3 * slots);
+    if (!s.fan_area || !s.links || !s.form_factor || !s.kprime)
+        res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", name);
+    b.at = HEADER_BYTES;
+    for (uint64_t i = 0; res == SSS_OK && i < nv; i++) {
+        s.fan_area[i] = r_f32(&b);
+        if (!isfinite(s.fan_area[i]) || s.fan_area[i] < 0.0f)
+            res = sss_error_set(err, SSS_ERROR_PARSE, "%s: vertex %llu: bad fan area", name, (unsigned long long)i);
+    }
+    for (uint64_t i = 0; res == SSS_OK && i < slots; i++) {
+        s.links[i] = r_u32(&b);
+        /* links index the back-side mesh when there is one */
+        if (s.links[i] != SSS_SAM_NONE && s.links[i] >= (bv ? s.back_vertex_count : s.vertex_count))
+            res = sss_error_set(err, SSS_ERROR_PARSE, "%s: vertex %llu: link %u out of range", name,
+                                (unsigned long long)(i / s.n), s.links[i]);
+    }
+    for (uint64_t i = 0; res == SSS_OK && i < 3 * slots; i++) {
+        s.form_factor[i] = r_f32(&b);
+        if (!isfinite(s.form_factor[i]) || s.form_factor[i] < 0.0f)
+            res = sss_error_set(err, SSS_ERROR_PARSE, "%s: bad form factor", name);
+    }
+    for (uint64_t i = 0; res == SSS_OK && i < 3 * slots; i++) {
+        s.kprime[i] = r_f32(&b);
+        if (!isfinite(s.kprime[i]) || s.kprime[i] < 0.0f) res = sss_error_set(err, SSS_ERROR_PARSE, "%s: bad K'", name);
+    }
+    if (res == SSS_OK && bv) res = read_back(&b, name, back_flags, &s, err);
+    if (res != SSS_OK) {
+        sss_sam_free(&s);
+        return res;
+    }
+    *out = s;
+    return SSS_OK;
+}
+
 sss_result sss_sam_read(const char *path, sss_sam *out, sss_error *err)
 {
     if (out) memset(out, 0, sizeof *out);
     if (!path || !out) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sam: no file or output");
     FILE *f = fopen(path, "rb");
     if (!f) return sss_error_set(err, SSS_ERROR_IO, "%s: cannot open", path);
+    /* The header first: its sizes are checked against the file's before the body is allocated. */
     uint8_t head[HEADER_BYTES];
     size_t got = fread(head, 1, sizeof head, f);
-    if (got < 16 || memcmp(head, MAGIC, 8) != 0) {
+    sss_sam probe;
+    uint32_t back_flags;
+    uint64_t expect;
+    sss_result res = parse_header(head, got, path, &probe, &back_flags, &expect, err);
+    if (res != SSS_OK) {
         fclose(f);
-        return sss_error_set(err, SSS_ERROR_PARSE, "%s: not a .sam file (bad magic)", path);
+        return res;
     }
-    reader r = {head, 8, got};
-    uint32_t version = r_u32(&r), hbytes = r_u32(&r);
-    if (version < 1 || version > SSS_SAM_FORMAT_VERSION || hbytes != HEADER_BYTES) {
-        fclose(f);
-        return sss_error_set(err, SSS_ERROR_UNSUPPORTED,
-                             "%s: .sam version %u (header %u bytes); this build reads versions 1 to %u", path, version,
-                             hbytes, SSS_SAM_FORMAT_VERSION);
-    }
-    if (got < HEADER_BYTES) {
-        fclose(f);
-        return sss_error_set(err, SSS_ERROR_PARSE, "%s: truncated header (%zu of %d bytes)", path, got, HEADER_BYTES);
-    }
-    sss_sam s;
-    memset(&s, 0, sizeof s);
-    s.vertex_count = r_u32(&r);
-    s.triangle_count = r_u32(&r);
-    s.n = r_u32(&r);
-    s.samples = r_u32(&r);
-    s.mesh_hash = r_u64(&r);
-    s.seed = r_u64(&r);
-    uint32_t model = r_u32(&r);
-    (void)r_u32(&r);
-    s.energy = r_f64(&r);
-    for (int c = 0; c < 3; c++) s.material.sigma_a[c] = r_f64(&r);
-    for (int c = 0; c < 3; c++) s.material.sigma_s[c] = r_f64(&r);
-    s.material.eta = r_f64(&r);
-    s.material.g = r_f64(&r);
-    for (int i = 0; i < 16; i++) s.transform[i] = r_f64(&r);
-    uint32_t back_flags = 0;
-    if (version >= 2) {
-        s.back_vertex_count = r_u32(&r);
-        s.back_triangle_count = r_u32(&r);
-        s.back_hash = r_u64(&r);
-        back_flags = r_u32(&r);
-        if (s.back_vertex_count == 0 || s.back_vertex_count > SSS_MESH_MAX_VERTICES || s.back_triangle_count == 0 ||
-            s.back_triangle_count > SSS_MESH_MAX_TRIANGLES || (back_flags & ~BACK_HAS_UVS) != 0) {
-            fclose(f);
-            return sss_error_set(err, SSS_ERROR_PARSE,
-                                 "%s: back-side mesh header out of range (%u vertices, %u triangles, flags %u)", path,
-                                 s.back_vertex_count, s.back_triangle_count, back_flags);
-        }
-    }
-    if (s.vertex_count == 0 || s.vertex_count > SSS_MESH_MAX_VERTICES || s.triangle_count == 0 ||
-        s.triangle_count > SSS_MESH_MAX_TRIANGLES || s.n < 1 || s.n > SSS_SAM_MAX_N || s.samples < 1 ||
-        s.samples > SSS_SAM_MAX_SAMPLES || model > (uint32_t)SSS_PROFILE_GAUSS6) {
-        fclose(f);
-        return sss_error_set(err, SSS_ERROR_PARSE,
-                             "%s: header out of range (%u vertices, %u triangles, n = %u, %u samples, model %u)", path,
-                             s.vertex_count, s.triangle_count, s.n, s.samples, model);
-    }
-    s.model = (sss_profile_model)model;
-    /* The file must hold exactly what the header promises (checked before allocating). */
-    uint64_t nv = s.vertex_count, slots = nv * s.n;
-    uint64_t bv = s.back_vertex_count, bt = s.back_triangle_count;
-    uint64_t back_bytes = bv ? 4 * (7 * bv + ((back_flags & BACK_HAS_UVS) ? 2 * bv : 0) + 3 * bt) : 0;
-    uint64_t expect = HEADER_BYTES + 4 * nv + 4 * slots + 24 * slots + back_bytes + 8;
     if (fseek(f, 0, SEEK_END) != 0) {
         fclose(f);
         return sss_error_set(err, SSS_ERROR_IO, "%s: cannot seek", path);
@@ -287,9 +354,8 @@ sss_result sss_sam_read(const char *path, sss_sam *out, sss_error *err)
     long size = ftell(f);
     if (size < 0 || (uint64_t)size != expect) {
         fclose(f);
-        return sss_error_set(err, SSS_ERROR_PARSE, "%s: %s (%ld bytes; the header promises %llu)", path,
-                             size >= 0 && (uint64_t)size < expect ? "truncated" : "trailing data", size,
-                             (unsigned long long)expect);
+        return size < 0 ? sss_error_set(err, SSS_ERROR_IO, "%s: cannot tell its size", path)
+                        : size_error(path, (uint64_t)size, expect, err);
     }
     uint8_t *data = malloc((size_t)expect);
     if (!data) {
@@ -304,49 +370,9 @@ sss_result sss_sam_read(const char *path, sss_sam *out, sss_error *err)
         free(data);
         return sss_error_set(err, SSS_ERROR_IO, "%s: read failed", path);
     }
-    reader b = {data, (size_t)expect - 8, (size_t)expect};
-    uint64_t stored = r_u64(&b);
-    if (stored != fnv(data, (size_t)expect - 8)) {
-        free(data);
-        return sss_error_set(err, SSS_ERROR_PARSE, "%s: checksum mismatch (corrupted file)", path);
-    }
-    sss_result res = SSS_OK;
-    s.fan_area = malloc(sizeof(float) * nv);
-    s.links = malloc(sizeof(uint32_t) * slots);
-    s.form_factor = malloc(sizeof(float) * 3 * slots);
-    s.kprime = malloc(sizeof(float) * 3 * slots);
-    if (!s.fan_area || !s.links || !s.form_factor || !s.kprime)
-        res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
-    b.at = HEADER_BYTES;
-    for (uint64_t i = 0; res == SSS_OK && i < nv; i++) {
-        s.fan_area[i] = r_f32(&b);
-        if (!isfinite(s.fan_area[i]) || s.fan_area[i] < 0.0f)
-            res = sss_error_set(err, SSS_ERROR_PARSE, "%s: vertex %llu: bad fan area", path, (unsigned long long)i);
-    }
-    for (uint64_t i = 0; res == SSS_OK && i < slots; i++) {
-        s.links[i] = r_u32(&b);
-        /* links index the back-side mesh when there is one */
-        if (s.links[i] != SSS_SAM_NONE && s.links[i] >= (bv ? s.back_vertex_count : s.vertex_count))
-            res = sss_error_set(err, SSS_ERROR_PARSE, "%s: vertex %llu: link %u out of range", path,
-                                (unsigned long long)(i / s.n), s.links[i]);
-    }
-    for (uint64_t i = 0; res == SSS_OK && i < 3 * slots; i++) {
-        s.form_factor[i] = r_f32(&b);
-        if (!isfinite(s.form_factor[i]) || s.form_factor[i] < 0.0f)
-            res = sss_error_set(err, SSS_ERROR_PARSE, "%s: bad form factor", path);
-    }
-    for (uint64_t i = 0; res == SSS_OK && i < 3 * slots; i++) {
-        s.kprime[i] = r_f32(&b);
-        if (!isfinite(s.kprime[i]) || s.kprime[i] < 0.0f) res = sss_error_set(err, SSS_ERROR_PARSE, "%s: bad K'", path);
-    }
-    if (res == SSS_OK && bv) res = read_back(&b, path, back_flags, &s, err);
+    res = sss_sam_decode(data, (size_t)expect, path, out, err);
     free(data);
-    if (res != SSS_OK) {
-        sss_sam_free(&s);
-        return res;
-    }
-    *out = s;
-    return SSS_OK;
+    return res;
 }
 
 sss_result sss_sam_check(const sss_sam *sam, const sss_mesh *mesh, const sss_material *material,
