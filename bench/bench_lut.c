@@ -1,6 +1,7 @@
 /* bench_lut — median build time of the disc-integrated LUT (seed 000, section 7.2): 512 x 512 x 3
  * for Marble at scale 1 (PBD, as the paper) and for the dipole; plus the accuracy of bilinear lookups
- * in the linear and the sqrt axes against sss_lut_exact (relative errors, max and mean).
+ * in the linear and the sqrt axes against sss_lut_exact (relative errors, max and mean); and the
+ * SVD kernel's build (seed 002, section 3) at grids 24, 25 and 128.
  * Usage: bench_lut [runs] [medium] [size]   (defaults 15 Marble 512) */
 #include <math.h>
 #include <stdio.h>
@@ -25,6 +26,25 @@ static void build_once(void *p)
         exit(1);
     }
     sss_lut_free(&lut);
+}
+
+/* The SVD kernel (seed 002, section 3; its cost is mostly the cell integrals of R_d at small grids). */
+typedef struct svd_ctx {
+    const sss_profile *profile;
+    int grid;
+    double extent;
+} svd_ctx;
+
+static void svd_once(void *p)
+{
+    svd_ctx *c = p;
+    sss_svd_kernel k;
+    sss_error err;
+    if (sss_kernel_svd(c->profile, c->grid, c->extent, 3, &k, &err) != SSS_OK) {
+        fprintf(stderr, "bench_lut: %s\n", err.message);
+        exit(1);
+    }
+    sss_svd_kernel_free(&k);
 }
 
 /* Deterministic uniform numbers in [0, 1) (xorshift64*), so runs are comparable. */
@@ -107,6 +127,15 @@ int main(int argc, char **argv)
         c.desc.axes = SSS_LUT_AXES_SQRT;
         snprintf(label, sizeof label, "LUT %dx%dx3 %s %s sqrt", size, size, medium, names[k]);
         bench_run(label, runs, build_once, &c);
+        /* SVD kernels over the square holding 99.9% of the energy (as the ssss-svd technique) */
+        svd_ctx sc = {&p, 0, 0.0};
+        for (int ch = 0; ch < 3; ch++) sc.extent = fmax(sc.extent, sss_profile_radius_for_fraction(&p, ch, 0.999));
+        const int grids[3] = {24, 25, 128};
+        for (int g = 0; g < 3; g++) {
+            sc.grid = grids[g];
+            snprintf(label, sizeof label, "SVD kernel grid %d rank 3 %s %s", sc.grid, medium, names[k]);
+            bench_run(label, runs, svd_once, &sc);
+        }
     }
     /* Accuracy of bilinear lookups, linear vs sqrt axes (the numbers quoted in sss/kernel.h). */
     for (int k = 0; k < 2; k++) {

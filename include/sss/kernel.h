@@ -104,8 +104,17 @@ sss_result sss_kernel_artist(const sss_artist_params *params, int taps, sss_sepa
                              sss_error *err);
 void sss_separable_kernel_free(sss_separable_kernel *k);
 
-/* Rank-N SVD approximation of the profile discretised on a grid x grid raster of half-width extent
- * (cells of (2 extent / grid)^2, each holding R_d at its centre times the cell area). */
+/* Rank-N SVD approximation of the profile discretised on a grid x grid raster of half-width extent:
+ * cells of side h = 2 extent / grid, centres at -extent + (i + 1/2) h, each holding the integral of
+ * R_d(sqrt(x^2 + y^2)) over the cell (not its centre value times h^2, which for an odd grid puts the
+ * PBD profile's r -> 0 peak, ~1/r, into the centre cell). So any grid parity works, each cell holds its
+ * true energy and the cells sum to the profile's integral over the square. The cell holding r = 0 (and
+ * those where R_d varies within a cell) is integrated radially, in rings whose angle inside the cell
+ * is in closed form, with panels split at the PBD table's radii; smooth cells by 2- to 6-point tensor
+ * Gauss-Legendre. Agrees with the closed form for the six Gaussians to 1e-7 of each cell, and for PBD
+ * and the dipole with brute-force quadrature to ~1e-6 of each cell near the origin and of the
+ * largest cell anywhere (tests/kernel/test_kernel_cells.c). Cost: ~4500 profile evaluations at grid 24,
+ * ~75000 at 256 (the matrix's symmetry leaves 1/8 of the cells to compute). */
 typedef struct sss_svd_kernel {
     int grid, rank;
     double extent;
@@ -126,14 +135,17 @@ void sss_svd_kernel_free(sss_svd_kernel *k);
  *   int Gamma(x, y) (R_d(x, y) - a(x) a(y))^2 dx dy  subject to  ||a||_1^2 = ||R_d||_1,
  *   Gamma(x, y; k) = (x^2 + y^2)^(k/2) (1 - e^(-b x^2)) (1 - e^(-b y^2)),
  * on grid cells of half-width extent (cell centres x_i = -extent + (i + 1/2) 2 extent / grid; the
- * constraint is h sum_i a_i = sqrt(sss_profile_total), h the cell width). k emphasises far (large k)
+ * constraint is h sum_i a_i = sqrt(sss_profile_total), h the cell width). R_d(x, y) is each cell's
+ * average (its integral as in sss_kernel_svd over h^2; finite for odd grids too), Gamma its value at
+ * the cell's centre, a(x) a constant a_i per cell. k emphasises far (large k)
  * or near scattering; b (1 / length^2) the width of the axes Gamma ignores. Gamma gets a floor of 1e-3
  * of its maximum so that a is determined on the axes. out: 3 * grid values, out[channel * grid + i]
  * (densities, 1 / length). grid in [2, 512]; ~grid^2 * iterations work. */
 sss_result sss_kernel_guided(const sss_profile *profile, int grid, double extent, double k, double b,
                              double *out, sss_error *err);
-/* The discretised objective of Eq. 8 (with the floor) for one channel's a (grid values); NAN on bad
- * input. For checking optimality. */
+/* The discretised objective of Eq. 8 (with the floor, the same cell averages of R_d) for one
+ * channel's a (grid values): sum_ij (Gamma_ij + floor) (avg R_d_ij - a_i a_j)^2 h^2. NAN on bad input
+ * (grid outside [1, 512]) or without memory. For checking optimality. */
 double sss_kernel_guided_objective(const sss_profile *profile, int grid, double extent, double k, double b,
                                    int channel, const double *a);
 

@@ -1,7 +1,9 @@
 /* kernel/guided.c — the guided rank-1 approximation of seed 002, Appendix A (Eq. 8-9):
  *   a_s = argmin_a  int Gamma(x, y) (R_d(x, y) - a(x) a(y))^2 dx dy   subject to  ||a||_1^2 = ||R_d||_1,
  *   Gamma(x, y; k) = (x^2 + y^2)^(k/2) (1 - e^(-b x^2)) (1 - e^(-b y^2)),
- * discretised on grid cells (values at cell centres, cell area h^2). With the Lagrange multiplier m of
+ * discretised on grid cells of width h: R_d by its cell averages (the cell integrals of kernel/cells.c
+ * over h^2, finite also for the cell holding r = 0), Gamma (a smooth weight) at cell centres, a
+ * constant on each cell. With the Lagrange multiplier m of
  * the linear constraint h sum_i a_i = sqrt(||R_d||_1), stationarity reads
  *   a_i d_i = b_i + m,  d_i = sum_j G_ij a_j^2,  b_i = sum_j G_ij R_ij a_j,
  * which we iterate as a fixed point (d, b from the last iterate, m from the constraint, damped),
@@ -22,7 +24,14 @@
 double sss_kernel_guided_objective(const sss_profile *profile, int grid, double extent, double k, double b,
                                    int channel, const double *a)
 {
-    if (!profile || !a || grid < 1 || channel < 0 || channel > 2 || !(extent > 0.0)) return NAN;
+    if (!profile || !a || grid < 1 || grid > GUIDED_MAX_GRID || channel < 0 || channel > 2 || !(extent > 0.0) ||
+        !isfinite(extent))
+        return NAN;
+    size_t n = (size_t)grid;
+    double *cells = malloc(sizeof(double) * 3 * n * n);
+    if (!cells) return NAN;
+    kq_cell_integrals(profile, grid, extent, cells);
+    const double *avg = cells + (size_t)channel * n * n;
     double h = 2.0 * extent / grid, gmax = 0.0, sum = 0.0;
     /* Two passes: the floor needs the largest Gamma. */
     for (int pass = 0; pass < 2; pass++)
@@ -34,9 +43,10 @@ double sss_kernel_guided_objective(const sss_profile *profile, int grid, double 
                     gmax = fmax(gmax, g);
                     continue;
                 }
-                double r = sss_profile_eval(profile, channel, sqrt(x * x + y * y)) - a[i] * a[j];
+                double r = avg[(size_t)i * n + (size_t)j] / h / h - a[i] * a[j];
                 sum += (g + GUIDED_FLOOR * gmax) * r * r * h * h;
             }
+    free(cells);
     return sum;
 }
 
@@ -50,6 +60,10 @@ sss_result sss_kernel_guided(const sss_profile *profile, int grid, double extent
     if (!(extent > 0.0) || !isfinite(extent) || !(k >= 0.0) || !(k <= 16.0) || !(b > 0.0) || !isfinite(b))
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
                              "guided kernel: needs extent > 0, k in [0, 16], b > 0 (got %g, %g, %g)", extent, k, b);
+    double h2 = 4.0 * extent * extent / ((double)grid * grid);
+    if (!(h2 > 0.0) || !isfinite(h2))
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "guided kernel: extent %g gives cells whose area is not a finite positive number", extent);
     size_t n = (size_t)grid;
     double *g = malloc(sizeof(double) * n * n), *rd = malloc(sizeof(double) * 3 * n * n);
     double *a = malloc(sizeof(double) * n), *an = malloc(sizeof(double) * n), *bb = malloc(sizeof(double) * n);
@@ -59,14 +73,14 @@ sss_result sss_kernel_guided(const sss_profile *profile, int grid, double extent
         return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "guided kernel: no memory for a %d-cell grid", grid);
     }
     double h = 2.0 * extent / grid, gmax = 0.0;
+    kq_cell_integrals(profile, grid, extent, rd);
+    for (size_t i = 0; i < 3 * n * n; i++) rd[i] /= h2; /* cell averages */
     for (size_t i = 0; i < n; i++)
         for (size_t j = 0; j < n; j++) {
-            double x = -extent + (i + 0.5) * h, y = -extent + (j + 0.5) * h, v[3];
+            double x = -extent + (i + 0.5) * h, y = -extent + (j + 0.5) * h;
             /* Seed 002, Eq. 9. */
             g[i * n + j] = pow(x * x + y * y, 0.5 * k) * -expm1(-b * x * x) * -expm1(-b * y * y);
             gmax = fmax(gmax, g[i * n + j]);
-            sss_profile_eval_rgb(profile, sqrt(x * x + y * y), v);
-            for (int c = 0; c < 3; c++) rd[c * n * n + i * n + j] = v[c];
         }
     for (size_t i = 0; i < n * n; i++) g[i] += GUIDED_FLOOR * gmax;
     sss_result res = SSS_OK;

@@ -34,6 +34,16 @@ double kq_profile_length_scale(const sss_profile *p);
  * (sigma_tr = sqrt(3 sigma_a sigma_t'), FACTS.md 2.1); INFINITY without absorption. */
 double kq_profile_decay_length(const sss_profile *p);
 
+/* The discretised profile of the SVD and guided kernels (kernel/cells.c): out[c * grid^2 + i * grid + j]
+ * = the integral of R_d(sqrt(x^2 + y^2)) for channel c over cell (i, j) of the grid x grid square
+ * [-extent, extent]^2, cell i spanning [(2i - grid), (2i + 2 - grid)] * extent / grid (so its centre
+ * is -extent + (i + 1/2) h, h = 2 extent / grid). Finite for any grid parity: the cell holding r = 0
+ * (and the cells where R_d varies within a cell) as a radial integral of R_d(r) r times the angle of
+ * the circle inside the cell, the rest by tensor Gauss-Legendre chosen from the profile's local
+ * length scales. Exactly symmetric under the square's symmetries; 0 beyond the radius where R_d is
+ * exactly 0. grid >= 1, extent > 0 and finite (unchecked). */
+void kq_cell_integrals(const sss_profile *p, int grid, double extent, double *out);
+
 /* arccos(y) for y = (nc - ns) / (nc + ns), nc, ns >= 0, without forming y near +-1 (where acos loses
  * digits): Abramowitz & Stegun 4.4.46, acos(y) = sqrt(1 - y) (a0 + ... + a7 y^7), |error| <= 2e-8
  * on [0, 1], mirrored with acos(-y) = pi - acos(y). Inline: it runs once per ring per texel.

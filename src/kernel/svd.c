@@ -1,6 +1,7 @@
 /* kernel/svd.c — rank-N separable approximation of a discretised 2D profile by its singular value
  * decomposition (seed 002, section 3 and Figure 4; Eckart-Young: the truncated SVD is the best rank-N
- * approximation in the Frobenius norm). LAPACKE dgesdd per channel. */
+ * approximation in the Frobenius norm) of the matrix of R_d's cell integrals (kernel/cells.c).
+ * LAPACKE dgesdd per channel. */
 #include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
@@ -51,14 +52,9 @@ sss_result sss_kernel_svd(const sss_profile *profile, int grid, double extent, i
     out->grid = grid;
     out->rank = rank;
     out->extent = extent;
-    /* Cell (i, j) holds R_d at its centre times the cell area (the header's discretisation). */
-    double cell = 2.0 * extent / grid, area = cell * cell;
-    for (size_t i = 0; i < n; i++)
-        for (size_t j = 0; j <= i; j++) {
-            double x = -extent + (i + 0.5) * cell, y = -extent + (j + 0.5) * cell, v[3];
-            sss_profile_eval_rgb(profile, sqrt(x * x + y * y), v);
-            for (int c = 0; c < 3; c++) rd[c * n * n + i * n + j] = rd[c * n * n + j * n + i] = v[c] * area;
-        }
+    /* Cell (i, j) holds the integral of R_d over it (the header's discretisation): finite for either
+     * grid parity, and the cells sum to the profile's energy in the square. */
+    kq_cell_integrals(profile, grid, extent, rd);
     sss_result res = SSS_OK;
     for (int c = 0; c < 3 && res == SSS_OK; c++) {
         memcpy(a, rd + c * n * n, sizeof(double) * n * n);

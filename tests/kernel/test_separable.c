@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "kernel/kernel_internal.h"
 #include "kernel_test_util.h"
 #include "sss/kernel.h"
 
@@ -220,15 +221,10 @@ static void check_svd(const sss_profile *p, const char *what)
     sss_svd_kernel k;
     sss_error err = {0};
     CHECK_MSG(sss_kernel_svd(p, n, extent, 6, &k, &err) == SSS_OK, "%s", err.message);
-    /* The discretised profile, independently: R_d at cell centres times the cell area. */
+    /* The discretised profile: R_d's cell integrals (kernel_internal.h; checked against brute-force
+     * quadrature in test_kernel_cells.c). Here: the SVD's identities for that matrix. */
     static double m[3][48 * 48];
-    double cell = 2.0 * extent / n;
-    for (int i = 0; i < n; i++)
-        for (int j = 0; j < n; j++) {
-            double x = -extent + (i + 0.5) * cell, y = -extent + (j + 0.5) * cell, v[3];
-            sss_profile_eval_rgb(p, sqrt(x * x + y * y), v);
-            for (int c = 0; c < 3; c++) m[c][i * n + j] = v[c] * cell * cell;
-        }
+    kq_cell_integrals(p, n, extent, &m[0][0]);
     for (int c = 0; c < 3; c++) {
         const double *s = k.singular_values + c * n;
         double fro2 = 0.0, sum2 = 0.0;
