@@ -24,9 +24,8 @@
 #include "sss/profile.h"
 
 #define ENERGY_RANGE 0.999   /* kernel ranges and T(s) tables span this fraction of the energy */
-/* Cells of the guided optimisation. Even: the kernel module samples R_d at cell centres, and a cell
- * centred on r = 0 takes the PBD profile's r -> 0 limit (it grows like 1/r) times the cell area, ~400x
- * that cell's integral for Skimmilk at 1000 mm/unit; the optimum then collapses onto that cell. */
+/* Cells of the guided optimisation (the kernel module integrates R_d over each cell, so any grid
+ * works; 128 cells resolve the near part of the kernel for the 7-31 taps drawn from it). */
 #define GUIDED_GRID 128
 #define T_STEPS 4096         /* quadrature steps of T(s) */
 
