@@ -9,15 +9,29 @@
  * Several lights: one buffer, reused light after light (the splats of all lights are collected, then
  * splatted in one pass), for the first max_lights lights; area lights count as their virtual point
  * lights and environment maps as their directional lights (lights.c), so their cost multiplies.
+ * The splat buffer grows to what the lights select (up to max_splats): a fixed capacity silently
+ * dropped the splats of the last lights, whole lights at a time (under an environment map's 32
+ * directions the point light after them and half the directions vanished).
+ *
+ * Environment maps: seed 000 does not say how Chen et al. handle them. Their directional lights each
+ * carry a small share of the map and their buffers' splats overlap from many directions, so they get
+ * their own, smaller irradiance buffer (env_buffer_size, 256 by default: measured on eval_skin_env,
+ * see the parameter); point, spot, area and scene directional lights keep buffer_size. Merging the
+ * directions instead (env_lights 8 or 16 at buffer sizes 256..1024) measured worse there: DSSIM
+ * 0.0222..0.0228 and 0.0203..0.0208 against 0.0202 for 32 directions at 256.
  * Passes: "irradiance_buffers" (per light: render, mips, selection), "receivers", "splatting",
  * "resolve". */
+#include <math.h>
 #include <string.h>
 
 #include "gl/tech_chen2012_tsm.h"
 #include "gl/tech_dss_shells.h"
 
 enum { P_SIZE = 0, P_BUFFER_LEVELS, P_TEXEL_FRACTION, P_MAX_LIGHTS, P_PREINTEGRATED, P_IRRADIANCE_CULL,
-       P_VIEW_LEVELS, P_VIEW_EPSILON, P_MAX_SPLATS, P_COUNT };
+       P_VIEW_LEVELS, P_VIEW_EPSILON, P_MAX_SPLATS, P_ENV_SIZE, P_COUNT };
+
+/* The splat buffer's first capacity (12 MB); it grows when the lights select more, up to max_splats. */
+#define INITIAL_SPLATS 262144u
 
 static const sss_gl_param_info params[P_COUNT] = {
     [P_SIZE] = {"buffer_size", SSS_GL_PARAM_INT, 2048, 16, 8192,
@@ -36,15 +50,28 @@ static const sss_gl_param_info params[P_COUNT] = {
                        "levels of the camera-side splatting buffer (multiresolution splatting)"},
     [P_VIEW_EPSILON] = {"view_epsilon", SSS_GL_PARAM_FLOAT, 0.1, 1e-3, 1,
                         "camera level l serves receivers at least 2^l pixels / epsilon from the splat"},
-    [P_MAX_SPLATS] = {"max_splats", SSS_GL_PARAM_INT, 1048576, 1, 16777216,
-                      "capacity of the splat buffer (48 bytes each, all lights); splats beyond it are dropped"},
+    [P_MAX_SPLATS] = {"max_splats", SSS_GL_PARAM_INT, 8388608, 1, 16777216,
+                      "largest splat buffer (48 bytes a splat, all lights): it grows to what the lights select, "
+                      "up to this; splats beyond it are dropped"},
+    /* eval_skin_env (384^2, 32 directions + a point light), DSSIM / ms per frame on llvmpipe in one run:
+     * 128: 0.0213 / 18.8 s, 256: 0.0202 / 35.4 s, 512: 0.0198 / 91.9 s, 1024: 0.0200 / 101 s,
+     * 2048 (= buffer_size): 0.0197 / 214 s (the splatting pass is ~80% of it, linear in the splats).
+     * 256 is within 0.0005 of the full-size buffers at a sixth of the time (128 loses 0.0016). */
+    [P_ENV_SIZE] = {"env_buffer_size", SSS_GL_PARAM_INT, 256, 16, 8192,
+                    "texels per side of the irradiance buffer of an environment map's directional lights"},
 };
+
+/* One light-view irradiance buffer (tech_chen2012_tsm.h) with its mip levels. */
+typedef struct chen_tsm {
+    GLuint tex_pos, tex_irr, tex_nrm, tex_depth, fbo;
+    int size, levels;
+    size_t bytes;
+} chen_tsm;
 
 typedef struct chen_state {
     GLuint prog_tsm, prog_reduce, prog_select;
-    GLuint tex_pos, tex_irr, tex_nrm, tex_depth, fbo;
-    int size, levels;
-    size_t tsm_bytes;
+    chen_tsm main, env; /* env: environment lights' buffer when env_buffer_size != buffer_size */
+    const chen_tsm *last; /* the buffer of the last light rendered (chen_buffer) */
     GLuint splats, cmd;
     unsigned capacity;
     shell_targets shells;
@@ -52,50 +79,91 @@ typedef struct chen_state {
     int lights_used;
 } chen_state;
 
-static void free_tsm(chen_state *s)
+static void free_tsm(chen_tsm *t)
 {
-    GLuint t[4] = {s->tex_pos, s->tex_irr, s->tex_nrm, s->tex_depth};
+    GLuint tex[4] = {t->tex_pos, t->tex_irr, t->tex_nrm, t->tex_depth};
     for (int i = 0; i < 4; i++)
-        if (t[i]) glDeleteTextures(1, &t[i]);
-    if (s->fbo) glDeleteFramebuffers(1, &s->fbo);
-    s->tex_pos = s->tex_irr = s->tex_nrm = s->tex_depth = s->fbo = 0;
-    s->tsm_bytes = 0;
-    s->size = s->levels = 0;
+        if (tex[i]) glDeleteTextures(1, &tex[i]);
+    if (t->fbo) glDeleteFramebuffers(1, &t->fbo);
+    memset(t, 0, sizeof *t);
+}
+
+/* (Re)creates t at size x size with `levels` mip levels (clamped to the chain) when it changed;
+ * size 0 frees it. */
+static sss_result make_tsm(sss_gl_renderer *r, chen_tsm *t, int size, int levels, sss_error *err)
+{
+    if (size <= 0) {
+        free_tsm(t);
+        return SSS_OK;
+    }
+    if (size > r->ctx->max_texture_size)
+        return sss_error_set(err, SSS_ERROR_LIMIT, "chen2012: buffer size %d exceeds the GL texture limit %d", size,
+                             r->ctx->max_texture_size);
+    int max_levels = gl_mip_levels(size, size);
+    if (levels > max_levels) levels = max_levels;
+    if (t->size == size && t->levels == levels) return SSS_OK;
+    free_tsm(t);
+    t->size = size;
+    t->levels = levels;
+    t->tex_pos = gl_texture_2d(GL_RGBA32F, size, size, levels, &t->bytes);
+    t->tex_irr = gl_texture_2d(GL_RGBA32F, size, size, levels, &t->bytes);
+    t->tex_nrm = gl_texture_2d(GL_RGBA32F, size, size, levels, &t->bytes);
+    t->tex_depth = gl_texture_2d(GL_DEPTH_COMPONENT32F, size, size, 1, &t->bytes);
+    glCreateFramebuffers(1, &t->fbo);
+    GLuint col[3] = {t->tex_pos, t->tex_irr, t->tex_nrm};
+    GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    for (int i = 0; i < 3; i++) glNamedFramebufferTexture(t->fbo, bufs[i], col[i], 0);
+    glNamedFramebufferTexture(t->fbo, GL_DEPTH_ATTACHMENT, t->tex_depth, 0);
+    glNamedFramebufferDrawBuffers(t->fbo, 3, bufs);
+    if (glCheckNamedFramebufferStatus(t->fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "chen2012: incomplete %dx%d irradiance buffer", size, size);
+    return SSS_OK;
+}
+
+static int is_env_light(const sss_gl_renderer *r, int i)
+{
+    const gl_light_record *L = &r->gs.lights[i];
+    return (int)(L->position[3] + 0.5f) == GL_LIGHT_DIRECTIONAL && L->direction[3] == GL_LIGHT_FROM_ENVIRONMENT;
+}
+
+/* The first min(light_count, max_lights) lights. */
+static int lights_considered(const sss_gl_renderer *r)
+{
+    int m = (int)gl_param(r, P_MAX_LIGHTS);
+    return r->gs.light_count < m ? r->gs.light_count : m;
+}
+
+/* A splat buffer of cap splats holding the first `keep` splats of the current one. */
+static void resize_splats(chen_state *s, unsigned cap, unsigned keep)
+{
+    if (s->splats && cap == s->capacity) return;
+    GLuint b;
+    glCreateBuffers(1, &b);
+    glNamedBufferStorage(b, (GLsizeiptr)SHELL_SPLAT_BYTES * cap, NULL, 0);
+    if (s->splats && keep) {
+        if (keep > cap) keep = cap;
+        glCopyNamedBufferSubData(s->splats, b, 0, 0, (GLsizeiptr)SHELL_SPLAT_BYTES * keep);
+    }
+    if (s->splats) glDeleteBuffers(1, &s->splats);
+    s->splats = b;
+    s->capacity = cap;
 }
 
 static sss_result make_resources(sss_gl_renderer *r, chen_state *s, sss_error *err)
 {
-    int size = (int)gl_param(r, P_SIZE), levels = (int)gl_param(r, P_BUFFER_LEVELS);
-    if (size > r->ctx->max_texture_size)
-        return sss_error_set(err, SSS_ERROR_LIMIT, "chen2012: buffer_size %d exceeds the GL texture limit %d", size,
-                             r->ctx->max_texture_size);
-    int max_levels = gl_mip_levels(size, size);
-    if (levels > max_levels) levels = max_levels;
-    if (s->size != size || s->levels != levels) {
-        free_tsm(s);
-        s->size = size;
-        s->levels = levels;
-        s->tex_pos = gl_texture_2d(GL_RGBA32F, size, size, levels, &s->tsm_bytes);
-        s->tex_irr = gl_texture_2d(GL_RGBA32F, size, size, levels, &s->tsm_bytes);
-        s->tex_nrm = gl_texture_2d(GL_RGBA32F, size, size, levels, &s->tsm_bytes);
-        s->tex_depth = gl_texture_2d(GL_DEPTH_COMPONENT32F, size, size, 1, &s->tsm_bytes);
-        glCreateFramebuffers(1, &s->fbo);
-        GLuint col[3] = {s->tex_pos, s->tex_irr, s->tex_nrm};
-        GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-        for (int i = 0; i < 3; i++) glNamedFramebufferTexture(s->fbo, bufs[i], col[i], 0);
-        glNamedFramebufferTexture(s->fbo, GL_DEPTH_ATTACHMENT, s->tex_depth, 0);
-        glNamedFramebufferDrawBuffers(s->fbo, 3, bufs);
-        if (glCheckNamedFramebufferStatus(s->fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "chen2012: incomplete %dx%d irradiance buffer", size, size);
-    }
-    unsigned cap = (unsigned)gl_param(r, P_MAX_SPLATS);
-    if (!s->splats || cap != s->capacity) {
-        if (s->splats) glDeleteBuffers(1, &s->splats);
-        s->capacity = cap;
-        glCreateBuffers(1, &s->splats);
-        glNamedBufferStorage(s->splats, (GLsizeiptr)SHELL_SPLAT_BYTES * cap, NULL, 0);
-    }
-    sss_result res = gl_check(r->ctx, "chen2012: irradiance buffer", err);
+    int size = (int)gl_param(r, P_SIZE), env_size = (int)gl_param(r, P_ENV_SIZE);
+    int levels = (int)gl_param(r, P_BUFFER_LEVELS);
+    /* the environment's buffer exists only when an environment light is drawn with another size */
+    int need_env = 0;
+    for (int i = 0; i < lights_considered(r); i++) need_env |= is_env_light(r, i);
+    sss_result res = make_tsm(r, &s->main, size, levels, err);
+    if (res == SSS_OK) res = make_tsm(r, &s->env, need_env && env_size != size ? env_size : 0, levels, err);
+    if (s->last == &s->env && !s->env.size) s->last = NULL;
+    if (res != SSS_OK) return res;
+    unsigned limit = (unsigned)gl_param(r, P_MAX_SPLATS);
+    resize_splats(s, !s->splats ? (limit < INITIAL_SPLATS ? limit : INITIAL_SPLATS)
+                                : (s->capacity > limit ? limit : s->capacity), 0);
+    res = gl_check(r->ctx, "chen2012: irradiance buffer", err);
     if (res == SSS_OK) res = shell_resize(r, &s->shells, (int)gl_param(r, P_VIEW_LEVELS), err);
     return res;
 }
@@ -120,21 +188,21 @@ static sss_result chen_resize(sss_gl_renderer *r, void *state, sss_error *err)
 }
 
 /* Area-weighted mip chains of the buffer (mip_reduce.comp.glsl, as the camera's shared pass). */
-static void reduce(chen_state *s)
+static void reduce(chen_state *s, const chen_tsm *t)
 {
     glUseProgram(s->prog_reduce);
     GLint u_pre = glGetUniformLocation(s->prog_reduce, "u_src_premultiplied");
     GLint u_level = glGetUniformLocation(s->prog_reduce, "u_dst_level");
-    glUniform2i(glGetUniformLocation(s->prog_reduce, "u_base_size"), s->size, s->size);
-    int w = s->size;
-    for (int l = 1; l < s->levels; l++) {
+    glUniform2i(glGetUniformLocation(s->prog_reduce, "u_base_size"), t->size, t->size);
+    int w = t->size;
+    for (int l = 1; l < t->levels; l++) {
         int dw = w > 1 ? w / 2 : 1;
-        glBindImageTexture(0, s->tex_pos, l - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-        glBindImageTexture(1, s->tex_irr, l - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-        glBindImageTexture(2, s->tex_pos, l, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        glBindImageTexture(3, s->tex_irr, l, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        glBindImageTexture(4, s->tex_nrm, l - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-        glBindImageTexture(5, s->tex_nrm, l, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindImageTexture(0, t->tex_pos, l - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+        glBindImageTexture(1, t->tex_irr, l - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+        glBindImageTexture(2, t->tex_pos, l, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindImageTexture(3, t->tex_irr, l, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindImageTexture(4, t->tex_nrm, l - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+        glBindImageTexture(5, t->tex_nrm, l, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         glUniform1i(u_pre, l > 1);
         glUniform1i(u_level, l);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
@@ -144,23 +212,64 @@ static void reduce(chen_state *s)
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-static void select_splats(sss_gl_renderer *r, chen_state *s)
+static void select_splats(sss_gl_renderer *r, chen_state *s, const chen_tsm *t)
 {
     glUseProgram(s->prog_select);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_SPLATS, s->splats);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_SPLAT_COUNT, s->cmd);
-    glBindTextureUnit(0, s->tex_pos);
-    glBindTextureUnit(1, s->tex_irr);
-    glBindTextureUnit(2, s->tex_nrm);
-    glUniform1i(glGetUniformLocation(s->prog_select, "u_top"), s->levels - 1);
+    glBindTextureUnit(0, t->tex_pos);
+    glBindTextureUnit(1, t->tex_irr);
+    glBindTextureUnit(2, t->tex_nrm);
+    glUniform1i(glGetUniformLocation(s->prog_select, "u_top"), t->levels - 1);
     glUniform1f(glGetUniformLocation(s->prog_select, "u_texel_fraction"), (float)gl_param(r, P_TEXEL_FRACTION));
     glUniform1f(glGetUniformLocation(s->prog_select, "u_irradiance_cull"), (float)gl_param(r, P_IRRADIANCE_CULL));
     glUniform1ui(glGetUniformLocation(s->prog_select, "u_capacity"), s->capacity);
-    glUniform1i(glGetUniformLocation(s->prog_select, "u_size"), s->size);
-    int top = s->size >> (s->levels - 1);
+    glUniform1i(glGetUniformLocation(s->prog_select, "u_size"), t->size);
+    int top = t->size >> (t->levels - 1);
     if (top < 1) top = 1;
     glDispatchCompute((GLuint)(top + 7) / 8, (GLuint)(top + 7) / 8, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+static unsigned selected_count(const chen_state *s)
+{
+    GLuint c[4] = {0, 0, 0, 0};
+    glGetNamedBufferSubData(s->cmd, 0, sizeof c, c);
+    return c[1];
+}
+
+/* Every light's buffer: render, mips, selection. The splat buffer grows (up to max_splats) whenever a
+ * light's selection overflows it: the splats of the lights before are kept and that light selects
+ * again from its buffer, still in place. (A fixed capacity dropped the last lights' splats whole.) */
+static sss_result irradiance_buffers(sss_gl_renderer *r, chen_state *s, sss_error *err)
+{
+    const GLuint reset[4] = {4, 0, 0, 0};
+    glNamedBufferSubData(s->cmd, 0, sizeof reset, reset);
+    s->lights_used = 0;
+    unsigned limit = (unsigned)gl_param(r, P_MAX_SPLATS), before = 0;
+    for (int i = 0; i < lights_considered(r); i++) {
+        float vp[16];
+        if (!tsm_light_matrix(r, &s->bounds, i, vp)) continue;
+        const chen_tsm *t = is_env_light(r, i) && s->env.size ? &s->env : &s->main;
+        tsm_render(r, s->prog_tsm, t->fbo, t->size, i, vp);
+        reduce(s, t);
+        select_splats(r, s, t);
+        unsigned now = selected_count(s);
+        if (now > s->capacity && s->capacity < limit) {
+            double want = fmax(1.25 * now, 2.0 * s->capacity); /* headroom for the lights to come */
+            resize_splats(s, want < (double)limit ? (unsigned)want : limit, before);
+            const GLuint back[4] = {4, before, 0, 0};
+            glNamedBufferSubData(s->cmd, 0, sizeof back, back);
+            select_splats(r, s, t);
+            now = selected_count(s);
+        }
+        before = now;
+        s->last = t;
+        s->lights_used++;
+        sss_result res = gl_check(r->ctx, "chen2012: irradiance buffer", err);
+        if (res != SSS_OK) return res;
+    }
+    return SSS_OK;
 }
 
 static sss_result chen_render(sss_gl_renderer *r, void *state, sss_error *err)
@@ -168,21 +277,9 @@ static sss_result chen_render(sss_gl_renderer *r, void *state, sss_error *err)
     chen_state *s = state;
     sss_result res = make_resources(r, s, err);
     if (res != SSS_OK) return res;
-    const GLuint reset[4] = {4, 0, 0, 0};
-    glNamedBufferSubData(s->cmd, 0, sizeof reset, reset);
     gl_timer_begin(&r->timer, "irradiance_buffers");
-    int n = r->gs.light_count < (int)gl_param(r, P_MAX_LIGHTS) ? r->gs.light_count : (int)gl_param(r, P_MAX_LIGHTS);
-    s->lights_used = 0;
-    for (int i = 0; i < n; i++) {
-        float vp[16];
-        if (!tsm_light_matrix(r, &s->bounds, i, vp)) continue;
-        tsm_render(r, s->prog_tsm, s->fbo, s->size, i, vp);
-        reduce(s);
-        select_splats(r, s);
-        s->lights_used++;
-        res = gl_check(r->ctx, "chen2012: irradiance buffer", err);
-        if (res != SSS_OK) return res;
-    }
+    res = irradiance_buffers(r, s, err);
+    if (res != SSS_OK) return res;
     gl_timer_begin(&r->timer, "receivers");
     shell_receivers(r, &s->shells);
     res = gl_check(r->ctx, "chen2012: receivers", err);
@@ -202,7 +299,8 @@ static void chen_destroy(sss_gl_renderer *r, void *state)
 {
     (void)r;
     chen_state *s = state;
-    free_tsm(s);
+    free_tsm(&s->main);
+    free_tsm(&s->env);
     shell_free(&s->shells);
     GLuint p[3] = {s->prog_tsm, s->prog_reduce, s->prog_select};
     for (int i = 0; i < 3; i++)
@@ -215,16 +313,17 @@ static GLuint chen_buffer(sss_gl_renderer *r, void *state, const char *name)
 {
     (void)r;
     chen_state *s = state;
+    const chen_tsm *t = s->last ? s->last : &s->main;
     if (strcmp(name, "translucency") == 0) return s->shells.accum[0];
-    if (strcmp(name, "light_irradiance") == 0) return s->tex_irr; /* the last light's buffer, level 0 */
-    if (strcmp(name, "light_positions") == 0) return s->tex_pos;
+    if (strcmp(name, "light_irradiance") == 0) return t->tex_irr; /* the last light's buffer, level 0 */
+    if (strcmp(name, "light_positions") == 0) return t->tex_pos;
     return 0;
 }
 
 static void chen_stats(sss_gl_renderer *r, void *state, sss_gl_stats *out)
 {
     chen_state *s = state;
-    out->texture_bytes += s->shells.bytes + s->tsm_bytes;
+    out->texture_bytes += s->shells.bytes + s->main.bytes + s->env.bytes;
     out->buffer_bytes += (size_t)SHELL_SPLAT_BYTES * s->capacity + 16;
     out->per_pixel_bytes += s->shells.bytes / ((size_t)r->width * (size_t)r->height);
     out->per_splat_bytes = SHELL_SPLAT_BYTES;
