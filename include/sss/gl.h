@@ -129,6 +129,12 @@ void sss_gl_renderer_destroy(sss_gl_renderer *r);
 
 /* Changes one parameter (takes effect at the next render; may rebuild resources). */
 sss_result sss_gl_renderer_set_param(sss_gl_renderer *r, const char *name, double value, sss_error *err);
+/* Re-reads the lights of the scene the renderer was created with (it keeps using that sss_scene: edit
+ * its lights[] in place, e.g. move, turn, recolour, rotate the environment) without rebuilding shadow
+ * maps, LUTs or programs; takes effect at the next render, which equals a new renderer's. The lights
+ * must keep their number and kinds (the same virtual lights and shadow-map slots): otherwise
+ * SSS_ERROR_INVALID_ARGUMENT, nothing changes, and a new renderer is needed. */
+sss_result sss_gl_renderer_update_lights(sss_gl_renderer *r, sss_error *err);
 double sss_gl_renderer_get_param(const sss_gl_renderer *r, const char *name); /* NaN when unknown */
 sss_result sss_gl_renderer_resize(sss_gl_renderer *r, int width, int height, sss_error *err);
 void sss_gl_renderer_size(const sss_gl_renderer *r, int *width, int *height);

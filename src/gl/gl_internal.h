@@ -289,6 +289,8 @@ sss_result gl_albedo_upload(gl_scene *gs, const char *const *paths, int count, s
 void gl_bind_scene(const sss_gl_renderer *r); /* SSBOs, LUT, shadow and albedo samplers */
 /* lights.c */
 sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err);
+/* Rewrites the light records from the scene's lights (same count, kinds and shadow slots). */
+sss_result gl_lights_update(sss_gl_renderer *r, sss_error *err);
 sss_result gl_shadows_render(sss_gl_renderer *r, sss_error *err);
 /* frame.c */
 sss_result gl_frame_create(gl_frame *f, int width, int height, int normal_mips, sss_error *err);

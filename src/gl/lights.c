@@ -243,8 +243,17 @@ static int area_grid(const sss_gl_renderer *r)
     return n < 1 ? 1 : n;
 }
 
-sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err)
+typedef struct light_set {
+    gl_light_record *lights;
+    int light_count, vpl_count;
+    int cube_size, map_size, cube_count, map_count;
+} light_set;
+
+/* Light records of the scene's lights as they are now (VPLs of area lights, median-cut directions of
+ * environment maps, shadow-map slots and transforms). Uploads the environment map once. */
+static sss_result light_records(sss_gl_renderer *r, light_set *ls, sss_error *err)
 {
+    memset(ls, 0, sizeof *ls);
     const sss_scene *s = r->scene;
     gl_scene *gs = &r->gs;
     int n_area = area_grid(r), n_env = env_light_count(r);
@@ -256,8 +265,8 @@ sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err)
         default: cap += 1; break;
         }
     }
-    gs->lights = calloc(cap ? cap : 1, sizeof *gs->lights);
-    if (!gs->lights) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (lights)");
+    ls->lights = calloc(cap ? cap : 1, sizeof *ls->lights);
+    if (!ls->lights) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (lights)");
     int n = 0, cubes = 0, maps = 0, cubes_vpl = 0, maps_env = 0;
     vec3d c = {0.5 * (gs->bounds_min[0] + gs->bounds_max[0]), 0.5 * (gs->bounds_min[1] + gs->bounds_max[1]),
                0.5 * (gs->bounds_min[2] + gs->bounds_max[2])};
@@ -273,7 +282,7 @@ sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err)
             double area = 4.0 * vlen(vcross(u, v));
             for (int a = 0; a < n_area; a++)
                 for (int b = 0; b < n_area; b++) {
-                    gl_light_record *g = &gs->lights[n++];
+                    gl_light_record *g = &ls->lights[n++];
                     double su = 2.0 * (a + 0.5) / n_area - 1.0, sv = 2.0 * (b + 0.5) / n_area - 1.0;
                     vec3d p = vadd(ce, vadd(vscale(u, su), vscale(v, sv)));
                     g->position[0] = (float)p.x;
@@ -289,13 +298,16 @@ sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err)
                     g->spot[3] = (float)cubes++;
                     cubes_vpl++;
                 }
-            gs->vpl_count += n_area * n_area;
+            ls->vpl_count += n_area * n_area;
             continue;
         }
         if (L->type == SSS_LIGHT_ENVIRONMENT) {
             env_map e;
             memset(&e, 0, sizeof e);
             sss_result res = gs->env_tex ? SSS_OK : env_upload(gs, L, r->ctx->max_texture_size, err);
+            /* rotation and scale may change after the upload (sss_gl_renderer_update_lights) */
+            gs->env_rotate_y = (float)L->rotate_y;
+            for (int k = 0; k < 3; k++) gs->env_scale[k] = (float)L->scale[k];
             if (res == SSS_OK) res = env_load(L, &e, err);
             if (res != SSS_OK) {
                 env_free(&e);
@@ -341,7 +353,7 @@ sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err)
                     continue;
                 }
                 vec3d to_light = vnorm(dir);
-                gl_light_record *g = &gs->lights[n++];
+                gl_light_record *g = &ls->lights[n++];
                 g->position[3] = GL_LIGHT_DIRECTIONAL;
                 g->direction[3] = GL_LIGHT_FROM_ENVIRONMENT; /* its specular comes from the map itself */
                 g->direction[0] = (float)-to_light.x;
@@ -351,14 +363,14 @@ sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err)
                 g->spot[2] = GL_SHADOW_2D;
                 g->spot[3] = (float)maps++;
                 maps_env++;
-                gs->vpl_count++;
+                ls->vpl_count++;
             }
             free(reg);
             free(tmp);
             env_free(&e);
             continue;
         }
-        gl_light_record *g = &gs->lights[n++];
+        gl_light_record *g = &ls->lights[n++];
         for (int k = 0; k < 3; k++) {
             g->position[k] = (float)L->position[k];
             g->color[k] = (float)(L->type == SSS_LIGHT_DIRECTIONAL ? L->radiance[k] : L->intensity[k]);
@@ -393,15 +405,15 @@ sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err)
             g->spot[3] = (float)maps++;
         }
     }
-    gs->light_count = n;
+    ls->light_count = n;
     /* One size per array: full-size maps when any light needs them, else the VPL size. */
-    gs->shadow_cube_size = cubes > cubes_vpl ? (int)r->shared[GL_P_SHADOW_CUBE_SIZE] : (int)r->shared[GL_P_SHADOW_VPL_SIZE];
-    gs->shadow_2d_size = maps > maps_env ? (int)r->shared[GL_P_SHADOW_2D_SIZE] : (int)r->shared[GL_P_SHADOW_VPL_SIZE];
+    ls->cube_size = cubes > cubes_vpl ? (int)r->shared[GL_P_SHADOW_CUBE_SIZE] : (int)r->shared[GL_P_SHADOW_VPL_SIZE];
+    ls->map_size = maps > maps_env ? (int)r->shared[GL_P_SHADOW_2D_SIZE] : (int)r->shared[GL_P_SHADOW_VPL_SIZE];
     /* Shadow maps must fit: array layers and memory (area lights multiply the cube maps). */
     GLint max_layers = 0;
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
-    double shadow_mb = ((double)gs->shadow_cube_size * gs->shadow_cube_size * 24.0 * cubes +
-                        (double)gs->shadow_2d_size * gs->shadow_2d_size * 4.0 * maps) / 1048576.0;
+    double shadow_mb = ((double)ls->cube_size * ls->cube_size * 24.0 * cubes +
+                        (double)ls->map_size * ls->map_size * 4.0 * maps) / 1048576.0;
     if (6 * cubes > max_layers || maps > max_layers)
         return sss_error_set(err, SSS_ERROR_LIMIT,
                              "%d cube and %d 2D shadow maps exceed the GL limit of %d array layers (fewer lights, "
@@ -412,18 +424,18 @@ sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err)
                              "the shadow maps would take %.0f MB (limit 2048 MB): lower shadow_cube_size, "
                              "shadow_size, shadow_vpl_size, area_samples or env_lights",
                              shadow_mb);
-    gs->shadow_cube_count = cubes;
-    gs->shadow_2d_count = maps;
+    ls->cube_count = cubes;
+    ls->map_count = maps;
     /* Shadow transforms */
     for (int i = 0; i < n; i++) {
-        gl_light_record *g = &gs->lights[i];
+        gl_light_record *g = &ls->lights[i];
         int type = (int)g->position[3];
         vec3d p = {g->position[0], g->position[1], g->position[2]};
         double far_d = vlen(vsub(p, c)) + radius;
         if (g->spot[2] == GL_SHADOW_CUBE) {
             g->shadow[0] = (float)(far_d * 1e-4);
             g->shadow[1] = (float)(far_d * 1.01);
-            g->shadow[2] = (float)(2.0 / gs->shadow_cube_size);
+            g->shadow[2] = (float)(2.0 / ls->cube_size);
         } else if (type == GL_LIGHT_SPOT) {
             double cone = acos(g->spot[0]);
             float V[16], P[16];
@@ -432,7 +444,7 @@ sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err)
             mul_cm(P, V, g->shadow_matrix);
             g->shadow[0] = (float)(far_d * 1e-4);
             g->shadow[1] = (float)(far_d * 1.01);
-            g->shadow[2] = (float)(2.0 * tan(cone * 1.02) / gs->shadow_2d_size);
+            g->shadow[2] = (float)(2.0 * tan(cone * 1.02) / ls->map_size);
         } else { /* directional: orthographic over the scene's bounding sphere */
             vec3d d = {g->direction[0], g->direction[1], g->direction[2]};
             vec3d eye = vsub(c, vscale(d, 2.0 * radius));
@@ -442,12 +454,34 @@ sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err)
             mul_cm(P, V, g->shadow_matrix);
             g->shadow[0] = (float)(radius * 0.9);
             g->shadow[1] = (float)(radius * 3.1);
-            g->shadow[2] = (float)(2.0 * radius * 1.01 / gs->shadow_2d_size);
+            g->shadow[2] = (float)(2.0 * radius * 1.01 / ls->map_size);
             g->shadow[3] = 1.0f;
         }
     }
+    return SSS_OK;
+}
+
+sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err)
+{
+    gl_scene *gs = &r->gs;
+    light_set ls;
+    sss_result res = light_records(r, &ls, err);
+    if (res != SSS_OK) {
+        free(ls.lights);
+        return res;
+    }
+    gs->lights = ls.lights;
+    gs->light_count = ls.light_count;
+    gs->vpl_count = ls.vpl_count;
+    gs->shadow_cube_size = ls.cube_size;
+    gs->shadow_2d_size = ls.map_size;
+    gs->shadow_cube_count = ls.cube_count;
+    gs->shadow_2d_count = ls.map_count;
+    int n = ls.light_count, cubes = ls.cube_count, maps = ls.map_count;
     glCreateBuffers(1, &gs->ssbo_lights);
-    glNamedBufferStorage(gs->ssbo_lights, (GLsizeiptr)(sizeof *gs->lights * (size_t)(n ? n : 1)), gs->lights, 0);
+    /* dynamic: sss_gl_renderer_update_lights rewrites the records when lights move */
+    glNamedBufferStorage(gs->ssbo_lights, (GLsizeiptr)(sizeof *gs->lights * (size_t)(n ? n : 1)), gs->lights,
+                         GL_DYNAMIC_STORAGE_BIT);
     gs->buffer_bytes += sizeof *gs->lights * (size_t)(n ? n : 1);
     /* Shadow textures (a 1-layer dummy when unused keeps the samplers complete). */
     glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &gs->shadow_cube);
@@ -472,6 +506,35 @@ sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err)
     glNamedFramebufferReadBuffer(gs->shadow_fbo, GL_NONE);
     /* Cleared once so that lights without casters read "lit". */
     return gl_check(r->ctx, "the light setup", err);
+}
+
+sss_result gl_lights_update(sss_gl_renderer *r, sss_error *err)
+{
+    gl_scene *gs = &r->gs;
+    light_set ls;
+    sss_result res = light_records(r, &ls, err);
+    if (res == SSS_OK && (ls.light_count != gs->light_count || ls.cube_count != gs->shadow_cube_count ||
+                          ls.map_count != gs->shadow_2d_count || ls.cube_size != gs->shadow_cube_size ||
+                          ls.map_size != gs->shadow_2d_size))
+        res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                            "the lights changed in number or kind (%d records, %d cube and %d 2D shadow maps; the "
+                            "renderer has %d, %d, %d): create a new renderer",
+                            ls.light_count, ls.cube_count, ls.map_count, gs->light_count, gs->shadow_cube_count,
+                            gs->shadow_2d_count);
+    for (int i = 0; res == SSS_OK && i < ls.light_count; i++)
+        if (ls.lights[i].spot[2] != gs->lights[i].spot[2] || ls.lights[i].spot[3] != gs->lights[i].spot[3] ||
+            ls.lights[i].position[3] != gs->lights[i].position[3])
+            res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                                "light record %d changed its type or shadow map: create a new renderer", i);
+    if (res != SSS_OK) {
+        free(ls.lights);
+        return res;
+    }
+    memcpy(gs->lights, ls.lights, sizeof *ls.lights * (size_t)ls.light_count);
+    free(ls.lights);
+    if (ls.light_count > 0)
+        glNamedBufferSubData(gs->ssbo_lights, 0, (GLsizeiptr)(sizeof *gs->lights * (size_t)ls.light_count), gs->lights);
+    return gl_check(r->ctx, "the light update", err);
 }
 
 sss_result gl_shadows_render(sss_gl_renderer *r, sss_error *err)

@@ -217,6 +217,14 @@ sss_result sss_gl_renderer_set_param(sss_gl_renderer *r, const char *name, doubl
     return res;
 }
 
+sss_result sss_gl_renderer_update_lights(sss_gl_renderer *r, sss_error *err)
+{
+    if (!r) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "update_lights: no renderer");
+    if (!sss_gl_context_make_current(r->ctx))
+        return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "update_lights: cannot make the GL context current");
+    return gl_lights_update(r, err);
+}
+
 sss_result sss_gl_renderer_resize(sss_gl_renderer *r, int width, int height, sss_error *err)
 {
     if (!r) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "renderer is NULL");

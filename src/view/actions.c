@@ -193,9 +193,13 @@ void view_camera_changed(viewer *v)
 
 void view_light_changed(viewer *v)
 {
-    /* Light records and shadow maps are built with the renderer: rebuild it on the same scene. */
+    /* The renderer re-reads the moved light (shadow maps follow at the next frame); only if that is
+     * refused (it never is for a moved light) is it rebuilt on the same scene. */
     sss_error err = {0};
-    if (view_make_renderer(v, v->tech, &err) != SSS_OK) view_message(v, "light: %s", err.message);
+    if (!v->r || sss_gl_renderer_update_lights(v->r, &err) != SSS_OK) {
+        err.message[0] = 0;
+        if (view_make_renderer(v, v->tech, &err) != SSS_OK) view_message(v, "light: %s", err.message);
+    }
     view_invalidate(v);
 }
 
