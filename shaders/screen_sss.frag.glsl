@@ -6,9 +6,10 @@
 //    d_0 = 2n + 1, d_i = d_(i-1) n_l / (n_l - 2); each sample reads the mip level nearest to its
 //    footprint (one explicit level, never trilinear: GL-NOTES.md), where mip texels hold area-
 //    weighted sums of position and irradiance over one object and the summed projected area; the
-//    fetch is bilinear within the level (u_filtered 1; 2: the same, per texel across depth gaps;
-//    0: texelFetch, which snaps samples to the level's texel grid and shows the blocky copies of
-//    section 4.1); mip texels are sums
+//    fetch is bilinear within the level (u_filtered 1; 2: the same, per texel across depth gaps,
+//    compiled only with PER_TEXEL_READS: llvmpipe runs even an untaken branch of it at twice the
+//    cost of the pass; 0: texelFetch, which snaps samples to the level's texel grid and shows the
+//    blocky copies of section 4.1); mip texels are sums
 //    normalised to 4^l pixels (mip_reduce.comp.glsl), so w^2 / 4^l scales any texel to a cell;
 //  - each sample adds F_t E A R'_d(|x_i - x_o|, A) (Eq. 6) with world-space distances, A the sample's
 //    surface area (the mip texel's area scaled to the cell), times sqrt(i) for layer i (section 6.1).
@@ -113,22 +114,14 @@ void main()
                     vec4 I = texelFetch(t_irr, ivec2(sp), 0);
                     if (I.w != id || P.w <= 0.0) continue;
                     layer_sum += cell(L, xo, P.xyz, I.rgb, P.w * area_scale * cover, d_prev);
-                } else if (u_filtered == 1) {
-                    // bilinear within the level: premultiplied sums, so the filtered means are
-                    // area-weighted and background texels drop out
-                    vec2 uv = level_coord(sp, texel, size, size0) / vec2(size);
-                    vec4 P = textureLod(t_pos, uv, float(level));
-                    if (P.w <= 0.0) continue;
-                    vec4 I = textureLod(t_irr, uv, float(level));
-                    if (abs(I.w / P.w - id) > 0.01) continue; // another object in the footprint
-                    layer_sum += cell(L, xo, P.xyz / P.w, I.rgb / P.w, P.w * area_scale * cover, d_prev);
+#ifdef PER_TEXEL_READS
                 } else if (u_filtered == 2) {
                     // Bilinear weights on the four texels. Where their mean positions agree (each
                     // within its own size, sqrt(area), of the weighted mean: one surface) the weighted
                     // sums make one sample, as the filtered read does; where they do not (two surfaces
                     // at different depths, a chin over a neck) each texel's patch is evaluated at its
                     // own mean position instead of at a mean in between, where no surface is.
-                    // (Evaluating every texel on its own measured the same DSSIM within 2e-4 on the eval scenes.)
+                    // (Evaluating every texel on its own measured the same DSSIM within 2e-4.)
                     vec2 t = level_coord(sp, texel, size, size0) - 0.5;
                     ivec2 t0 = ivec2(floor(t));
                     vec2 f = t - vec2(t0);
@@ -158,6 +151,16 @@ void main()
                                 layer_sum += wk[c] * cell(L, xo, Pk[c].xyz / Pk[c].w, Ik[c].rgb / Pk[c].w,
                                                           Pk[c].w * area_scale * cover, d_prev);
                     }
+#endif
+                } else if (u_filtered == 1) {
+                    // bilinear within the level: premultiplied sums, so the filtered means are
+                    // area-weighted and background texels drop out
+                    vec2 uv = level_coord(sp, texel, size, size0) / vec2(size);
+                    vec4 P = textureLod(t_pos, uv, float(level));
+                    if (P.w <= 0.0) continue;
+                    vec4 I = textureLod(t_irr, uv, float(level));
+                    if (abs(I.w / P.w - id) > 0.01) continue; // another object in the footprint
+                    layer_sum += cell(L, xo, P.xyz / P.w, I.rgb / P.w, P.w * area_scale * cover, d_prev);
                 } else {
                     ivec2 q = min(ivec2(floor(level_coord(sp, texel, size, size0))), size - 1);
                     vec4 P = texelFetch(t_pos, q, level);

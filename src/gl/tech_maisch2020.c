@@ -68,6 +68,7 @@ static const sss_gl_param_info params[P_COUNT] = {
 
 typedef struct maisch_state {
     GLuint prog_gen, prog_recv, prog_splat, prog_up, prog_ss, prog_combine;
+    GLuint prog_ss_texel; /* the screen-space pass with filtered_layers = 2 (built when first used) */
     GLuint splats, cmd;
     unsigned capacity;
     int low_w, low_h;
@@ -227,16 +228,23 @@ static sss_result maisch_render(sss_gl_renderer *r, void *state, sss_error *err)
         glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_screen);
         glViewport(0, 0, r->width, r->height);
         glDisable(GL_BLEND);
-        glUseProgram(s->prog_ss);
+        int filtered = (int)gl_param(r, P_FILTERED);
+        if (filtered == 2 && !s->prog_ss_texel) {
+            res = gl_program_vf("fullscreen.vert.glsl", "screen_sss.frag.glsl", "#define PER_TEXEL_READS 1\n",
+                                &s->prog_ss_texel, err);
+            if (res != SSS_OK) return res;
+        }
+        GLuint prog = filtered == 2 ? s->prog_ss_texel : s->prog_ss;
+        glUseProgram(prog);
         glBindTextureUnit(0, r->frame.pos);
         glBindTextureUnit(1, r->frame.irr);
-        set_i(s->prog_ss, "u_n", (int)gl_param(r, P_N));
-        set_i(s->prog_ss, "u_nl", (int)gl_param(r, P_NL));
-        set_i(s->prog_ss, "u_layers", (int)gl_param(r, P_LAYERS));
-        set_i(s->prog_ss, "u_brightening", (int)gl_param(r, P_BRIGHTENING));
-        set_i(s->prog_ss, "u_preintegrated", (int)gl_param(r, P_PREINTEGRATED));
-        set_i(s->prog_ss, "u_filtered", (int)gl_param(r, P_FILTERED));
-        set_i(s->prog_ss, "u_screen_bound", (int)gl_param(r, P_SCREEN_BOUND));
+        set_i(prog, "u_n", (int)gl_param(r, P_N));
+        set_i(prog, "u_nl", (int)gl_param(r, P_NL));
+        set_i(prog, "u_layers", (int)gl_param(r, P_LAYERS));
+        set_i(prog, "u_brightening", (int)gl_param(r, P_BRIGHTENING));
+        set_i(prog, "u_preintegrated", (int)gl_param(r, P_PREINTEGRATED));
+        set_i(prog, "u_filtered", filtered);
+        set_i(prog, "u_screen_bound", (int)gl_param(r, P_SCREEN_BOUND));
         gl_draw_fullscreen(r);
         res = gl_check(r->ctx, "maisch2020: screen-space pass", err);
         if (res != SSS_OK) return res;
@@ -263,8 +271,8 @@ static void maisch_destroy(sss_gl_renderer *r, void *state)
     (void)r;
     maisch_state *s = state;
     free_targets(s);
-    GLuint p[6] = {s->prog_gen, s->prog_recv, s->prog_splat, s->prog_up, s->prog_ss, s->prog_combine};
-    for (int i = 0; i < 6; i++)
+    GLuint p[7] = {s->prog_gen, s->prog_recv, s->prog_splat, s->prog_up, s->prog_ss, s->prog_combine, s->prog_ss_texel};
+    for (int i = 0; i < 7; i++)
         if (p[i]) glDeleteProgram(p[i]);
     if (s->splats) glDeleteBuffers(1, &s->splats);
     if (s->cmd) glDeleteBuffers(1, &s->cmd);
