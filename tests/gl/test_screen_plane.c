@@ -19,56 +19,6 @@
 #include "splat_plane_util.h"
 #include "sss/material.h"
 
-static void check_energy(void)
-{
-    if (!write_grid("screen_plane")) {
-        CHECK(0);
-        return;
-    }
-    sss_scene scene;
-    if (!plane_scene(0, 0, &scene)) {
-        CHECK(0);
-        unlink(grid_path);
-        return;
-    }
-    const sss_scene_material *m = &scene.objects[0].material;
-    double ft = 1.0 - sss_fresnel_dielectric(1.0, 1.0, m->optical.eta);
-    for (int mode = 1; mode <= 2; mode++)
-        for (int bright = 0; bright <= 1; bright++) {
-            sss_gl_param_value p[2] = {{"filtered_layers", mode}, {"brightening", bright}};
-            sss_gl_renderer_desc d;
-            memset(&d, 0, sizeof d);
-            d.technique = "screen";
-            d.params = p;
-            d.param_count = 2;
-            sss_gl_renderer *r = NULL;
-            sss_error err = {0};
-            sss_image im;
-            memset(&im, 0, sizeof im);
-            if (sss_gl_renderer_create(gt_ctx(), &scene, &d, &r, &err) != SSS_OK ||
-                sss_gl_renderer_render(r, 0.0, &err) != SSS_OK ||
-                sss_gl_renderer_read_buffer(r, "screen", &im, &err) != SSS_OK) {
-                fprintf(stderr, "%s\n", err.message);
-                CHECK(0);
-                sss_gl_renderer_destroy(r);
-                continue;
-            }
-            sss_gl_renderer_destroy(r);
-            double mean[3];
-            centre_mean(&im, mean);
-            printf("plane energy, filtered_layers=%d brightening=%d:", mode, bright);
-            for (int c = 0; c < 3; c++) {
-                double expect = ft * 1.0 * m->albedo[c];
-                printf(" %+.2f%%", 100.0 * (mean[c] / expect - 1.0));
-                if (!bright) CHECK_REL(mean[c], expect, mode == 1 ? 0.015 : 0.025);
-            }
-            printf("\n");
-            sss_image_free(&im);
-        }
-    sss_scene_free(&scene);
-    unlink(grid_path);
-}
-
 static int plane(int width, int height, sss_scene *scene)
 {
     char json[1024];
@@ -88,21 +38,28 @@ static int plane(int width, int height, sss_scene *scene)
     return 1;
 }
 
-static int screen_sum(const sss_scene *scene, int filtered, sss_image *out)
+/* The "screen" buffer (the screen-space sum without c_o) of technique "screen" with parameters. */
+static int screen_buffer(const sss_scene *scene, const sss_gl_param_value *params, int nparams, sss_image *out)
 {
-    sss_gl_param_value p[2] = {{"filtered_layers", filtered}, {"brightening", 0}};
     sss_gl_renderer_desc d;
     memset(&d, 0, sizeof d);
     d.technique = "screen";
-    d.params = p;
-    d.param_count = 2;
+    d.params = params;
+    d.param_count = nparams;
     sss_gl_renderer *r = NULL;
     sss_error err = {0};
+    memset(out, 0, sizeof *out);
     int ok = sss_gl_renderer_create(gt_ctx(), scene, &d, &r, &err) == SSS_OK &&
              sss_gl_renderer_render(r, 0.0, &err) == SSS_OK && sss_gl_renderer_read_buffer(r, "screen", out, &err) == SSS_OK;
     if (!ok) fprintf(stderr, "screen render failed: %s\n", err.message);
     sss_gl_renderer_destroy(r);
     return ok;
+}
+
+static int screen_sum(const sss_scene *scene, int filtered, sss_image *out)
+{
+    sss_gl_param_value p[2] = {{"filtered_layers", filtered}, {"brightening", 0}};
+    return screen_buffer(scene, p, 2, out);
 }
 
 /* Largest relative mirror difference over all pixels and channels, normalised by the image mean. */
@@ -179,6 +136,43 @@ static void check_size(int width, int height)
         sss_image_free(&im);
     }
     sss_scene_free(&scene);
+}
+
+static void check_energy(void)
+{
+    if (!write_grid("screen_plane")) {
+        CHECK(0);
+        return;
+    }
+    sss_scene scene;
+    if (!plane_scene(0, 0, &scene)) {
+        CHECK(0);
+        unlink(grid_path);
+        return;
+    }
+    const sss_scene_material *m = &scene.objects[0].material;
+    double ft = 1.0 - sss_fresnel_dielectric(1.0, 1.0, m->optical.eta);
+    for (int mode = 1; mode <= 2; mode++)
+        for (int bright = 0; bright <= 1; bright++) {
+            sss_gl_param_value p[2] = {{"filtered_layers", mode}, {"brightening", bright}};
+            sss_image im;
+            if (!screen_buffer(&scene, p, 2, &im)) {
+                CHECK(0);
+                continue;
+            }
+            double mean[3];
+            centre_mean(&im, mean);
+            printf("plane energy, filtered_layers=%d brightening=%d:", mode, bright);
+            for (int c = 0; c < 3; c++) {
+                double expect = ft * 1.0 * m->albedo[c];
+                printf(" %+.2f%%", 100.0 * (mean[c] / expect - 1.0));
+                if (!bright) CHECK_REL(mean[c], expect, mode == 1 ? 0.015 : 0.025);
+            }
+            printf("\n");
+            sss_image_free(&im);
+        }
+    sss_scene_free(&scene);
+    unlink(grid_path);
 }
 
 int main(void)

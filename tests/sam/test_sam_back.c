@@ -19,31 +19,17 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "sam_test_util.h"
 #include "sss/sam.h"
 #include "sss/scene.h"
 
-static sss_pbd_table table;
-
-static void profile_for(double scale, sss_profile *p)
-{
-    sss_error err = {0};
-    sss_material mat;
-    CHECK(sss_material_from_medium("Marble", scale, 1.33, &mat, &err) == SSS_OK);
-    CHECK(sss_profile_init(p, SSS_PROFILE_PBD, &mat, &table, &err) == SSS_OK);
-}
-
-static double dist(const float *a, const float *b)
-{
-    double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-    return sqrt(dx * dx + dy * dy + dz * dz);
-}
 
 static double longest_edge(const sss_mesh *m)
 {
     double edge = 0.0;
     for (uint32_t t = 0; t < m->triangle_count; t++)
         for (int k = 0; k < 3; k++) {
-            double e = dist(m->positions + 3 * m->indices[3 * t + k], m->positions + 3 * m->indices[3 * t + (k + 1) % 3]);
+            double e = sam_test_dist(m->positions + 3 * m->indices[3 * t + k], m->positions + 3 * m->indices[3 * t + (k + 1) % 3]);
             if (e > edge) edge = e;
         }
     return edge;
@@ -84,7 +70,7 @@ static void check_sphere_map(const sss_mesh *m, const sss_sam *s, const sss_prof
         double dmin = INFINITY; /* nearest back-side vertex of the back-side mesh */
         for (uint32_t j = 0; j < B; j++)
             if (sss_sam_is_back(xo, no, back.positions + 3 * j, back.normals + 3 * j))
-                dmin = fmin(dmin, dist(xo, back.positions + 3 * j));
+                dmin = fmin(dmin, sam_test_dist(xo, back.positions + 3 * j));
         for (uint32_t k = 0; k < n; k++) {
             uint32_t b = s->links[v * n + k];
             if (b == SSS_SAM_NONE) continue;
@@ -102,7 +88,7 @@ static void check_sphere_map(const sss_mesh *m, const sss_sam *s, const sss_prof
             if (exact_sphere) across += depth < -(1.0 - 1e-5);
         }
         uint32_t b0 = s->links[v * n];
-        if (b0 != SSS_SAM_NONE && b0 < B && dist(xo, back.positions + 3 * b0) <= dmin + 2.0 * edge) nearest++;
+        if (b0 != SSS_SAM_NONE && b0 < B && sam_test_dist(xo, back.positions + 3 * b0) <= dmin + 2.0 * edge) nearest++;
     }
     printf("  %u -> %u back-side vertices: %d links, %d in Eq. 13-14, strongest among the nearest %d/%u\n",
            m->vertex_count, B, used, back_ok, nearest, m->vertex_count);
@@ -137,7 +123,7 @@ static void test_sphere(void)
     CHECK(sss_mesh_sphere(1.0, 4, &m, &err) == SSS_OK);
     CHECK(sss_mesh_sphere(1.0, 2, &ico, &err) == SSS_OK);
     sss_profile p;
-    profile_for(10.0, &p); /* Marble: 1 / sigma_tr of red ~ 0.85 units, comparable to the radius */
+    sam_test_profile(10.0, &p); /* Marble: 1 / sigma_tr of red ~ 0.85 units, comparable to the radius */
     sss_sam_desc d;
     memset(&d, 0, sizeof d);
     d.n = 3;
@@ -192,22 +178,6 @@ static void test_sphere(void)
 }
 
 /* ---- Two parallel squares ------------------------------------------------------------------------ */
-
-/* Hottel's view factor between directly opposed parallel rectangles a x b at distance c. */
-static double plates_closed_form(double a, double b, double c)
-{
-    double X = a / c, Y = b / c, x1 = 1.0 + X * X, y1 = 1.0 + Y * Y;
-    return 2.0 / (M_PI * X * Y) *
-           (0.5 * log(x1 * y1 / (1.0 + X * X + Y * Y)) + X * sqrt(y1) * atan(X / sqrt(y1)) +
-            Y * sqrt(x1) * atan(Y / sqrt(x1)) - X * atan(X) - Y * atan(Y));
-}
-
-static void view_kernel(const double xo[3], const double xi[3], void *user, double out[3])
-{
-    double c = *(const double *)user, dx = xi[0] - xo[0], dy = xi[1] - xo[1], dz = xi[2] - xo[2];
-    double r2 = dx * dx + dy * dy + dz * dz;
-    out[0] = out[1] = out[2] = c * c / (M_PI * r2 * r2);
-}
 
 static void profile_kernel(const double xo[3], const double xi[3], void *user, double out[3])
 {
@@ -268,12 +238,12 @@ static void test_squares(void)
         for (uint32_t i = cper; i < 2 * cper; i++) {
             size_t nb = sss_sam_reduced_fan(&coarse, i, Bt, 64);
             double out[3];
-            CHECK(sss_sam_region_integral(A, na, Bt, nb, 1u << 12, o * 31u + i, view_kernel, (void *)&c, out, &err) ==
+            CHECK(sss_sam_region_integral(A, na, Bt, nb, 1u << 12, o * 31u + i, sam_test_view_kernel, (void *)&c, out, &err) ==
                   SSS_OK);
             total += fa[o] * out[0];
         }
     }
-    double exact = plates_closed_form(1.0, 1.0, c);
+    double exact = sam_test_plates(1.0, 1.0, c);
     printf("squares 1 x 1 at %g: view factor over fine x coarse fans %.5f, closed form %.5f\n", c, total / area_a,
            exact);
     CHECK_REL(area_a, 1.0, 1e-5);
@@ -283,7 +253,7 @@ static void test_squares(void)
      * front face fails Eq. 13: it lies in the tangent plane), and sum_k K_ok is R_d integrated over the
      * whole back face (Eq. 8-11), here against an independent quadrature over the square itself. */
     sss_profile p;
-    profile_for(10.0, &p);
+    sam_test_profile(10.0, &p);
     sss_sam_desc d;
     memset(&d, 0, sizeof d);
     d.n = 9;
@@ -329,16 +299,6 @@ static void test_squares(void)
 
 /* ---- Deformation --------------------------------------------------------------------------------- */
 
-static double score(const sss_mesh *m, const sss_mesh *src, const float *area, const sss_sam_profile_table *t,
-                    uint32_t o, uint32_t j)
-{
-    const float *xo = m->positions + 3 * o, *xj = src->positions + 3 * j;
-    if (!sss_sam_is_back(xo, m->normals + 3 * o, xj, src->normals + 3 * j)) return -1.0;
-    double rd[3];
-    sss_sam_profile_table_eval(t, dist(xo, xj), rd);
-    return area[j] * (rd[0] + rd[1] + rd[2]);
-}
-
 static void test_update(void)
 {
     sss_error err = {0};
@@ -347,7 +307,7 @@ static void test_update(void)
     snprintf(path, sizeof path, "%s/assets/bunny.ply", SSS_SOURCE_DIR);
     CHECK(sss_mesh_read(path, &m, &err) == SSS_OK);
     sss_profile p;
-    profile_for(2.5, &p);
+    sam_test_profile(2.5, &p);
     sss_sam_desc d;
     memset(&d, 0, sizeof d);
     d.n = 3;
@@ -383,7 +343,7 @@ static void test_update(void)
         uint32_t b = s.links[i], o = (uint32_t)(i / n);
         in_range += b == SSS_SAM_NONE || b < B;
         if (b == SSS_SAM_NONE || b >= B) continue;
-        not_worse += score(&dm, &db, area, &t, o, b) >= score(&dm, &db, area, &t, o, before[i]) - 1e-12;
+        not_worse += sam_test_score(&dm, &db, area, &t, o, b) >= sam_test_score(&dm, &db, area, &t, o, before[i]) - 1e-12;
         int dup = 0;
         for (uint32_t q = 0; q < n; q++) dup |= q != i % n && s.links[(size_t)o * n + q] == b;
         unique += !dup;
@@ -405,7 +365,7 @@ static void test_update(void)
     for (size_t i = 0; i < slots; i++) {
         uint32_t b = s.links[i], o = (uint32_t)(i / n);
         if (b == SSS_SAM_NONE) continue;
-        double sb = score(&dm, &db, area, &t, o, b);
+        double sb = sam_test_score(&dm, &db, area, &t, o, b);
         if (sb < 0.0) continue;
         valid++;
         int best = 1;
@@ -413,7 +373,7 @@ static void test_update(void)
             uint32_t j = adj.neighbors[e];
             int taken = 0;
             for (uint32_t q = 0; q < n; q++) taken |= s.links[(size_t)o * n + q] == j;
-            if (!taken && score(&dm, &db, area, &t, o, j) > sb) best = 0;
+            if (!taken && sam_test_score(&dm, &db, area, &t, o, j) > sb) best = 0;
         }
         local_max += best;
     }
@@ -428,7 +388,7 @@ static void test_update(void)
     int ok = 0;
     for (size_t i = 0; i < slots; i++) {
         uint32_t b = s.links[i], o = (uint32_t)(i / n);
-        int fails = b != SSS_SAM_NONE && score(&dm, &db, area, &t, o, b) < 0.0;
+        int fails = b != SSS_SAM_NONE && sam_test_score(&dm, &db, area, &t, o, b) < 0.0;
         int g = 1;
         for (int c = 0; c < 3; c++)
             g &= isfinite(approx[3 * i + c]) && approx[3 * i + c] >= 0.0f && (!fails || approx[3 * i + c] == 0.0f);
@@ -448,19 +408,9 @@ static void test_update(void)
 
 /* ---- Files ------------------------------------------------------------------------------------------ */
 
-static long file_size(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) return -1;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fclose(f);
-    return n;
-}
-
 static unsigned char *slurp(const char *path, long *size)
 {
-    *size = file_size(path);
+    *size = sam_test_file_size(path);
     FILE *f = fopen(path, "rb");
     unsigned char *b = *size > 0 ? malloc((size_t)*size) : NULL;
     if (f && b && fread(b, 1, (size_t)*size, f) != (size_t)*size) {
@@ -502,7 +452,7 @@ static void test_files(void)
     CHECK(sss_mesh_sphere(1.0, 1, &ico, &err) == SSS_OK);
     CHECK(sss_mesh_sphere(1.0, 2, &other, &err) == SSS_OK);
     sss_profile p;
-    profile_for(10.0, &p);
+    sam_test_profile(10.0, &p);
     sss_sam_desc d;
     memset(&d, 0, sizeof d);
     d.n = 5;
@@ -593,7 +543,7 @@ static void test_files(void)
     sss_sam now;
     sss_material mat = r.material;
     sss_profile p1;
-    CHECK(sss_profile_init(&p1, SSS_PROFILE_PBD, &mat, &table, &err) == SSS_OK);
+    CHECK(sss_profile_init(&p1, SSS_PROFILE_PBD, &mat, &sam_test_table, &err) == SSS_OK);
     memset(&d, 0, sizeof d);
     d.n = 4;
     d.samples = 16;
@@ -624,7 +574,7 @@ static void test_errors(void)
     CHECK(sss_mesh_sphere(1.0, 2, &m, &err) == SSS_OK);
     CHECK(sss_mesh_sphere(1.0, 1, &ico, &err) == SSS_OK);
     sss_profile p;
-    profile_for(10.0, &p);
+    sam_test_profile(10.0, &p);
     sss_sam_desc d;
     memset(&d, 0, sizeof d);
     d.samples = 4;
@@ -667,7 +617,7 @@ static void test_errors(void)
 int main(void)
 {
     sss_error err = {0};
-    if (sss_pbd_table_build(1.33, 0.0, &table, &err) != SSS_OK) {
+    if (sss_pbd_table_build(1.33, 0.0, &sam_test_table, &err) != SSS_OK) {
         fprintf(stderr, "%s\n", err.message);
         return 1;
     }

@@ -9,23 +9,9 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "sam_test_util.h"
 #include "sss/sam.h"
 
-static sss_pbd_table table;
-
-static void profile_for(double scale, sss_profile *p)
-{
-    sss_error err = {0};
-    sss_material mat;
-    CHECK(sss_material_from_medium("Marble", scale, 1.33, &mat, &err) == SSS_OK);
-    CHECK(sss_profile_init(p, SSS_PROFILE_PBD, &mat, &table, &err) == SSS_OK);
-}
-
-static double dist(const float *a, const float *b)
-{
-    double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-    return sqrt(dx * dx + dy * dy + dz * dz);
-}
 
 static void test_sphere(uint32_t n)
 {
@@ -34,7 +20,7 @@ static void test_sphere(uint32_t n)
     const double R = 1.0;
     CHECK(sss_mesh_sphere(R, 3, &m, &err) == SSS_OK);
     sss_profile p;
-    profile_for(10.0, &p); /* Marble: 1 / sigma_tr of red ~ 0.85 units, comparable to R */
+    sam_test_profile(10.0, &p); /* Marble: 1 / sigma_tr of red ~ 0.85 units, comparable to R */
     sss_sam_desc d;
     memset(&d, 0, sizeof d);
     d.n = n;
@@ -48,7 +34,7 @@ static void test_sphere(uint32_t n)
     double edge = 0.0; /* longest edge */
     for (uint32_t t = 0; t < m.triangle_count; t++)
         for (int k = 0; k < 3; k++) {
-            double e = dist(m.positions + 3 * m.indices[3 * t + k], m.positions + 3 * m.indices[3 * t + (k + 1) % 3]);
+            double e = sam_test_dist(m.positions + 3 * m.indices[3 * t + k], m.positions + 3 * m.indices[3 * t + (k + 1) % 3]);
             if (e > edge) edge = e;
         }
     int bad = 0, across = 0, nearest = 0, sorted = 0;
@@ -57,7 +43,7 @@ static void test_sphere(uint32_t n)
         double dmin = INFINITY; /* nearest back-side vertex */
         for (uint32_t j = 0; j < m.vertex_count; j++)
             if (sss_sam_is_back(xo, no, m.positions + 3 * j, m.normals + 3 * j)) {
-                double dd = dist(xo, m.positions + 3 * j);
+                double dd = sam_test_dist(xo, m.positions + 3 * j);
                 if (dd < dmin) dmin = dd;
             }
         for (uint32_t k = 0; k < n; k++) {
@@ -82,7 +68,7 @@ static void test_sphere(uint32_t n)
         }
         /* the strongest link is among the nearest back-side vertices (R_d falls with distance) */
         uint32_t b0 = s.links[v * n];
-        if (b0 != SSS_SAM_NONE && dist(xo, m.positions + 3 * b0) <= dmin + 2.0 * edge) nearest++;
+        if (b0 != SSS_SAM_NONE && sam_test_dist(xo, m.positions + 3 * b0) <= dmin + 2.0 * edge) nearest++;
     }
     CHECK(bad == 0);
     CHECK(across == (int)(n * m.vertex_count));
@@ -113,7 +99,7 @@ static void test_tree_equals_brute_force(void)
     double scales[2] = {2.5, 0.25}; /* short and long scattering distances against the 10-unit bunny */
     for (int c = 0; c < 2; c++) {
         sss_profile p;
-        profile_for(scales[c], &p);
+        sam_test_profile(scales[c], &p);
         sss_sam_desc d;
         memset(&d, 0, sizeof d);
         d.n = 10;
@@ -140,16 +126,6 @@ static void test_tree_equals_brute_force(void)
     sss_mesh_free(&m);
 }
 
-static long file_size(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) return -1;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fclose(f);
-    return n;
-}
-
 static void copy_prefix(const char *from, const char *to, long bytes, long flip_at)
 {
     FILE *f = fopen(from, "rb"), *g = fopen(to, "wb");
@@ -170,7 +146,7 @@ static void test_files(void)
     CHECK(sss_mesh_sphere(1.0, 2, &m, &err) == SSS_OK);
     CHECK(sss_mesh_sphere(1.0, 1, &other, &err) == SSS_OK);
     sss_profile p;
-    profile_for(10.0, &p);
+    sam_test_profile(10.0, &p);
     sss_sam_desc d;
     memset(&d, 0, sizeof d);
     d.n = 4;
@@ -207,7 +183,7 @@ static void test_files(void)
     CHECK(sss_sam_check(&r, &m, NULL, SSS_PROFILE_PBD, tr, path, &err) == SSS_ERROR_INVALID_ARGUMENT);
     sss_sam_free(&r);
     /* truncated: every prefix length class is rejected (header, payload, checksum) */
-    long size = file_size(path);
+    long size = sam_test_file_size(path);
     long cuts[5] = {0, 10, 200, size / 2, size - 1};
     for (int i = 0; i < 5; i++) {
         copy_prefix(path, bad, cuts[i], -1);
@@ -240,7 +216,7 @@ static void test_errors(void)
     sss_error err = {0};
     CHECK(sss_mesh_sphere(1.0, 1, &m, &err) == SSS_OK);
     sss_profile p;
-    profile_for(10.0, &p);
+    sam_test_profile(10.0, &p);
     sss_sam_desc d;
     memset(&d, 0, sizeof d);
     sss_sam s;
@@ -256,7 +232,7 @@ static void test_errors(void)
 int main(void)
 {
     sss_error err = {0};
-    if (sss_pbd_table_build(1.33, 0.0, &table, &err) != SSS_OK) {
+    if (sss_pbd_table_build(1.33, 0.0, &sam_test_table, &err) != SSS_OK) {
         fprintf(stderr, "%s\n", err.message);
         return 1;
     }

@@ -6,25 +6,8 @@
 #include <string.h>
 
 #include "check.h"
+#include "sam_test_util.h"
 #include "sss/sam.h"
-
-/* Hottel's view factor between directly opposed parallel rectangles a x b at distance c. */
-static double plates_closed_form(double a, double b, double c)
-{
-    double X = a / c, Y = b / c, x1 = 1.0 + X * X, y1 = 1.0 + Y * Y;
-    return 2.0 / (M_PI * X * Y) *
-           (0.5 * log(x1 * y1 / (1.0 + X * X + Y * Y)) + X * sqrt(y1) * atan(X / sqrt(y1)) +
-            Y * sqrt(x1) * atan(Y / sqrt(x1)) - X * atan(X) - Y * atan(Y));
-}
-
-/* The radiative kernel between the planes y = 0 (facing +y) and y = c (facing -y). */
-static void view_kernel(const double xo[3], const double xi[3], void *user, double out[3])
-{
-    double c = *(const double *)user, dx = xi[0] - xo[0], dy = xi[1] - xo[1], dz = xi[2] - xo[2];
-    double r2 = dx * dx + dy * dy + dz * dz;
-    double k = c * c / (M_PI * r2 * r2);
-    out[0] = out[1] = out[2] = k;
-}
 
 static void square(double a, double b, double y, float *t)
 {
@@ -36,7 +19,7 @@ static void square(double a, double b, double y, float *t)
 static void test_plates(void)
 {
     /* published value for unit squares one unit apart: 0.1998 */
-    CHECK_NEAR(plates_closed_form(1, 1, 1), 0.1998, 1e-4);
+    CHECK_NEAR(sam_test_plates(1, 1, 1), 0.1998, 1e-4);
     double cases[3][3] = {{1, 1, 1}, {2, 1, 1}, {1, 1, 0.5}};
     for (int k = 0; k < 3; k++) {
         float A[18], B[18];
@@ -44,8 +27,8 @@ static void test_plates(void)
         square(cases[k][0], cases[k][1], cases[k][2], B);
         double out[3];
         sss_error err = {0};
-        CHECK(sss_sam_region_integral(A, 2, B, 2, 1u << 17, 7, view_kernel, &cases[k][2], out, &err) == SSS_OK);
-        double exact = plates_closed_form(cases[k][0], cases[k][1], cases[k][2]);
+        CHECK(sss_sam_region_integral(A, 2, B, 2, 1u << 17, 7, sam_test_view_kernel, &cases[k][2], out, &err) == SSS_OK);
+        double exact = sam_test_plates(cases[k][0], cases[k][1], cases[k][2]);
         printf("plates %g x %g at %g: %.5f (closed form %.5f)\n", cases[k][0], cases[k][1], cases[k][2], out[0], exact);
         CHECK_REL(out[0], exact, 0.01);
     }
@@ -54,8 +37,8 @@ static void test_plates(void)
     square(1, 1, 0, A);
     double out[3];
     sss_error err = {0};
-    CHECK(sss_sam_region_integral(A, 0, A, 2, 16, 0, view_kernel, NULL, out, &err) == SSS_ERROR_INVALID_ARGUMENT);
-    CHECK(sss_sam_region_integral(A, 2, A, 2, 0, 0, view_kernel, NULL, out, &err) == SSS_ERROR_INVALID_ARGUMENT);
+    CHECK(sss_sam_region_integral(A, 0, A, 2, 16, 0, sam_test_view_kernel, NULL, out, &err) == SSS_ERROR_INVALID_ARGUMENT);
+    CHECK(sss_sam_region_integral(A, 2, A, 2, 0, 0, sam_test_view_kernel, NULL, out, &err) == SSS_ERROR_INVALID_ARGUMENT);
 }
 
 static double tri_area(const float *t)
@@ -152,12 +135,11 @@ static void test_build_form_factors(void)
     sss_mesh m;
     sss_error err = {0};
     CHECK(sss_mesh_sphere(1.0, 2, &m, &err) == SSS_OK);
-    static sss_pbd_table table;
-    CHECK(sss_pbd_table_build(1.33, 0.0, &table, &err) == SSS_OK);
+        CHECK(sss_pbd_table_build(1.33, 0.0, &sam_test_table, &err) == SSS_OK);
     sss_material mat;
     CHECK(sss_material_from_medium("Marble", 10.0, 1.33, &mat, &err) == SSS_OK);
     sss_profile p;
-    CHECK(sss_profile_init(&p, SSS_PROFILE_PBD, &mat, &table, &err) == SSS_OK);
+    CHECK(sss_profile_init(&p, SSS_PROFILE_PBD, &mat, &sam_test_table, &err) == SSS_OK);
     sss_sam_desc d;
     memset(&d, 0, sizeof d);
     d.n = 2;

@@ -9,24 +9,15 @@
 #include <string.h>
 
 #include "check.h"
+#include "sam_test_util.h"
 #include "sss/sam.h"
 #include "sss/scene.h"
 
-static sss_pbd_table table;
-
-static double score(const sss_mesh *m, const float *area, const sss_sam_profile_table *t, uint32_t o, uint32_t j)
-{
-    const float *xo = m->positions + 3 * o, *xj = m->positions + 3 * j;
-    if (!sss_sam_is_back(xo, m->normals + 3 * o, xj, m->normals + 3 * j)) return -1.0;
-    double dx = xj[0] - xo[0], dy = xj[1] - xo[1], dz = xj[2] - xo[2], rd[3];
-    sss_sam_profile_table_eval(t, sqrt(dx * dx + dy * dy + dz * dz), rd);
-    return area[j] * (rd[0] + rd[1] + rd[2]);
-}
 
 int main(void)
 {
     sss_error err = {0};
-    if (sss_pbd_table_build(1.33, 0.0, &table, &err) != SSS_OK) return 1;
+    if (sss_pbd_table_build(1.33, 0.0, &sam_test_table, &err) != SSS_OK) return 1;
     sss_mesh m;
     char path[1024];
     snprintf(path, sizeof path, "%s/assets/bunny.ply", SSS_SOURCE_DIR);
@@ -34,7 +25,7 @@ int main(void)
     sss_material mat;
     CHECK(sss_material_from_medium("Marble", 2.5, 1.33, &mat, &err) == SSS_OK);
     sss_profile p;
-    CHECK(sss_profile_init(&p, SSS_PROFILE_PBD, &mat, &table, &err) == SSS_OK);
+    CHECK(sss_profile_init(&p, SSS_PROFILE_PBD, &mat, &sam_test_table, &err) == SSS_OK);
     sss_sam_desc d;
     memset(&d, 0, sizeof d);
     d.n = 3;
@@ -84,7 +75,7 @@ int main(void)
                     unique++;
                     continue;
                 }
-                double sb = score(&def, area, &t, o, b);
+                double sb = sam_test_score(&def, &def, area, &t, o, b);
                 if (sb >= 0.0) valid_or_stuck++;
                 else {
                     invalid_after++;
@@ -93,11 +84,11 @@ int main(void)
                         uint32_t j = adj.neighbors[e];
                         int taken = j == o;
                         for (uint32_t q = 0; q < n; q++) taken |= s.links[(size_t)o * n + q] == j;
-                        if (!taken && score(&def, area, &t, o, j) >= 0.0) any = 1;
+                        if (!taken && sam_test_score(&def, &def, area, &t, o, j) >= 0.0) any = 1;
                     }
                     valid_or_stuck += !any;
                 }
-                not_worse += sb >= score(&def, area, &t, o, before[i]) - 1e-12;
+                not_worse += sb >= sam_test_score(&def, &def, area, &t, o, before[i]) - 1e-12;
                 int dup = 0;
                 for (uint32_t q = 0; q < k; q++) dup |= s.links[(size_t)o * n + q] == b;
                 unique += !dup;
@@ -116,7 +107,7 @@ int main(void)
         int ok = 0;
         for (size_t i = 0; i < slots; i++) {
             uint32_t b = s.links[i], o = (uint32_t)(i / n);
-            int fails = b != SSS_SAM_NONE && score(&def, area, &t, o, b) < 0.0;
+            int fails = b != SSS_SAM_NONE && sam_test_score(&def, &def, area, &t, o, b) < 0.0;
             int good = 1;
             for (int c = 0; c < 3; c++) good &= isfinite(approx[3 * i + c]) && approx[3 * i + c] >= 0.0f &&
                                                 (!fails || approx[3 * i + c] == 0.0f);
