@@ -31,16 +31,11 @@ static int write_grid(const char *tag)
     return fclose(f) == 0;
 }
 
-/* Skin1 at 200 mm per unit (the red kernel reaches ~0.08 units) seen head-on from 1 unit, directional
- * light(s) travelling straight down. */
-static int plane_scene(int two_lights, int which, sss_scene *scene)
+/* Skin1 at 200 mm per unit (the red kernel reaches ~0.08 units) seen head-on from 1 unit, 64 x 64,
+ * under the lights of `lights` (the JSON array's contents). */
+static int plane_scene_lights(const char *lights, const char *name, sss_scene *scene)
 {
     char json[2048];
-    const char *l1 = "{\"type\": \"directional\", \"direction\": [0, -1, 0], \"radiance\": [1, 1, 1]}";
-    const char *l2 = "{\"type\": \"directional\", \"direction\": [0.3, -1, 0.2], \"radiance\": [0.5, 0.7, 0.9]}";
-    char lights[512];
-    if (two_lights) snprintf(lights, sizeof lights, "%s, %s", l1, l2);
-    else snprintf(lights, sizeof lights, "%s", which == 0 ? l1 : l2);
     snprintf(json, sizeof json,
              "{\"camera\": {\"position\": [0, 1, 0], \"look_at\": [0, 0, 0], \"up\": [0, 0, -1], \"fov\": 30,"
              " \"width\": 64, \"height\": 64},"
@@ -49,11 +44,22 @@ static int plane_scene(int two_lights, int which, sss_scene *scene)
              " \"lights\": [%s]}",
              grid_path, lights);
     sss_error err = {0};
-    if (sss_scene_parse(json, strlen(json), ".", "plane", NULL, scene, &err) != SSS_OK) {
+    if (sss_scene_parse(json, strlen(json), ".", name, NULL, scene, &err) != SSS_OK) {
         fprintf(stderr, "%s\n", err.message);
         return 0;
     }
     return 1;
+}
+
+/* The plane under directional light(s) travelling straight down (and a second, oblique one). */
+static int plane_scene(int two_lights, int which, sss_scene *scene)
+{
+    const char *l1 = "{\"type\": \"directional\", \"direction\": [0, -1, 0], \"radiance\": [1, 1, 1]}";
+    const char *l2 = "{\"type\": \"directional\", \"direction\": [0.3, -1, 0.2], \"radiance\": [0.5, 0.7, 0.9]}";
+    char lights[512];
+    if (two_lights) snprintf(lights, sizeof lights, "%s, %s", l1, l2);
+    else snprintf(lights, sizeof lights, "%s", which == 0 ? l1 : l2);
+    return plane_scene_lights(lights, "plane", scene);
 }
 
 /* Mean of the central half of the image per channel. */

@@ -48,25 +48,13 @@ static int write_sky(void)
 /* The plane of splat_plane_util.h under the sky and/or one directional light. */
 static int env_scene(int sky, int directional, sss_scene *scene)
 {
-    char json[2048], lights[512] = "";
+    char lights[512] = "";
     if (sky) snprintf(lights, sizeof lights, "{\"type\": \"environment\", \"file\": \"%s\"}", sky_path);
     if (directional)
         snprintf(lights + strlen(lights), sizeof lights - strlen(lights),
                  "%s{\"type\": \"directional\", \"direction\": [0.3, -1, 0.2], \"radiance\": [0.5, 0.7, 0.9]}",
                  sky ? ", " : "");
-    snprintf(json, sizeof json,
-             "{\"camera\": {\"position\": [0, 1, 0], \"look_at\": [0, 0, 0], \"up\": [0, 0, -1], \"fov\": 30,"
-             " \"width\": 64, \"height\": 64},"
-             " \"objects\": [{\"mesh\": \"%s\","
-             " \"material\": {\"type\": \"subsurface\", \"medium\": \"Skin1\", \"scale\": 200.0, \"eta\": 1.33}}],"
-             " \"lights\": [%s]}",
-             grid_path, lights);
-    sss_error err = {0};
-    if (sss_scene_parse(json, strlen(json), ".", "plane_env", NULL, scene, &err) != SSS_OK) {
-        fprintf(stderr, "%s\n", err.message);
-        return 0;
-    }
-    return 1;
+    return plane_scene_lights(lights, "plane_env", scene);
 }
 
 /* int_0^1 F_t(mu) mu d(mu) by 4-point Gauss-Legendre on each of 16 sub-intervals (F_t is smooth in mu

@@ -20,6 +20,40 @@ static void *read_buffer(GLuint b, size_t bytes)
     return p;
 }
 
+/* Per receiver vertex: its GPU position vs the posed mesh (within 1e-5 of the extent), its GPU links vs
+ * the C update's, and where the links agree its GPU translucency vs Eq. 12 evaluated here with the
+ * GPU's L_d of the linked (back-side) vertices: sum_k L_d(b_k) K'_k F'_k R_d(|v_k - v_o|). */
+typedef struct receiver_counts {
+    int pos_ok, link_same, trans_ok, compared;
+} receiver_counts;
+
+static receiver_counts compare_receivers(uint32_t V, uint32_t n, const float *geom, const sss_mesh *world, double extent,
+                                         const uint32_t *links, const sss_sam *sam, const float *ld, const float *approx,
+                                         const float *trans)
+{
+    receiver_counts c = {0, 0, 0, 0};
+    for (uint32_t v = 0; v < V; v++) {
+        double dp = 0.0;
+        for (int k = 0; k < 3; k++) dp = fmax(dp, fabs(geom[8 * v + k] - world->positions[3 * v + k]));
+        c.pos_ok += dp <= 1e-5 * extent;
+        int same = 1;
+        for (uint32_t k = 0; k < n; k++) same &= links[v * n + k] == sam->links[v * n + k];
+        c.link_same += same;
+        if (!same) continue;
+        double t[3] = {0, 0, 0};
+        for (uint32_t k = 0; k < n; k++) {
+            uint32_t b = sam->links[v * n + k];
+            if (b == SSS_SAM_NONE) continue;
+            for (int ch = 0; ch < 3; ch++) t[ch] += ld[4 * b + ch] * approx[3 * (v * n + k) + ch];
+        }
+        c.compared++;
+        int good = 1;
+        for (int ch = 0; ch < 3; ch++) good &= fabs(trans[4 * v + ch] - t[ch]) <= 2e-3 * fabs(t[ch]) + 1e-9;
+        c.trans_ok += good;
+    }
+    return c;
+}
+
 static void test_twist(void)
 {
     sss_scene scene;
@@ -71,28 +105,10 @@ static void test_twist(void)
 
     double extent = 0.0;
     for (uint32_t i = 0; i < 3 * V; i++) extent = fmax(extent, fabs(world.positions[i]));
-    int pos_ok = 0, area_ok = 0, link_same = 0, trans_ok = 0, compared = 0;
-    for (uint32_t v = 0; v < V; v++) {
-        double dp = 0.0;
-        for (int k = 0; k < 3; k++) dp = fmax(dp, fabs(geom[8 * v + k] - world.positions[3 * v + k]));
-        pos_ok += dp <= 1e-5 * extent;
-        area_ok += fabs(geom[8 * v + 3] - area[v]) <= 1e-3 * area[v] + 1e-12;
-        int same = 1;
-        for (uint32_t k = 0; k < n; k++) same &= links[v * n + k] == sam.links[v * n + k];
-        link_same += same;
-        if (!same) continue;
-        /* Eq. 12 with the GPU's L_d: sum_k L_d(b_k) K'_k F'_k R_d(|v_k - v_o|) */
-        double t[3] = {0, 0, 0};
-        for (uint32_t k = 0; k < n; k++) {
-            uint32_t b = sam.links[v * n + k];
-            if (b == SSS_SAM_NONE) continue;
-            for (int c = 0; c < 3; c++) t[c] += ld[4 * b + c] * approx[3 * (v * n + k) + c];
-        }
-        compared++;
-        int good = 1;
-        for (int c = 0; c < 3; c++) good &= fabs(trans[4 * v + c] - t[c]) <= 2e-3 * fabs(t[c]) + 1e-9;
-        trans_ok += good;
-    }
+    int area_ok = 0;
+    for (uint32_t v = 0; v < V; v++) area_ok += fabs(geom[8 * v + 3] - area[v]) <= 1e-3 * area[v] + 1e-12;
+    receiver_counts rc = compare_receivers(V, n, geom, &world, extent, links, &sam, ld, approx, trans);
+    int pos_ok = rc.pos_ok, link_same = rc.link_same, trans_ok = rc.trans_ok, compared = rc.compared;
     printf("twist t = 1: positions %d/%u, fan areas %d/%u, links equal to sss_sam_update %d/%u, translucency %d/%d\n",
            pos_ok, V, area_ok, V, link_same, V, trans_ok, compared);
     CHECK(pos_ok == (int)V);
@@ -183,26 +199,11 @@ static void test_twist_back(void)
             area_ok += fabs(bgeom[8 * v + 3] - area[v]) <= 1e-3 * area[v] + 1e-12;
             lit += isfinite(ld[4 * v]) && ld[4 * v] > 0.0f;
         }
-        for (uint32_t v = 0; v < V; v++) {
-            double dp = 0.0;
-            for (int k = 0; k < 3; k++) dp = fmax(dp, fabs(geom[8 * v + k] - world.positions[3 * v + k]));
-            pos_ok += dp <= 1e-5 * extent;
-            int same = 1;
-            for (uint32_t k = 0; k < n; k++) same &= links[v * n + k] == sam.links[v * n + k];
-            link_same += same;
-            if (!same) continue;
-            /* Eq. 12 with L_d of the back-side vertices */
-            double t[3] = {0, 0, 0};
-            for (uint32_t k = 0; k < n; k++) {
-                uint32_t b = sam.links[v * n + k];
-                if (b == SSS_SAM_NONE) continue;
-                for (int c = 0; c < 3; c++) t[c] += ld[4 * b + c] * approx[3 * (v * n + k) + c];
-            }
-            compared++;
-            int good = 1;
-            for (int c = 0; c < 3; c++) good &= fabs(trans[4 * v + c] - t[c]) <= 2e-3 * fabs(t[c]) + 1e-9;
-            trans_ok += good;
-        }
+        receiver_counts rc = compare_receivers(V, n, geom, &world, extent, links, &sam, ld, approx, trans);
+        pos_ok = rc.pos_ok;
+        link_same = rc.link_same;
+        trans_ok = rc.trans_ok;
+        compared = rc.compared;
         printf("twist t = 1, back side %u vertices: positions %d/%u, back-side positions %d/%u, normals %d/%u, fan "
                "areas %d/%u, lit %d, links equal to sss_sam_update_back %d/%u, translucency %d/%d\n",
                B, pos_ok, V, bpos_ok, B, bnrm_ok, B, area_ok, B, lit, link_same, V, trans_ok, compared);
