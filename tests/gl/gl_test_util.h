@@ -11,6 +11,7 @@
 #include "check.h"
 #include "sss/gl.h"
 #include "sss/image.h"
+#include "sss/material.h"
 #include "sss/scene.h"
 
 static inline sss_gl_context *gt_ctx(void)
@@ -100,6 +101,38 @@ static inline double gt_technique_dssim(const sss_scene *scene, const sss_image 
     double d = gt_dssim(&img, ref);
     sss_image_free(&img);
     return d;
+}
+
+/* gt_technique_dssim on a committed scene (scenes/) against its cached reference (tests/data/gl/),
+ * printed; with bound > 0 it must lie below it. Returns the DSSIM (1 on failure). */
+static inline double gt_scene_dssim(const char *file, const char *ref_name, const char *technique, double bound)
+{
+    sss_scene scene;
+    sss_image ref;
+    if (!gt_load(file, &scene)) {
+        CHECK(0);
+        return 1.0;
+    }
+    double d = 1.0;
+    if (gt_read_ref(ref_name, &ref)) {
+        d = gt_technique_dssim(&scene, &ref, technique, NULL, 0);
+        sss_image_free(&ref);
+    } else {
+        CHECK(0);
+    }
+    printf("%s, %s: DSSIM %.4f\n", file, technique, d);
+    if (bound > 0.0) CHECK_MSG(d < bound, "%s %s: DSSIM %g >= %g", file, technique, d, bound);
+    sss_scene_free(&scene);
+    return d;
+}
+
+/* F_t at normal incidence into a material (PBRT-v3's dielectric Fresnel); *co gets the exit factor
+ * c_o = F_t / (pi c) of FACTS.md 1 for a view along the normal. */
+static inline double gt_normal_transmission(const sss_scene_material *m, double *co)
+{
+    double eta = m->optical.eta, ft = 1.0 - sss_fresnel_dielectric(1.0, 1.0, eta);
+    if (co) *co = ft / (M_PI * sss_bssrdf_normalization(eta));
+    return ft;
 }
 
 static inline void gt_mean(const sss_image *a, double mean[3])

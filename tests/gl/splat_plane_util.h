@@ -15,7 +15,7 @@
 static char grid_path[256];
 
 /* tag names the temporary file (one per test program). */
-static int write_grid(const char *tag)
+static inline int write_grid(const char *tag)
 {
     snprintf(grid_path, sizeof grid_path, "/tmp/sss_test_%s_%ld.obj", tag, (long)getpid());
     FILE *f = fopen(grid_path, "w");
@@ -33,7 +33,7 @@ static int write_grid(const char *tag)
 
 /* Skin1 at 200 mm per unit (the red kernel reaches ~0.08 units) seen head-on from 1 unit, 64 x 64,
  * under the lights of `lights` (the JSON array's contents). */
-static int plane_scene_lights(const char *lights, const char *name, sss_scene *scene)
+static inline int plane_scene_lights(const char *lights, const char *name, sss_scene *scene)
 {
     char json[2048];
     snprintf(json, sizeof json,
@@ -52,7 +52,7 @@ static int plane_scene_lights(const char *lights, const char *name, sss_scene *s
 }
 
 /* The plane under directional light(s) travelling straight down (and a second, oblique one). */
-static int plane_scene(int two_lights, int which, sss_scene *scene)
+static inline int plane_scene(int two_lights, int which, sss_scene *scene)
 {
     const char *l1 = "{\"type\": \"directional\", \"direction\": [0, -1, 0], \"radiance\": [1, 1, 1]}";
     const char *l2 = "{\"type\": \"directional\", \"direction\": [0.3, -1, 0.2], \"radiance\": [0.5, 0.7, 0.9]}";
@@ -62,8 +62,37 @@ static int plane_scene(int two_lights, int which, sss_scene *scene)
     return plane_scene_lights(lights, "plane", scene);
 }
 
+/* Linearity in the lights: the plane under both directional lights renders as the sum of the two
+ * renders under each alone (largest relative difference per pixel below 1e-3). */
+static inline void plane_lights_add(const char *technique, const sss_gl_param_value *params, int nparams)
+{
+    sss_scene both, a, b;
+    if (!plane_scene(1, 0, &both) || !plane_scene(0, 0, &a) || !plane_scene(0, 1, &b)) {
+        CHECK(0);
+        return;
+    }
+    sss_image ib, ia, ic;
+    CHECK(gt_render(&both, technique, 0.0, params, nparams, &ib));
+    CHECK(gt_render(&a, technique, 0.0, params, nparams, &ia));
+    CHECK(gt_render(&b, technique, 0.0, params, nparams, &ic));
+    double worst = 0.0;
+    for (size_t i = 0; i < 3 * (size_t)ib.width * ib.height; i++) {
+        double sum = ia.pixels[i] + ic.pixels[i];
+        double d = fabs(ib.pixels[i] - sum) / (sum > 1e-6 ? sum : 1e-6);
+        if (d > worst) worst = d;
+    }
+    printf("%s, two lights vs the sum of each alone: largest relative difference %.2e\n", technique, worst);
+    CHECK(worst < 1e-3);
+    sss_image_free(&ib);
+    sss_image_free(&ia);
+    sss_image_free(&ic);
+    sss_scene_free(&both);
+    sss_scene_free(&a);
+    sss_scene_free(&b);
+}
+
 /* Mean of the central half of the image per channel. */
-static void centre_mean(const sss_image *im, double m[3])
+static inline void centre_mean(const sss_image *im, double m[3])
 {
     m[0] = m[1] = m[2] = 0.0;
     int n = 0;

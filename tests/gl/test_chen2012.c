@@ -29,9 +29,7 @@ static void test_plane_energy(void)
         return;
     }
     const sss_scene_material *m = &scene.objects[0].material;
-    double eta = m->optical.eta;
-    double ft = 1.0 - sss_fresnel_dielectric(1.0, 1.0, eta);
-    double co = ft / (M_PI * sss_bssrdf_normalization(eta));
+    double co, ft = gt_normal_transmission(m, &co);
     sss_image full, dflt;
     sss_gl_param_value p = {"splat_energy", 1.0};
     CHECK(gt_render(&scene, "chen2012", 0.0, &p, 1, &full));
@@ -144,71 +142,19 @@ static void test_levels(void)
     sss_scene_free(&scene);
 }
 
-static void test_lights_add(void)
-{
-    sss_scene both, a, b;
-    if (!plane_scene(1, 0, &both) || !plane_scene(0, 0, &a) || !plane_scene(0, 1, &b)) {
-        CHECK(0);
-        return;
-    }
-    sss_image ib, ia, ic;
-    sss_gl_param_value p = {"buffer_size", 512}; /* the property holds at any size; 512 is quicker */
-    CHECK(gt_render(&both, "chen2012", 0.0, &p, 1, &ib));
-    CHECK(gt_render(&a, "chen2012", 0.0, &p, 1, &ia));
-    CHECK(gt_render(&b, "chen2012", 0.0, &p, 1, &ic));
-    double worst = 0.0;
-    for (size_t i = 0; i < 3 * (size_t)ib.width * ib.height; i++) {
-        double sum = ia.pixels[i] + ic.pixels[i];
-        double d = fabs(ib.pixels[i] - sum) / (sum > 1e-6 ? sum : 1e-6);
-        if (d > worst) worst = d;
-    }
-    printf("two lights vs the sum of each alone: largest relative difference %.2e\n", worst);
-    CHECK(worst < 1e-3);
-    sss_image_free(&ib);
-    sss_image_free(&ia);
-    sss_image_free(&ic);
-    sss_scene_free(&both);
-    sss_scene_free(&a);
-    sss_scene_free(&b);
-}
-
-/* DSSIM against the cached reference below bound; returns it (1 on failure). */
-static double scene_dssim(const char *file, const char *ref_name, const char *technique, double bound)
-{
-    sss_scene scene;
-    if (!gt_load(file, &scene)) {
-        CHECK(0);
-        return 1.0;
-    }
-    sss_image ref, img;
-    double d = 1.0;
-    if (gt_read_ref(ref_name, &ref)) {
-        if (gt_render(&scene, technique, 0.0, NULL, 0, &img)) {
-            d = gt_dssim(&img, &ref);
-            CHECK(sss_image_count_nonfinite(&img) == 0);
-            sss_image_free(&img);
-        }
-        sss_image_free(&ref);
-    }
-    printf("%s, %s: DSSIM %.4f\n", file, technique, d);
-    if (bound > 0.0) CHECK_MSG(d < bound, "%s %s: DSSIM %g >= %g", file, technique, d, bound);
-    sss_scene_free(&scene);
-    return d;
-}
-
 int main(void)
 {
-    (void)gt_mean;
+    sss_gl_param_value lights_add_size = {"buffer_size", 512}; /* the property holds at any size; 512 is quicker */
     CHECK(write_grid("chen"));
     test_plane_energy();
     test_levels();
-    test_lights_add();
+    plane_lights_add("chen2012", &lights_add_size, 1);
     /* Back-lit dragon: measured 0.023 (bound +1/3). */
-    double d_bl = scene_dssim("gl_backlit.json", "ref_backlit.exr", "chen2012", 0.031);
+    double d_bl = gt_scene_dssim("gl_backlit.json", "ref_backlit.exr", "chen2012", 0.031);
     /* Front-lit head with a shadow edge: measured 0.014, below `local` (0.040): splats from the light's
      * view are dense where the light falls (seed 000, 8.1: Chen "does comparatively well"). */
-    double d_se = scene_dssim("gl_shadow_edge.json", "ref_shadow_edge.exr", "chen2012", 0.019);
-    double d_local = scene_dssim("gl_shadow_edge.json", "ref_shadow_edge.exr", "local", 0.0);
+    double d_se = gt_scene_dssim("gl_shadow_edge.json", "ref_shadow_edge.exr", "chen2012", 0.019);
+    double d_local = gt_scene_dssim("gl_shadow_edge.json", "ref_shadow_edge.exr", "local", 0.0);
     CHECK(d_se < d_local);
     /* seed 000's ordering on the back-lit scene */
     const char *others[] = {"ssss", "screen"};
@@ -217,7 +163,7 @@ int main(void)
             printf("technique %s not registered: compared with local instead\n", others[i]);
             others[i] = "local";
         }
-        double d = scene_dssim("gl_backlit.json", "ref_backlit.exr", others[i], 0.0);
+        double d = gt_scene_dssim("gl_backlit.json", "ref_backlit.exr", others[i], 0.0);
         CHECK_MSG(d_bl < d, "chen2012 %g does not beat %s %g on the back-lit scene", d_bl, others[i], d);
     }
     remove(grid_path);

@@ -72,9 +72,7 @@ static void test_unbiased(void)
         return;
     }
     const sss_scene_material *m = &scene.objects[0].material;
-    double eta = m->optical.eta;
-    double ft = 1.0 - sss_fresnel_dielectric(1.0, 1.0, eta);
-    double co = ft / (M_PI * sss_bssrdf_normalization(eta));
+    double co, ft = gt_normal_transmission(m, &co);
     /* the block of the pattern is the left-bottom aligned 4 x 4: the window starts at 16, a multiple */
     sss_gl_param_value plain[2] = {{"pattern", 1}, {"blur", 0}}, noblur = {"blur", 0};
     sss_image a, b, c;

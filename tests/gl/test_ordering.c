@@ -8,7 +8,6 @@
  * the paper works at — and there its blur of the dragon's thin spikes cost it the comparison with
  * ssss (0.052 vs 0.041). At 256 px (64 x 64 translucency) the paper's claim is measurable. Measured
  * (llvmpipe, Mesa 22.3): maisch2020 0.024, dss 0.017, chen2012 0.015 vs ssss 0.034, screen 0.133. */
-#pragma GCC diagnostic ignored "-Wunused-function"
 #include "gl_test_util.h"
 
 int main(void)

@@ -4,8 +4,6 @@
  *    default and with changed parameters (n, layers, brightening), on the back-lit dragon, where the
  *    two differ most from the full technique;
  *  - it has the "screen" buffer but no translucency buffers, and times the screen-space pass. */
-/* this file uses only some of the shared helpers */
-#pragma GCC diagnostic ignored "-Wunused-function"
 #include "gl_test_util.h"
 
 static void test_params(void)

@@ -151,7 +151,7 @@ static void check_energy(void)
         return;
     }
     const sss_scene_material *m = &scene.objects[0].material;
-    double ft = 1.0 - sss_fresnel_dielectric(1.0, 1.0, m->optical.eta);
+    double ft = gt_normal_transmission(m, NULL);
     for (int mode = 1; mode <= 2; mode++)
         for (int bright = 0; bright <= 1; bright++) {
             sss_gl_param_value p[2] = {{"filtered_layers", mode}, {"brightening", bright}};

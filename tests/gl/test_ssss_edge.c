@@ -28,8 +28,6 @@
  * red's tap positions. Bounds: N = 7 within 0.1 (2/3 of one tap's 1/7), N = 25 within 0.045 (1/25 plus
  * that one-column effect), and the error must fall below 0.6 x the N = 7 error. Stochastic rotation is
  * off here: it redistributes the near taps per pixel (tested in test_ssss_props). */
-/* this file uses only some of the shared helpers */
-#pragma GCC diagnostic ignored "-Wunused-function"
 #include "gl_test_util.h"
 #include "sss/profile.h"
 

@@ -16,8 +16,6 @@
  *  - masking: pixels outside every subsurface object (a diffuse wall behind a subsurface sphere) are
  *    exactly the reflected light of the shared illumination pass, also right next to the sphere, and
  *    the SSS sum is zero there; pixels on the sphere do change. */
-/* this file uses only some of the shared helpers */
-#pragma GCC diagnostic ignored "-Wunused-function"
 #include "gl_test_util.h"
 
 #define N 128

@@ -21,8 +21,6 @@
  * as the SSSS reference code) ssss measures 0.041 at this size, below maisch2020's 0.052, whose
  * quarter-resolution translucency is only 32 x 32 pixels at 128 px: seed 000's full ordering (against
  * ssss with transmittance too) is asserted at 256 x 256 by test_ordering.c. */
-/* this file uses only some of the shared helpers */
-#pragma GCC diagnostic ignored "-Wunused-function"
 #include "gl_test_util.h"
 
 typedef struct row {
