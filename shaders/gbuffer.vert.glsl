@@ -1,5 +1,7 @@
 #version 450 core
 // G-buffer vertex stage: the animation deforms every vertex here each frame (no precomputation).
+// With LIGHT_VIEW it projects with a light's view-projection instead (chen2012's light-view G-buffer,
+// the "translucent shadow map").
 #include "common.glsl"
 
 layout(location = 0) in vec3 a_pos;
@@ -7,6 +9,9 @@ layout(location = 1) in vec3 a_nrm;
 layout(location = 2) in vec2 a_uv;
 
 uniform int u_object;
+#ifdef LIGHT_VIEW
+uniform mat4 u_light_vp;
+#endif
 
 out vec3 v_pos;
 out vec3 v_nrm;
@@ -20,5 +25,9 @@ void main()
     v_pos = wp;
     v_nrm = wn;
     v_uv = a_uv;
+#ifdef LIGHT_VIEW
+    gl_Position = u_light_vp * vec4(wp, 1.0);
+#else
     gl_Position = u_view_proj * vec4(wp, 1.0);
+#endif
 }
