@@ -229,26 +229,32 @@ float shadow_visibility(Light L, vec3 p, vec3 ng)
     return texture(u_shadow_2d, vec4(uv, L.spot.w, ref));
 }
 
+// Irradiance at p from light L on a surface facing it (no cosine, no shadow): inverse square, spot
+// falloff and a virtual light's emission cosine; l receives the direction to the light.
+vec3 light_incident(Light L, vec3 p, out vec3 l)
+{
+    int type = int(L.position.w + 0.5);
+    if (type == 2) {
+        l = -L.direction.xyz;
+        return L.color.rgb;
+    }
+    vec3 d = L.position.xyz - p;
+    float d2 = max(dot(d, d), 1e-20);
+    l = d * inversesqrt(d2);
+    vec3 E = L.color.rgb / d2;
+    if (type == 1) E *= spot_falloff(L, -l);
+    if (type == 3) {
+        float ce = dot(L.direction.xyz, -l);
+        E *= L.direction.w > 0.5 ? abs(ce) : max(ce, 0.0);
+    }
+    return E;
+}
+
 // Irradiance at p (normal n) from light i, shadows included; l receives the direction to the light.
 vec3 light_irradiance(int i, vec3 p, vec3 n, out vec3 l)
 {
     Light L = lights[i];
-    int type = int(L.position.w + 0.5);
-    vec3 E;
-    if (type == 2) {
-        l = -L.direction.xyz;
-        E = L.color.rgb;
-    } else {
-        vec3 d = L.position.xyz - p;
-        float d2 = max(dot(d, d), 1e-20);
-        l = d * inversesqrt(d2);
-        E = L.color.rgb / d2;
-        if (type == 1) E *= spot_falloff(L, -l);
-        if (type == 3) {
-            float ce = dot(L.direction.xyz, -l);
-            E *= L.direction.w > 0.5 ? abs(ce) : max(ce, 0.0);
-        }
-    }
+    vec3 E = light_incident(L, p, l);
     float cos_l = dot(n, l);
     if (cos_l <= 0.0 || max(E.r, max(E.g, E.b)) <= 0.0) return vec3(0.0);
     return E * cos_l * shadow_visibility(L, p, n);

@@ -66,22 +66,8 @@ void main()
         vec3 tr = vec3(0.0);
         for (int i = 0; i < u_counts.y; i++) {
             Light L = lights[i];
-            int type = int(L.position.w + 0.5);
-            vec3 l, E;
-            if (type == 2) {
-                l = -L.direction.xyz;
-                E = L.color.rgb;
-            } else {
-                vec3 d = L.position.xyz - p;
-                float d2 = max(dot(d, d), 1e-20);
-                l = d * inversesqrt(d2);
-                E = L.color.rgb / d2;
-                if (type == 1) E *= spot_falloff(L, -l);
-                if (type == 3) {
-                    float ce = dot(L.direction.xyz, -l);
-                    E *= L.direction.w > 0.5 ? abs(ce) : max(ce, 0.0);
-                }
-            }
+            vec3 l;
+            vec3 E = light_incident(L, p, l);
             float c = clamp(0.3 + dot(l, -n), 0.0, 1.0); // SSSS reference: the back's cosine
             if (c <= 0.0 || max(E.r, max(E.g, E.b)) <= 0.0) continue;
             float s = thickness(L, p, n);
