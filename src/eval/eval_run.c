@@ -113,6 +113,29 @@ static sss_result add_result(run_state *st, const sss_eval_entry *e)
     return SSS_OK;
 }
 
+/* Renders technique i on the view of scene si at one size into a fresh entry e of the given kind
+ * (frames, timings, image; the progress advances by its work). */
+static sss_result run_entry(run_state *st, const sss_scene *view, int si, int i, sss_eval_size size, sss_eval_kind kind,
+                            sss_eval_entry *e)
+{
+    const sss_eval_scene *es = &st->res->scenes[si];
+    memset(e, 0, sizeof *e);
+    e->scene = si;
+    e->kind = kind;
+    snprintf(e->label, sizeof e->label, "%s", st->res->labels[i]);
+    snprintf(e->technique, sizeof e->technique, "%s", st->specs[i].name);
+    e->width = size.width;
+    e->height = size.height;
+    char stage[256];
+    snprintf(stage, sizeof stage, "%.100s %dx%d%s: %.120s", es->name, size.width, size.height,
+             kind == SSS_EVAL_TIMING ? " (timing)" : "", e->label);
+    st->prog.step = (st->rc.frames + 1.0) * size.width * size.height;
+    sss_result r = eval_run_technique(&st->rc, view, es->time, &st->specs[i], st->specs[i].param_count, st->rc.frames, e,
+                                      stage);
+    eval_progress_finish_step(&st->prog);
+    return r;
+}
+
 static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size size, sss_error *err)
 {
     sss_eval_results *res = st->res;
@@ -129,18 +152,7 @@ static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size s
     if (r != SSS_OK) return r;
     sss_eval_entry e;
     for (int i = 0; i < res->label_count; i++) {
-        memset(&e, 0, sizeof e);
-        e.scene = si;
-        e.kind = SSS_EVAL_QUALITY;
-        snprintf(e.label, sizeof e.label, "%s", res->labels[i]);
-        snprintf(e.technique, sizeof e.technique, "%s", st->specs[i].name);
-        e.width = size.width;
-        e.height = size.height;
-        char stage[256];
-        snprintf(stage, sizeof stage, "%.100s %dx%d: %.120s", es->name, size.width, size.height, e.label);
-        st->prog.step = (st->rc.frames + 1.0) * size.width * size.height;
-        r = eval_run_technique(&st->rc, &view, es->time, &st->specs[i], st->specs[i].param_count, st->rc.frames, &e, stage);
-        eval_progress_finish_step(&st->prog);
+        r = run_entry(st, &view, si, i, size, SSS_EVAL_QUALITY, &e);
         if (r == SSS_OK && e.ok && ref.pixels) {
             sss_error cerr = {0};
             sss_image map = {0};
@@ -215,24 +227,12 @@ static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size s
 static sss_result run_timing_size(run_state *st, int si, sss_eval_size size, sss_error *err)
 {
     sss_eval_results *res = st->res;
-    sss_eval_scene *es = &res->scenes[si];
     sss_scene view;
     sss_result r = sized_view(&st->scenes[si], size.width, size.height, &view, err);
     if (r != SSS_OK) return r;
     for (int i = 0; i < res->label_count; i++) {
         sss_eval_entry e;
-        memset(&e, 0, sizeof e);
-        e.scene = si;
-        e.kind = SSS_EVAL_TIMING;
-        snprintf(e.label, sizeof e.label, "%s", res->labels[i]);
-        snprintf(e.technique, sizeof e.technique, "%s", st->specs[i].name);
-        e.width = size.width;
-        e.height = size.height;
-        char stage[256];
-        snprintf(stage, sizeof stage, "%.100s %dx%d (timing): %.120s", es->name, size.width, size.height, e.label);
-        st->prog.step = (st->rc.frames + 1.0) * size.width * size.height;
-        r = eval_run_technique(&st->rc, &view, es->time, &st->specs[i], st->specs[i].param_count, st->rc.frames, &e, stage);
-        eval_progress_finish_step(&st->prog);
+        r = run_entry(st, &view, si, i, size, SSS_EVAL_TIMING, &e);
         sss_image_free(&e.image);
         if (r == SSS_OK) r = add_result(st, &e);
         if (r != SSS_OK) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
