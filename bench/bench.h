@@ -7,12 +7,6 @@
 
 #include "sss/common.h"
 
-static int bench_cmp_(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* Times fn(ctx) runs times; returns the median in milliseconds and prints one line. */
 static double bench_run(const char *label, int runs, void (*fn)(void *), void *ctx)
 {
@@ -23,8 +17,7 @@ static double bench_run(const char *label, int runs, void (*fn)(void *), void *c
         fn(ctx);
         ms[i] = 1e3 * (sss_time_seconds() - t0);
     }
-    qsort(ms, (size_t)runs, sizeof(double), bench_cmp_);
-    double median = runs % 2 ? ms[runs / 2] : 0.5 * (ms[runs / 2 - 1] + ms[runs / 2]);
+    double median = sss_median(ms, runs); /* sorts ms: ms[0] and ms[runs - 1] are min and max */
     printf("%-44s median %9.3f ms  min %9.3f  max %9.3f  (%d runs)\n", label, median, ms[0],
            ms[runs - 1], runs);
     free(ms);

@@ -18,18 +18,6 @@
 #define MAX_SIZES 8
 #define MAX_PARAMS 32
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median_of(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 static int run(sss_gl_context *ctx, const sss_scene *scene, const char *technique, int w, int h, int frames,
                const sss_gl_param_value *params, int nparams)
 {
@@ -72,10 +60,10 @@ static int run(sss_gl_context *ctx, const sss_scene *scene, const char *techniqu
     sss_gl_renderer_stats(r, &st);
     double med[SSS_GL_MAX_PASSES], screen = 0.0;
     for (int p = 0; p < npass; p++) {
-        med[p] = median_of(ms[p], frames);
+        med[p] = sss_median(ms[p], frames);
         if (strcmp(names[p], "screen_space") == 0) screen = med[p];
     }
-    double tot = median_of(total, frames);
+    double tot = sss_median(total, frames);
     printf("\n%s %dx%d, %d frames (+1 warm-up), %s; setup (upload, LUTs, programs) %.0f ms\n",
            technique ? technique : scene->render.technique, w, h, frames, t.method, 1e3 * setup);
     printf("  %-16s %12s %14s\n", "pass", "median ms", "/ screen_space");

@@ -97,8 +97,7 @@ static void passes(int frames)
         double total = 0.0, sam_total = 0.0;
         printf("technique sam, 960x540, back-lit dragon, median of %d frames (glFinish + monotonic clock):\n", frames);
         for (int p = 0; p < np; p++) {
-            qsort(ms[p], (size_t)frames, sizeof(double), bench_cmp_);
-            double med = frames % 2 ? ms[p][frames / 2] : 0.5 * (ms[p][frames / 2 - 1] + ms[p][frames / 2]);
+            double med = sss_median(ms[p], frames);
             printf("  %-16s %9.2f ms\n", names[p], med);
             total += med;
             if (strncmp(names[p], "sam_", 4) == 0) sam_total += med;

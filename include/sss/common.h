@@ -48,6 +48,10 @@ const char *sss_result_string(sss_result code);
 /* Monotonic clock in seconds, for timings printed by tools and benchmarks. */
 double sss_time_seconds(void);
 
+/* The median of count values (the mean of the middle two for an even count; 0 for count <= 0). Sorts
+ * values in place (ascending), so values[0] and values[count - 1] are then the extremes. */
+double sss_median(double *values, int count);
+
 #ifdef __cplusplus
 }
 #endif

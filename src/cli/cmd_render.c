@@ -50,19 +50,6 @@ static void print_usage(FILE *f)
             "Exit status: 0 success, 1 error (scene, GL, output), 2 usage error.\n");
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    if (n <= 0) return 0.0;
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 /* Frame file name: a printf pattern with one %d, else "_%04d" inserted before the extension. */
 static int frame_path(const char *out, int k, char *buf, size_t cap)
 {
@@ -118,7 +105,7 @@ static sss_result write_timings_json(const char *path, const char *technique, in
         else if ((unsigned char)*c >= 0x20) fputc(*c, f);
     fprintf(f, "\",\n  \"passes\": [\n");
     for (int i = 0; i < npass; i++)
-        fprintf(f, "    {\"name\": \"%s\", \"median_ms\": %.4f}%s\n", ps[i].name, median(ps[i].ms, ps[i].count),
+        fprintf(f, "    {\"name\": \"%s\", \"median_ms\": %.4f}%s\n", ps[i].name, sss_median(ps[i].ms, ps[i].count),
                 i + 1 < npass ? "," : "");
     fprintf(f, "  ],\n  \"total_median_ms\": %.4f\n}\n", total);
     return sss_atomic_close(f, tmp, path, err);
@@ -324,7 +311,7 @@ int sss_cmd_render(int argc, char **argv)
     if (rdesc.timings && npass > 0) {
         sss_gl_context_info info;
         sss_gl_context_get_info(ctx, &info);
-        double total = median(totals, frames);
+        double total = sss_median(totals, frames);
         if (timings) {
             printf("technique %s, %dx%d, %d frame%s, %s on %s\n", sss_gl_technique_find(technique ? technique
                                                                                                  : scene.render.technique)
@@ -336,7 +323,7 @@ int sss_cmd_render(int argc, char **argv)
                 double *copy = malloc(sizeof(double) * (size_t)ps[j].count);
                 if (!copy) continue;
                 memcpy(copy, ps[j].ms, sizeof(double) * (size_t)ps[j].count);
-                printf("%-20s %12.3f\n", ps[j].name, median(copy, ps[j].count));
+                printf("%-20s %12.3f\n", ps[j].name, sss_median(copy, ps[j].count));
                 free(copy);
             }
             printf("%-20s %12.3f\n", "total", total);

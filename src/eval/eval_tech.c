@@ -38,21 +38,6 @@ void eval_note(eval_progress *p, const char *fmt, ...)
     p->cb->note(p->cb->user, msg);
 }
 
-/* ---- Timing statistics ------------------------------------------------------------------------ */
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    if (n <= 0) return 0.0;
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 /* ---- One technique at one size ----------------------------------------------------------------- */
 
 void eval_fail_entry(sss_eval_entry *e, const char *msg)
@@ -130,12 +115,12 @@ sss_result eval_run_technique(eval_gl *rc, const sss_scene *view, double t, cons
     if (ok) ok = sss_gl_renderer_read(r, &img, &err) == SSS_OK;
     if (ok) {
         e->ok = 1;
-        e->total_ms = median(totals, frames);
+        e->total_ms = sss_median(totals, frames);
         e->pass_count = npass;
         for (int j = 0; j < npass; j++) {
             snprintf(e->passes[j].name, sizeof e->passes[j].name, "%s", names[j]);
             /* frames in which the pass did not run count as 0 ms */
-            e->passes[j].ms = median(series + (size_t)j * (size_t)frames, frames);
+            e->passes[j].ms = sss_median(series + (size_t)j * (size_t)frames, frames);
         }
         sss_gl_renderer_stats(r, &e->stats);
         e->has_stats = 1;
