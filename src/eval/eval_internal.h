@@ -107,5 +107,7 @@ const sss_eval_entry *eval_find(const sss_eval_results *res, int scene, sss_eval
 void eval_sheet_file(const sss_eval_scene *s, char *out, size_t cap);
 /* The scene's first quality size (its camera size when no references were planned). */
 void eval_primary_size(const sss_eval_results *res, int scene, int *width, int *height);
+/* Creates the folder dir and its missing parents (mkdir -p); errors name the folder. */
+sss_result eval_make_dirs(const char *dir, sss_error *err);
 
 #endif

@@ -2,12 +2,10 @@
  * against the scene file's hash in its .json sidecar), or a fresh sss_reference_render that can be
  * saved for committing (half-float EXR + sidecar). */
 #include <cjson/cJSON.h>
-#include <errno.h>
 #include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "core/file_util.h"
@@ -64,24 +62,6 @@ static sss_result write_sidecar(const char *exr, const sss_eval_scene *es, int w
             slash ? slash + 1 : es->path, eval_file_hash(es->path), w, h, es->time, quality, seconds,
             slash ? slash + 1 : es->path, tflag, quality);
     return sss_atomic_close(f, tmp, path, err);
-}
-
-static sss_result make_dir(const char *dir, sss_error *err)
-{
-    char buf[1024];
-    size_t n = strlen(dir);
-    if (n == 0 || n >= sizeof buf) return sss_error_set(err, SSS_ERROR_LIMIT, "folder name too long: %s", dir);
-    memcpy(buf, dir, n + 1);
-    for (size_t i = 1; i <= n; i++) {
-        if (buf[i] == '/' || buf[i] == '\0') {
-            char c = buf[i];
-            buf[i] = '\0';
-            if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-                return sss_error_set(err, SSS_ERROR_IO, "cannot create folder %s: %s", buf, strerror(errno));
-            buf[i] = c;
-        }
-    }
-    return SSS_OK;
 }
 
 typedef struct ref_fwd {
@@ -171,7 +151,7 @@ sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const
         if (!sss_eval_reference_path(desc->save_references_dir, es->stem, w, h, es->has_time, es->time, path,
                                      sizeof path))
             return sss_error_set(err, SSS_ERROR_LIMIT, "%s: reference path too long", desc->save_references_dir);
-        sss_result r = make_dir(desc->save_references_dir, err);
+        sss_result r = eval_make_dirs(desc->save_references_dir, err);
         if (r != SSS_OK) return r;
         /* Half floats keep the committed files small; a value beyond the half range falls back to float. */
         r = sss_image_write_exr(path, img, 1, err);

@@ -1,13 +1,11 @@
 /* eval/eval_report.c — report.html: one self-contained page (PNG images as base64 data URIs, inline
  * CSS, no scripts, no external references) with the summary, the comparison sheets, the plots and
  * the tables of results.json; and sss_eval_write_all, which writes every output of a run. */
-#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "core/file_util.h"
 #include "eval/eval_internal.h"
@@ -339,27 +337,10 @@ sss_result sss_eval_write_report(const sss_eval_results *res, const char *out_di
     return sss_atomic_close(f, tmp, path, err);
 }
 
-static sss_result make_dirs(const char *dir, sss_error *err)
-{
-    char buf[1024];
-    size_t n = strlen(dir);
-    if (n == 0 || n >= sizeof buf) return sss_error_set(err, SSS_ERROR_LIMIT, "output folder name too long");
-    memcpy(buf, dir, n + 1);
-    for (size_t i = 1; i <= n; i++)
-        if (buf[i] == '/' || buf[i] == '\0') {
-            char c = buf[i];
-            buf[i] = '\0';
-            if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-                return sss_error_set(err, SSS_ERROR_IO, "cannot create folder %s: %s", buf, strerror(errno));
-            buf[i] = c;
-        }
-    return SSS_OK;
-}
-
 sss_result sss_eval_write_all(const sss_eval_results *res, const char *out_dir, sss_error *err)
 {
     if (!res || !out_dir) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_eval_write_all: bad arguments");
-    sss_result r = make_dirs(out_dir, err);
+    sss_result r = eval_make_dirs(out_dir, err);
     char path[2048];
     if (r == SSS_OK) {
         snprintf(path, sizeof path, "%s/results.json", out_dir);

@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <sys/stat.h>
+
 #include "eval/eval_internal.h"
 
 const char *sss_eval_kind_name(sss_eval_kind kind)
@@ -208,4 +210,23 @@ void eval_sheet_file(const sss_eval_scene *s, char *out, size_t cap)
 {
     if (s->has_time) snprintf(out, cap, "sheet_%s_t%g.png", s->stem, s->time);
     else snprintf(out, cap, "sheet_%s.png", s->stem);
+}
+
+/* mkdir -p (eval_internal.h). */
+sss_result eval_make_dirs(const char *dir, sss_error *err)
+{
+    char buf[1024];
+    size_t n = strlen(dir);
+    if (n == 0 || n >= sizeof buf) return sss_error_set(err, SSS_ERROR_LIMIT, "folder name too long: %s", dir);
+    memcpy(buf, dir, n + 1);
+    for (size_t i = 1; i <= n; i++) {
+        if (buf[i] == '/' || buf[i] == '\0') {
+            char c = buf[i];
+            buf[i] = '\0';
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+                return sss_error_set(err, SSS_ERROR_IO, "cannot create folder %s: %s", buf, strerror(errno));
+            buf[i] = c;
+        }
+    }
+    return SSS_OK;
 }
