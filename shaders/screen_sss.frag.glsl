@@ -42,6 +42,13 @@ vec2 level_coord(vec2 sp, float texel, ivec2 size, ivec2 size0)
     return mix(sp / texel, folded, greaterThan(sp, c_prev));
 }
 
+// Whether a (premultiplied) mip texel holds surface of object id: some area, and an area-weighted id
+// equal to it (mip_reduce keeps one object per texel; a filtered read may mix two).
+bool same_object(vec4 P, vec4 I, float id)
+{
+    return P.w > 0.0 && abs(I.w / P.w - id) <= 0.01;
+}
+
 // One outer sample: F_t E A R'_d(r, A) (Eq. 6) for a patch of area a (already scaled to the cell)
 // with mean position pos and mean irradiance irr. The cell lies outside the previous layer's square
 // (Chebyshev distance >= d_(i-1) / 2 pixels), so its points, and their mean, are at least that far
@@ -108,12 +115,13 @@ void main()
                 vec2 lo = max(sp - 0.5 * w, vec2(0.0)), hi = min(sp + 0.5 * w, vec2(size0));
                 if (any(lessThanEqual(hi, lo))) continue;
                 float cover = (hi.x - lo.x) * (hi.y - lo.y) / (w * w);
+                float to_cell = area_scale * cover; // a texel's area -> this sample's
                 sp = 0.5 * (lo + hi);
                 if (level == 0) {
                     vec4 P = texelFetch(t_pos, ivec2(sp), 0);
                     vec4 I = texelFetch(t_irr, ivec2(sp), 0);
                     if (I.w != id || P.w <= 0.0) continue;
-                    layer_sum += cell(L, xo, P.xyz, I.rgb, P.w * area_scale * cover, d_prev);
+                    layer_sum += cell(L, xo, P.xyz, I.rgb, P.w * to_cell, d_prev);
 #ifdef PER_TEXEL_READS
                 } else if (u_filtered == 2) {
                     // Bilinear weights on the four texels. Where their mean positions agree (each
@@ -134,7 +142,7 @@ void main()
                         wk[c] = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
                         Pk[c] = texelFetch(t_pos, q, level);
                         Ik[c] = texelFetch(t_irr, q, level);
-                        if (Pk[c].w <= 0.0 || abs(Ik[c].w / Pk[c].w - id) > 0.01) wk[c] = 0.0;
+                        if (!same_object(Pk[c], Ik[c], id)) wk[c] = 0.0;
                         Pf += wk[c] * Pk[c];
                         If += wk[c] * Ik[c];
                     }
@@ -144,30 +152,26 @@ void main()
                     for (int c = 0; c < 4; c++)
                         if (wk[c] > 0.0 && distance(Pk[c].xyz / Pk[c].w, mean) > sqrt(Pk[c].w)) one_surface = false;
                     if (one_surface) {
-                        layer_sum += cell(L, xo, mean, If.rgb / Pf.w, Pf.w * area_scale * cover, d_prev);
+                        layer_sum += cell(L, xo, mean, If.rgb / Pf.w, Pf.w * to_cell, d_prev);
                     } else {
                         for (int c = 0; c < 4; c++)
                             if (wk[c] > 0.0)
                                 layer_sum += wk[c] * cell(L, xo, Pk[c].xyz / Pk[c].w, Ik[c].rgb / Pk[c].w,
-                                                          Pk[c].w * area_scale * cover, d_prev);
+                                                          Pk[c].w * to_cell, d_prev);
                     }
 #endif
                 } else if (u_filtered == 1) {
                     // bilinear within the level: premultiplied sums, so the filtered means are
                     // area-weighted and background texels drop out
                     vec2 uv = level_coord(sp, texel, size, size0) / vec2(size);
-                    vec4 P = textureLod(t_pos, uv, float(level));
-                    if (P.w <= 0.0) continue;
-                    vec4 I = textureLod(t_irr, uv, float(level));
-                    if (abs(I.w / P.w - id) > 0.01) continue; // another object in the footprint
-                    layer_sum += cell(L, xo, P.xyz / P.w, I.rgb / P.w, P.w * area_scale * cover, d_prev);
+                    vec4 P = textureLod(t_pos, uv, float(level)), I = textureLod(t_irr, uv, float(level));
+                    if (!same_object(P, I, id)) continue;
+                    layer_sum += cell(L, xo, P.xyz / P.w, I.rgb / P.w, P.w * to_cell, d_prev);
                 } else {
                     ivec2 q = min(ivec2(floor(level_coord(sp, texel, size, size0))), size - 1);
-                    vec4 P = texelFetch(t_pos, q, level);
-                    if (P.w <= 0.0) continue;
-                    vec4 I = texelFetch(t_irr, q, level);
-                    if (abs(I.w / P.w - id) > 0.01) continue;
-                    layer_sum += cell(L, xo, P.xyz / P.w, I.rgb / P.w, P.w * area_scale * cover, d_prev);
+                    vec4 P = texelFetch(t_pos, q, level), I = texelFetch(t_irr, q, level);
+                    if (!same_object(P, I, id)) continue;
+                    layer_sum += cell(L, xo, P.xyz / P.w, I.rgb / P.w, P.w * to_cell, d_prev);
                 }
             }
         sum += bright * layer_sum;
