@@ -2,7 +2,8 @@
  *
  * Does: the classical dipole (Jensen et al. 2001; seed 004, Table 1) with its closed-form total
  * reflectance and exact importance sampling (seed 004, section 4); the Photon Beam Diffusion table
- * exactly as PBRT-v3 builds and evaluates it (FACTS.md 2.2); the six-Gaussian skin fit (d'Eon 2007)
+ * exactly as PBRT-v3 builds and evaluates it (FACTS.md 2.2), except that rows whose rho_eff PBRT lets
+ * exceed 1 (albedo near 1 with eta near 1 or g < 0) are scaled to conserve energy; the six-Gaussian skin fit (d'Eon 2007)
  * and the artist-friendly two-Gaussian model (seed 002, Eq. 6, Table 2).
  * Does not: directional terms (Fresnel factors and 1/pi live with the caller), GL, allocation
  * (sss_pbd_table is a plain struct the caller owns).

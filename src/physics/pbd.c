@@ -2,10 +2,12 @@
  * PBRT-v3 does (FACTS.md 2.2; pbrt-v3 core/bssrdf.cpp: BeamDiffusionMS, BeamDiffusionSS,
  * ComputeBeamDiffusionBSSRDF, TabulatedBSSRDF::Sr / Sample_Sr / Pdf_Sr, SubsurfaceFromDiffuse).
  *
- * Differences from PBRT, none of which changes a value beyond float rounding: double precision; the
- * 100 depth samples -ln(1 - (i + 0.5)/100) are computed once per build; the single-scattering term
- * is computed once per radius and scaled by rho (in optical units sigma_t = 1, so BeamDiffusionSS is
- * exactly rho times a function of r alone); S_r(0) returns the r -> 0+ limit (see sss_pbd_sr). */
+ * One difference in value: where PBRT's rho_eff exceeds 1, the rows nearest albedo 1 are scaled to
+ * conserve energy (see conserve_energy). The others change no value beyond float rounding: double
+ * precision; the 100 depth samples -ln(1 - (i + 0.5)/100) are computed once per build; the
+ * single-scattering term is computed once per radius and scaled by rho (in optical units sigma_t = 1,
+ * so BeamDiffusionSS is exactly rho times a function of r alone); S_r(0) returns the r -> 0+ limit
+ * (see sss_pbd_sr). */
 #include "sss/profile.h"
 
 #include <math.h>
@@ -79,6 +81,30 @@ static double multiple_scattering(const ms_params *p, double r, const double *de
     return sum / N_SAMPLES;
 }
 
+/* Energy conservation. With no absorption (albedo 1) every photon that enters a half-space leaves it
+ * again, so the plane integral of S_r is exactly 1 there and below 1 for any albedo < 1. PBRT's sum of
+ * single scattering and the diffusion term overshoots near albedo 1 (rho_eff 1.085 at eta 1, 1.019 at
+ * eta 1.33, FACTS.md 1). When it does, rows above x0 = 2 - rho_max are remapped to
+ * x0 + (rho_eff - x0) / 2: continuous, still strictly rising with the albedo (so SubsurfaceFromDiffuse
+ * stays invertible), exactly 1 at albedo 1. Each remapped row keeps its shape (profile and CDF are
+ * scaled together, so sampling is unchanged); every row at or below x0 is PBRT's exactly, which covers
+ * albedos up to 0.9998 at eta 1.33 and 0.995 at eta 1 (g = 0). */
+static void conserve_energy(sss_pbd_table *t)
+{
+    double rho_max = t->rho_eff[SSS_PBD_ALBEDOS - 1]; /* rho_eff rises with the albedo */
+    if (!(rho_max > 1.0)) return;
+    double x0 = 2.0 - rho_max;
+    for (int i = 0; i < SSS_PBD_ALBEDOS; i++) {
+        if (!(t->rho_eff[i] > x0)) continue;
+        double target = x0 + 0.5 * (t->rho_eff[i] - x0), s = target / t->rho_eff[i];
+        for (int j = 0; j < SSS_PBD_RADII; j++) {
+            t->profile[i * SSS_PBD_RADII + j] *= s;
+            t->profile_cdf[i * SSS_PBD_RADII + j] *= s;
+        }
+        t->rho_eff[i] = target;
+    }
+}
+
 sss_result sss_pbd_table_build(double eta, double g, sss_pbd_table *t, sss_error *err)
 {
     if (!t) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "PBD table is NULL");
@@ -130,6 +156,7 @@ sss_result sss_pbd_table_build(double eta, double g, sss_pbd_table *t, sss_error
         /* rho_eff and the CDF for sampling (IntegrateCatmullRom). */
         t->rho_eff[i] = cr_integrate(SSS_PBD_RADII, t->radius, row, &t->profile_cdf[i * SSS_PBD_RADII]);
     }
+    conserve_energy(t);
     return SSS_OK;
 }
 
