@@ -163,6 +163,8 @@ typedef struct gl_scene {
     float bounds_min[3], bounds_max[3]; /* world bounds of all objects at rest */
     GLuint env_tex;               /* the first environment map (RGB32F), background of camera rays */
     float env_rotate_y, env_scale[3];
+    struct gl_env_cache *env_cache; /* each environment map read once, downsampled (lights.c) */
+    int env_cache_count;
     size_t texture_bytes, buffer_bytes, lut_bytes;
     unsigned splat_total;
     int splats_ready;
@@ -291,6 +293,7 @@ void gl_bind_scene(const sss_gl_renderer *r); /* SSBOs, LUT, shadow and albedo s
 sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err);
 /* Rewrites the light records from the scene's lights (same count, kinds and shadow slots). */
 sss_result gl_lights_update(sss_gl_renderer *r, sss_error *err);
+void gl_env_cache_free(gl_scene *gs); /* the environment maps read by gl_lights_build */
 sss_result gl_shadows_render(sss_gl_renderer *r, sss_error *err);
 /* frame.c */
 sss_result gl_frame_create(gl_frame *f, int width, int height, int normal_mips, sss_error *err);

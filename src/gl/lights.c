@@ -144,81 +144,133 @@ static int split_region(const env_map *e, env_region r, env_region *a, env_regio
     return 1;
 }
 
-/* Reads and downsamples (box filter) the map; lum and rgb include the pixel's solid angle. */
-static sss_result env_load(const sss_light *L, env_map *e, sss_error *err)
+/* An environment map as read once per renderer: the file downsampled (box filter) to at most
+ * ENV_MAX_WIDTH columns, radiance x the cell's exact solid angle, before the light's scale. Light
+ * updates re-cut it (scale and rotation may change) without reading the file again. */
+struct gl_env_cache {
+    char *file;
+    int w, h;
+    double *rgb;
+};
+
+static sss_result env_downsample(const sss_image *img, struct gl_env_cache *c, sss_error *err)
 {
-    sss_image img;
-    sss_result res = sss_image_read(L->file, &img, err);
-    if (res != SSS_OK) return res;
     int f = 1;
-    while (img.width / f > ENV_MAX_WIDTH) f *= 2;
-    e->w = img.width / f > 0 ? img.width / f : 1;
-    e->h = img.height / f > 0 ? img.height / f : 1;
-    e->lum = calloc((size_t)e->w * e->h, sizeof *e->lum);
-    e->rgb = calloc((size_t)e->w * e->h * 3, sizeof *e->rgb);
-    e->sum = calloc(((size_t)e->w + 1) * ((size_t)e->h + 1), sizeof *e->sum);
-    if (!e->lum || !e->rgb || !e->sum) {
-        sss_image_free(&img);
-        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (environment map)");
-    }
-    for (int y = 0; y < e->h; y++) {
-        double th0 = M_PI * y / e->h, th1 = M_PI * (y + 1) / e->h;
-        double domega = (cos(th0) - cos(th1)) * 2.0 * M_PI / e->w; /* exact solid angle of the cell */
-        for (int x = 0; x < e->w; x++) {
-            double c[3] = {0, 0, 0};
+    while (img->width / f > ENV_MAX_WIDTH) f *= 2;
+    c->w = img->width / f > 0 ? img->width / f : 1;
+    c->h = img->height / f > 0 ? img->height / f : 1;
+    c->rgb = calloc((size_t)c->w * c->h * 3, sizeof *c->rgb);
+    if (!c->rgb) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (environment map)");
+    for (int y = 0; y < c->h; y++) {
+        double th0 = M_PI * y / c->h, th1 = M_PI * (y + 1) / c->h;
+        double domega = (cos(th0) - cos(th1)) * 2.0 * M_PI / c->w; /* exact solid angle of the cell */
+        for (int x = 0; x < c->w; x++) {
+            double sum[3] = {0, 0, 0};
             int n = 0;
             for (int j = 0; j < f; j++)
                 for (int i = 0; i < f; i++) {
                     int sx = x * f + i, sy = y * f + j;
-                    if (sx >= img.width || sy >= img.height) continue;
-                    const float *p = img.pixels + 3 * ((size_t)sy * img.width + sx);
-                    for (int k = 0; k < 3; k++) c[k] += isfinite(p[k]) && p[k] > 0.0f ? p[k] : 0.0;
+                    if (sx >= img->width || sy >= img->height) continue;
+                    const float *p = img->pixels + 3 * ((size_t)sy * img->width + sx);
+                    for (int k = 0; k < 3; k++) sum[k] += isfinite(p[k]) && p[k] > 0.0f ? p[k] : 0.0;
                     n++;
                 }
-            size_t idx = (size_t)y * e->w + x;
-            for (int k = 0; k < 3; k++) e->rgb[3 * idx + k] = c[k] / (n ? n : 1) * L->scale[k] * domega;
-            e->lum[idx] = 0.2126 * e->rgb[3 * idx] + 0.7152 * e->rgb[3 * idx + 1] + 0.0722 * e->rgb[3 * idx + 2];
+            size_t idx = (size_t)y * c->w + x;
+            for (int k = 0; k < 3; k++) c->rgb[3 * idx + k] = sum[k] / (n ? n : 1) * domega;
         }
     }
-    sss_image_free(&img);
-    size_t W = (size_t)e->w + 1;
-    for (int y = 0; y < e->h; y++)
-        for (int x = 0; x < e->w; x++)
-            e->sum[(size_t)(y + 1) * W + x + 1] = e->lum[(size_t)y * e->w + x] + e->sum[(size_t)y * W + x + 1] +
-                                                  e->sum[(size_t)(y + 1) * W + x] - e->sum[(size_t)y * W + x];
     return SSS_OK;
 }
 
 /* The first environment map at full resolution, for camera rays that miss (sss/reference.h). */
-static sss_result env_upload(gl_scene *gs, const sss_light *L, int max_size, sss_error *err)
+static sss_result env_upload(gl_scene *gs, const sss_light *L, sss_image *img, int max_size, sss_error *err)
 {
-    sss_image img;
-    sss_result res = sss_image_read(L->file, &img, err);
-    if (res != SSS_OK) return res;
-    if (img.width > max_size || img.height > max_size) {
-        sss_image_free(&img);
+    if (img->width > max_size || img->height > max_size)
         return sss_error_set(err, SSS_ERROR_LIMIT, "%s: environment map of %dx%d exceeds the GL texture limit %d",
-                             L->file, img.width, img.height, max_size);
-    }
-    for (size_t i = 0; i < (size_t)img.width * img.height * 3; i++)
-        if (!isfinite(img.pixels[i]) || img.pixels[i] < 0.0f) img.pixels[i] = 0.0f;
+                             L->file, img->width, img->height, max_size);
+    for (size_t i = 0; i < (size_t)img->width * img->height * 3; i++)
+        if (!isfinite(img->pixels[i]) || img->pixels[i] < 0.0f) img->pixels[i] = 0.0f;
     /* A full mip chain: the specular reflection of rough interfaces reads coarser levels. */
     int levels = 1;
-    while ((img.width >> levels) > 0 || (img.height >> levels) > 0) levels++;
+    while ((img->width >> levels) > 0 || (img->height >> levels) > 0) levels++;
     glCreateTextures(GL_TEXTURE_2D, 1, &gs->env_tex);
-    glTextureStorage2D(gs->env_tex, levels, GL_RGB32F, img.width, img.height);
+    glTextureStorage2D(gs->env_tex, levels, GL_RGB32F, img->width, img->height);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     /* row 0 of the texture = the top row of the image (v = 0), so no flip: the shader uses v directly */
-    glTextureSubImage2D(gs->env_tex, 0, 0, 0, img.width, img.height, GL_RGB, GL_FLOAT, img.pixels);
+    glTextureSubImage2D(gs->env_tex, 0, 0, 0, img->width, img->height, GL_RGB, GL_FLOAT, img->pixels);
     glGenerateTextureMipmap(gs->env_tex);
     glTextureParameteri(gs->env_tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTextureParameteri(gs->env_tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(gs->env_tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTextureParameteri(gs->env_tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    gs->texture_bytes += (size_t)img.width * img.height * 12 * 4 / 3; /* with its mip chain */
-    gs->env_rotate_y = (float)L->rotate_y;
-    for (int k = 0; k < 3; k++) gs->env_scale[k] = (float)L->scale[k];
+    gs->texture_bytes += (size_t)img->width * img->height * 12 * 4 / 3; /* with its mip chain */
+    return SSS_OK;
+}
+
+/* The light's map from the cache, reading (and, for the first map, uploading) it on first use. */
+static sss_result env_cached(sss_gl_renderer *r, const sss_light *L, const struct gl_env_cache **out,
+                             sss_error *err)
+{
+    gl_scene *gs = &r->gs;
+    for (int i = 0; i < gs->env_cache_count; i++)
+        if (strcmp(gs->env_cache[i].file, L->file) == 0) {
+            *out = &gs->env_cache[i];
+            return SSS_OK;
+        }
+    struct gl_env_cache *grown = realloc(gs->env_cache, (size_t)(gs->env_cache_count + 1) * sizeof *grown);
+    if (!grown) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (environment map)");
+    gs->env_cache = grown;
+    struct gl_env_cache c = {0};
+    sss_image img;
+    sss_result res = sss_image_read(L->file, &img, err);
+    if (res != SSS_OK) return res;
+    res = env_downsample(&img, &c, err);
+    if (res == SSS_OK && !gs->env_tex) res = env_upload(gs, L, &img, r->ctx->max_texture_size, err);
+    if (res == SSS_OK && !(c.file = strdup(L->file)))
+        res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (environment map)");
     sss_image_free(&img);
+    if (res != SSS_OK) {
+        free(c.rgb);
+        return res;
+    }
+    gs->env_cache[gs->env_cache_count] = c;
+    *out = &gs->env_cache[gs->env_cache_count++];
+    return SSS_OK;
+}
+
+void gl_env_cache_free(gl_scene *gs)
+{
+    for (int i = 0; i < gs->env_cache_count; i++) {
+        free(gs->env_cache[i].file);
+        free(gs->env_cache[i].rgb);
+    }
+    free(gs->env_cache);
+    gs->env_cache = NULL;
+    gs->env_cache_count = 0;
+}
+
+/* The light's map scaled, with luminance and its summed-area table for the median cut. */
+static sss_result env_load(sss_gl_renderer *r, const sss_light *L, env_map *e, sss_error *err)
+{
+    const struct gl_env_cache *c = NULL;
+    sss_result res = env_cached(r, L, &c, err);
+    if (res != SSS_OK) return res;
+    e->w = c->w;
+    e->h = c->h;
+    e->lum = calloc((size_t)e->w * e->h, sizeof *e->lum);
+    e->rgb = calloc((size_t)e->w * e->h * 3, sizeof *e->rgb);
+    e->sum = calloc(((size_t)e->w + 1) * ((size_t)e->h + 1), sizeof *e->sum);
+    if (!e->lum || !e->rgb || !e->sum)
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (environment map)");
+    for (size_t idx = 0; idx < (size_t)e->w * e->h; idx++) {
+        for (int k = 0; k < 3; k++) e->rgb[3 * idx + k] = c->rgb[3 * idx + k] * L->scale[k];
+        e->lum[idx] = 0.2126 * e->rgb[3 * idx] + 0.7152 * e->rgb[3 * idx + 1] + 0.0722 * e->rgb[3 * idx + 2];
+    }
+    size_t W = (size_t)e->w + 1;
+    for (int y = 0; y < e->h; y++)
+        for (int x = 0; x < e->w; x++)
+            e->sum[(size_t)(y + 1) * W + x + 1] = e->lum[(size_t)y * e->w + x] + e->sum[(size_t)y * W + x + 1] +
+                                                  e->sum[(size_t)(y + 1) * W + x] - e->sum[(size_t)y * W + x];
     return SSS_OK;
 }
 
@@ -304,11 +356,13 @@ static sss_result light_records(sss_gl_renderer *r, light_set *ls, sss_error *er
         if (L->type == SSS_LIGHT_ENVIRONMENT) {
             env_map e;
             memset(&e, 0, sizeof e);
-            sss_result res = gs->env_tex ? SSS_OK : env_upload(gs, L, r->ctx->max_texture_size, err);
-            /* rotation and scale may change after the upload (sss_gl_renderer_update_lights) */
-            gs->env_rotate_y = (float)L->rotate_y;
-            for (int k = 0; k < 3; k++) gs->env_scale[k] = (float)L->scale[k];
-            if (res == SSS_OK) res = env_load(L, &e, err);
+            sss_result res = env_load(r, L, &e, err);
+            /* the background shows the first map (cached first, uploaded); its rotation and scale may
+             * change after the upload (sss_gl_renderer_update_lights) */
+            if (res == SSS_OK && strcmp(gs->env_cache[0].file, L->file) == 0) {
+                gs->env_rotate_y = (float)L->rotate_y;
+                for (int k = 0; k < 3; k++) gs->env_scale[k] = (float)L->scale[k];
+            }
             if (res != SSS_OK) {
                 env_free(&e);
                 return res;

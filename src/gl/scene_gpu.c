@@ -437,6 +437,7 @@ void gl_scene_free(gl_scene *gs)
     free(gs->objects);
     free(gs->materials);
     free(gs->lights);
+    gl_env_cache_free(gs);
     delete_buffer(&gs->ssbo_objects);
     delete_buffer(&gs->ssbo_materials);
     delete_buffer(&gs->ssbo_lights);

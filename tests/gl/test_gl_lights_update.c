@@ -5,7 +5,10 @@
  * additive splatting sums in a different order from frame to frame and maisch2020 keeps the upsampled
  * translucency in half floats (2^-11 relative), so that two frames of one renderer differ by one
  * half-float step here and there (measured up to 8e-5 at a peak of 0.39; usually 0). A change of kind
- * is refused and leaves the renderer as it was. */
+ * is refused and leaves the renderer as it was. An environment map is read from its file once, when the
+ * renderer is built: updates re-cut the cached map (they work with the file gone). */
+#include <unistd.h>
+
 #include "gl_test_util.h"
 
 static int render_into(sss_gl_renderer *r, const sss_scene *scene, sss_image *out)
@@ -144,6 +147,58 @@ static void check_refused(void)
     sss_scene_free(&scene);
 }
 
+/* Copies `from` to `to`; 1 on success. */
+static int copy_file(const char *from, const char *to)
+{
+    FILE *a = fopen(from, "rb"), *b = a ? fopen(to, "wb") : NULL;
+    int ok = a && b;
+    char buf[65536];
+    size_t n;
+    while (ok && (n = fread(buf, 1, sizeof buf, a)) > 0) ok = fwrite(buf, 1, n, b) == n;
+    if (a) fclose(a);
+    if (b && fclose(b) != 0) ok = 0;
+    return ok;
+}
+
+/* The renderer reads an environment map once: with the file deleted after creation, a light update
+ * (rotation, scale) still works and renders as a new renderer made while the file existed. */
+static void check_env_read_once(void)
+{
+    sss_scene scene, edited;
+    if (!gt_load("gl_env.json", &scene) || !gt_load("gl_env.json", &edited)) {
+        CHECK(0);
+        return;
+    }
+    char dir[] = "/tmp/sss_env_once_XXXXXX", copy[64];
+    CHECK(mkdtemp(dir) != NULL);
+    snprintf(copy, sizeof copy, "%s/sky.hdr", dir);
+    CHECK(copy_file(scene.lights[0].file, copy));
+    free(scene.lights[0].file);
+    scene.lights[0].file = strdup(copy);
+    edit(&edited);
+    sss_gl_renderer *r = NULL, *fresh = NULL;
+    sss_error err = {0};
+    sss_image after = {0}, expect = {0};
+    CHECK_MSG(sss_gl_renderer_create(gt_ctx(), &scene, NULL, &r, &err) == SSS_OK, "%s", err.message);
+    CHECK(remove(copy) == 0 && rmdir(dir) == 0);
+    edit(&scene);
+    CHECK_MSG(r && sss_gl_renderer_update_lights(r, &err) == SSS_OK, "update without the file: %s", err.message);
+    CHECK(r && render_into(r, &scene, &after));
+    CHECK(sss_gl_renderer_create(gt_ctx(), &edited, NULL, &fresh, &err) == SSS_OK &&
+          render_into(fresh, &edited, &expect));
+    if (after.pixels && expect.pixels) {
+        double diff = max_diff(&after, &expect);
+        printf("environment updated with its file gone vs new renderer: %.3g\n", diff);
+        CHECK(diff <= 1e-3 * peak(&expect));
+    }
+    sss_image_free(&after);
+    sss_image_free(&expect);
+    sss_gl_renderer_destroy(r);
+    sss_gl_renderer_destroy(fresh);
+    sss_scene_free(&scene);
+    sss_scene_free(&edited);
+}
+
 int main(void)
 {
     sss_gl_param_value chen = {"buffer_size", 512}, mertens = {"light_view_size", 256};
@@ -155,5 +210,6 @@ int main(void)
     check("gl_spot.json", "mertens2003", &mertens, 1); /* light-view irradiance images */
     check("gl_backlit.json", "ssss", NULL, 0);       /* transmittance from the shadow maps */
     check_refused();
+    check_env_read_once();
     return CHECK_DONE();
 }
