@@ -12,7 +12,11 @@
 //    blocky copies of section 4.1); mip texels are sums
 //    normalised to 4^l pixels (mip_reduce.comp.glsl), so w^2 / 4^l scales any texel to a cell;
 //  - each sample adds F_t E A R'_d(|x_i - x_o|, A) (Eq. 6) with world-space distances, A the sample's
-//    surface area (the mip texel's area scaled to the cell), times sqrt(i) for layer i (section 6.1).
+//    surface area (the mip texel's area scaled to the cell), times sqrt(i) for layer i (section 6.1);
+//  - supersampling (u_supersample = k): the pattern's sizes count output pixels, k render pixels each,
+//    so layer i covers the same part of the image (and gets the same sqrt(i)) at every k: the inner
+//    kernel is the square of (2n + 1) output pixels, every render pixel in it one sample (the ones its
+//    edge cuts, for even k, with the covered fraction), and d_0 = k (2n + 1) render pixels.
 // The sum is written without the exit factor c_o, which the combination pass applies.
 #include "common.glsl"
 
@@ -26,6 +30,7 @@ uniform int u_brightening;
 uniform int u_preintegrated;
 uniform int u_filtered;
 uniform int u_screen_bound;
+uniform int u_supersample;
 
 layout(location = 0) out vec4 o_sum;
 
@@ -77,18 +82,23 @@ void main()
     float id = I0.w;
     ivec2 size0 = textureSize(t_pos, 0);
     vec3 sum = vec3(0.0);
-    for (int dy = -u_n; dy <= u_n; dy++)
-        for (int dx = -u_n; dx <= u_n; dx++) {
+    // the inner square's half-width h in render pixels (k = 1: n + 1/2, the (2n + 1)^2 pixels)
+    float h = float(max(u_supersample, 1)) * (float(u_n) + 0.5);
+    int reach = int(ceil(h - 0.5));
+    for (int dy = -reach; dy <= reach; dy++)
+        for (int dx = -reach; dx <= reach; dx++) {
             ivec2 q = px + ivec2(dx, dy);
             if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size0))) continue;
             vec4 P = texelFetch(t_pos, q, 0);
             vec4 I = texelFetch(t_irr, q, 0);
             if (I.w != id || P.w <= 0.0) continue;
             float r = length(P.xyz - xo);
-            sum += I.rgb * P.w * lut_eval(L, r, u_preintegrated != 0 ? P.w : 0.0);
+            // the fraction of the render pixel inside the square (1 but at its edge for even k)
+            float a = P.w * clamp(h + 0.5 - float(abs(dx)), 0.0, 1.0) * clamp(h + 0.5 - float(abs(dy)), 0.0, 1.0);
+            sum += I.rgb * a * lut_eval(L, r, u_preintegrated != 0 ? a : 0.0);
         }
     vec2 centre = vec2(px) + 0.5;
-    float d_prev = float(2 * u_n + 1);
+    float d_prev = 2.0 * h;
     float grow = float(u_nl) / float(u_nl - 2);
     int max_level = u_counts.w - 1;
     for (int i = 1; i <= u_layers; i++) {

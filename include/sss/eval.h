@@ -56,6 +56,9 @@ typedef struct sss_eval_desc {
     int sam_count_count;
     const char *save_references_dir; /* if set, rendered (not cached) references are written here as
                                         half-float EXR with their .json sidecar, ready to commit */
+    int supersample;                /* SSAA factor of every technique (sss_gl_renderer_desc.supersample,
+                                       1..4; 0 -> 1: off); a spec's "supersample=K" overrides it for that
+                                       spec ("maisch2020:supersample=2") */
 } sss_eval_desc;
 
 /* Progress: fraction in [0, 1] of the estimated work and a short description of the current step
@@ -96,6 +99,7 @@ typedef struct sss_eval_entry {
     int has_metrics;                  /* compared with a reference */
     sss_image_metrics metrics;
     int frames;                       /* frames rendered */
+    int supersample;                  /* the SSAA factor it rendered with (1: off) */
     double total_ms;                  /* median of the per-frame totals */
     int pass_count;
     sss_eval_pass passes[SSS_GL_MAX_PASSES];
@@ -143,6 +147,7 @@ typedef struct sss_eval_results {
     char **labels;                    /* the technique specs evaluated, in order */
     int label_count;
     int frames;
+    int supersample;                  /* sss_eval_desc.supersample (1: off) */
     sss_reference_quality reference_quality;
     int cached_reference;
     int gl_ok;                        /* a GL context could be created */

@@ -116,13 +116,22 @@ typedef struct sss_gl_renderer_desc {
     int timings;                      /* 1: time every pass (on software GL this adds a glFinish per pass) */
     const char *data_file;            /* a technique's precomputed data (sam: a .sam file of `sss sam build`),
                                          NULL: none; must outlive the renderer, like the scene */
+    int supersample;                  /* supersampling antialiasing (SSAA) factor k in 1..SSS_GL_MAX_SUPERSAMPLE
+                                         (0 -> 1 = off): every pass renders at k x the width and height, and
+                                         the linear result is box-filtered (k x k mean, before any tone
+                                         mapping) to width x height in the timed pass "resolve_ssaa".
+                                         Technique parameters counted in pixels follow k, so the image is the
+                                         one at k = 1, antialiased (docs/supersampling.md). */
 } sss_gl_renderer_desc;
+
+#define SSS_GL_MAX_SUPERSAMPLE 4
 
 typedef struct sss_gl_renderer sss_gl_renderer;
 
 /* Uploads the scene (meshes, materials with their LUTs, lights, textures) and creates the technique.
  * The scene must outlive the renderer. Errors: unknown technique or parameter (the message lists the
- * known ones), parameter out of range, a resource the GL cannot provide. */
+ * known ones), parameter out of range, supersample outside 0..4 or a supersampled size beyond the GL's
+ * GL_MAX_TEXTURE_SIZE / GL_MAX_VIEWPORT_DIMS, a resource the GL cannot provide. */
 sss_result sss_gl_renderer_create(sss_gl_context *ctx, const struct sss_scene *scene,
                                   const sss_gl_renderer_desc *desc, sss_gl_renderer **out, sss_error *err);
 void sss_gl_renderer_destroy(sss_gl_renderer *r);
@@ -136,17 +145,27 @@ sss_result sss_gl_renderer_set_param(sss_gl_renderer *r, const char *name, doubl
  * SSS_ERROR_INVALID_ARGUMENT, nothing changes, and a new renderer is needed. */
 sss_result sss_gl_renderer_update_lights(sss_gl_renderer *r, sss_error *err);
 double sss_gl_renderer_get_param(const sss_gl_renderer *r, const char *name); /* NaN when unknown */
+/* Sizes are the output's (what sss_gl_renderer_read returns); passes render at supersample x them. */
 sss_result sss_gl_renderer_resize(sss_gl_renderer *r, int width, int height, sss_error *err);
 void sss_gl_renderer_size(const sss_gl_renderer *r, int *width, int *height);
+/* Changes the SSAA factor (1..SSS_GL_MAX_SUPERSAMPLE; 0 -> 1) at the same output size: the frame
+ * targets are rebuilt, the next render uses it. Errors as for sss_gl_renderer_create; on error the
+ * renderer keeps its previous factor. */
+sss_result sss_gl_renderer_set_supersample(sss_gl_renderer *r, int supersample, sss_error *err);
+int sss_gl_renderer_get_supersample(const sss_gl_renderer *r); /* 1 when off (0 for NULL) */
 
 /* Renders one frame at time t (seconds; animations use it) into the renderer's linear target. */
 sss_result sss_gl_renderer_render(sss_gl_renderer *r, double time, sss_error *err);
 /* Reads the last frame as linear RGB (top row first). out must have been created with the renderer's
- * size. Non-finite values are reported as SSS_ERROR_NUMERIC (they never reach a file). */
+ * (output) size; with supersampling it is the box-filtered image. Non-finite values are reported as
+ * SSS_ERROR_NUMERIC (they never reach a file). */
 sss_result sss_gl_renderer_read(sss_gl_renderer *r, sss_image *out, sss_error *err);
 /* Reads a named intermediate buffer for tests and debugging, as linear RGB at its own size (out is
  * created by the call; free with sss_image_free): "reflected", "irradiance", "translucency",
- * "translucency_full", "screen", "final". Unknown or unavailable names are errors. */
+ * "translucency_full", "screen", "final" (the output image, as sss_gl_renderer_read), "supersampled"
+ * (the linear result before the SSAA box filter, supersample x the output size; with supersample 1
+ * the same as "final"). Intermediate buffers are at the supersampled size. Unknown or unavailable
+ * names are errors. */
 sss_result sss_gl_renderer_read_buffer(sss_gl_renderer *r, const char *name, sss_image *out, sss_error *err);
 /* Draws the last frame, tone mapped with the scene's exposure, to the window's back buffer. */
 sss_result sss_gl_renderer_present(sss_gl_renderer *r, sss_error *err);

@@ -21,7 +21,7 @@ static void print_usage(FILE *f)
             "                [--resolutions WxH,...] [--timing-resolutions WxH,...] [--frames N]\n"
             "                [--cached-reference] [--reference-dir DIR] [--reference-quality draft|final]\n"
             "                [--reference-threads N] [--sam-sweep | --no-sam-sweep] [--sam-counts 3,10,20,50]\n"
-            "                [--quiet]\n"
+            "                [--supersample K] [--quiet]\n"
             "\n"
             "Renders every technique and the CPU reference for each scene, compares them (DSSIM, PSNR, RMSE\n"
             "on the tone-mapped 8-bit images), times every pass (median of N frames) and writes to DIR:\n"
@@ -34,11 +34,14 @@ static void print_usage(FILE *f)
             "  SCENE.json@T          evaluate an animated scene at time T seconds (default 0)\n"
             "  --out DIR             output folder (default out/eval)\n"
             "  --techniques LIST     comma-separated specs NAME or NAME:param=value[:param=value]\n"
-            "                        (default: every technique of `sss techniques`)\n"
+            "                        (default: every technique of `sss techniques`); supersample=K in a\n"
+            "                        spec sets that spec's antialiasing (maisch2020,maisch2020:supersample=2)\n"
             "  --resolutions LIST    sizes compared with the reference, WxH,... (default: the camera's);\n"
             "                        the first one is used for the sheets\n"
             "  --timing-resolutions LIST  extra sizes where only frame times are measured\n"
             "  --frames N            frames per technique; timings are medians (default 3)\n"
+            "  --supersample K       antialiasing of every technique (`sss render --supersample`): passes at\n"
+            "                        K x the size, box-filtered down; K in 1..4 (default 1: off)\n"
             "  --cached-reference    use <scene folder>/references/<scene>_<W>x<H>[_t<T>].exr when it exists\n"
             "                        (and its .json sidecar matches the scene file), else render it\n"
             "  --reference-dir DIR   where cached references are looked up instead\n"
@@ -232,6 +235,13 @@ int sss_cmd_eval(int argc, char **argv)
             if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &desc.frames)) goto done;
             if (desc.frames < 1 || desc.frames > 10000) {
                 cli_usage_error(CMD, "--frames must be in 1..10000");
+                goto done;
+            }
+        } else if (strcmp(a, "--supersample") == 0) {
+            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &desc.supersample)) goto done;
+            if (desc.supersample < 1 || desc.supersample > SSS_GL_MAX_SUPERSAMPLE) {
+                cli_usage_error(CMD, "--supersample must be in 1..%d (the antialiasing factor per axis; 1: off), got %d",
+                                SSS_GL_MAX_SUPERSAMPLE, desc.supersample);
                 goto done;
             }
         } else if (strcmp(a, "--cached-reference") == 0) {

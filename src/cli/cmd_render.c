@@ -21,7 +21,7 @@ static void print_usage(FILE *f)
     fprintf(f,
             "usage: sss render SCENE.json -o OUT.png [--exr OUT.exr] [--technique NAME] [--width W --height H]\n"
             "                  [--time T] [--frames N [--animate] [--fps F]] [--param NAME=VALUE ...]\n"
-            "                  [--timings] [--timings-json FILE] [--window]\n"
+            "                  [--supersample K] [--timings] [--timings-json FILE] [--window]\n"
             "\n"
             "Renders SCENE.json with a real-time technique on a headless OpenGL 4.5 context (EGL; no display\n"
             "needed) and writes the image: PNG tone-mapped with the scene's exposure (SCENE.md), and with\n"
@@ -40,6 +40,9 @@ static void print_usage(FILE *f)
             "  --fps F             frames per second of --animate (default 30)\n"
             "  --param NAME=VALUE  a technique or shared parameter (`sss techniques --params`), repeatable\n"
             "  --data FILE         the technique's precomputed data (sam: a .sam file of `sss sam build`)\n"
+            "  --supersample K     antialiasing: render every pass at K x the width and height (K^2 samples\n"
+            "                      per pixel) and box-filter the linear image down, K in 1..4 (default 1:\n"
+            "                      off); costs about K^2 the time; parameters counted in pixels follow K\n"
             "  --timings           print milliseconds per pass (median over the frames) as a table\n"
             "  --timings-json FILE write the timings as JSON\n"
             "  --window            show the frames in a window (needs a display; until it is closed, or\n"
@@ -90,15 +93,15 @@ typedef struct pass_series {
     int last_frame; /* frame of ms[count - 1]: a pass run twice in a frame adds to that frame's value */
 } pass_series;
 
-static sss_result write_timings_json(const char *path, const char *technique, int w, int h, int frames,
-                                     const char *method, const char *renderer, const pass_series *ps, int npass,
-                                     double total, sss_error *err)
+static sss_result write_timings_json(const char *path, const char *technique, int w, int h, int supersample,
+                                     int frames, const char *method, const char *renderer, const pass_series *ps,
+                                     int npass, double total, sss_error *err)
 {
     char tmp[4096];
     FILE *f = sss_atomic_open(path, tmp, sizeof tmp, err);
     if (!f) return err ? err->code : SSS_ERROR_IO;
-    fprintf(f, "{\n  \"technique\": \"%s\",\n  \"width\": %d,\n  \"height\": %d,\n  \"frames\": %d,\n", technique, w,
-            h, frames);
+    fprintf(f, "{\n  \"technique\": \"%s\",\n  \"width\": %d,\n  \"height\": %d,\n  \"supersample\": %d,\n  \"frames\": %d,\n",
+            technique, w, h, supersample, frames);
     fprintf(f, "  \"method\": \"%s\",\n  \"renderer\": \"", method);
     for (const char *c = renderer; *c; c++)
         if (*c == '"' || *c == '\\') fprintf(f, "\\%c", *c);
@@ -118,7 +121,7 @@ int sss_cmd_render(int argc, char **argv)
         return CLI_EXIT_OK;
     }
     const char *scene_path = NULL, *out = NULL, *exr = NULL, *technique = NULL, *json = NULL, *data = NULL;
-    int width = 0, height = 0, frames = 1, animate = 0, timings = 0, window = 0, frames_given = 0;
+    int width = 0, height = 0, frames = 1, animate = 0, timings = 0, window = 0, frames_given = 0, supersample = 1;
     double time0 = 0.0, fps = 30.0;
     sss_gl_param_value params[MAX_PARAMS];
     char param_names[MAX_PARAMS][64];
@@ -154,6 +157,12 @@ int sss_cmd_render(int argc, char **argv)
             timings = 1;
         } else if (strcmp(a, "--timings-json") == 0) {
             if (!(json = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
+        } else if (strcmp(a, "--supersample") == 0) {
+            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &supersample))
+                return CLI_EXIT_USAGE;
+            if (supersample < 1 || supersample > SSS_GL_MAX_SUPERSAMPLE)
+                return cli_usage_error(CMD, "--supersample must be in 1..%d (the antialiasing factor per axis; 1: off), got %d",
+                                       SSS_GL_MAX_SUPERSAMPLE, supersample);
         } else if (strcmp(a, "--data") == 0) {
             if (!(data = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
         } else if (strcmp(a, "--window") == 0) {
@@ -220,6 +229,7 @@ int sss_cmd_render(int argc, char **argv)
     rdesc.param_count = nparams;
     rdesc.timings = timings || json;
     rdesc.data_file = data;
+    rdesc.supersample = supersample;
     sss_gl_renderer *r = NULL;
     int status = CLI_EXIT_OK;
     pass_series ps[SSS_GL_MAX_PASSES];
@@ -313,11 +323,12 @@ int sss_cmd_render(int argc, char **argv)
         sss_gl_context_get_info(ctx, &info);
         double total = sss_median(totals, frames);
         if (timings) {
-            printf("technique %s, %dx%d, %d frame%s, %s on %s\n", sss_gl_technique_find(technique ? technique
-                                                                                                 : scene.render.technique)
-                                                                      ? (technique ? technique : scene.render.technique)
-                                                                      : "?",
-                   w, h, frames, frames == 1 ? "" : "s", last.method, info.renderer);
+            const char *tname = technique ? technique : scene.render.technique;
+            char ssaa[48] = "";
+            if (supersample > 1) snprintf(ssaa, sizeof ssaa, " (supersample %d: %dx%d)", supersample, w * supersample,
+                                          h * supersample);
+            printf("technique %s, %dx%d%s, %d frame%s, %s on %s\n", sss_gl_technique_find(tname) ? tname : "?", w, h,
+                   ssaa, frames, frames == 1 ? "" : "s", last.method, info.renderer);
             printf("%-20s %12s\n", "pass", "median ms");
             for (int j = 0; j < npass; j++) {
                 double *copy = malloc(sizeof(double) * (size_t)ps[j].count);
@@ -328,8 +339,8 @@ int sss_cmd_render(int argc, char **argv)
             }
             printf("%-20s %12.3f\n", "total", total);
         }
-        if (json && write_timings_json(json, technique ? technique : scene.render.technique, w, h, frames, last.method,
-                                       info.renderer, ps, npass, total, &err) != SSS_OK) {
+        if (json && write_timings_json(json, technique ? technique : scene.render.technique, w, h, supersample, frames,
+                                       last.method, info.renderer, ps, npass, total, &err) != SSS_OK) {
             status = cli_fail(CMD, &err);
             goto done;
         }

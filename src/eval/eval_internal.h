@@ -59,6 +59,7 @@ typedef struct eval_gl {
     const char *gl_error;
     const char *method;   /* timing method the renderer reported */
     int frames;
+    int supersample;      /* SSAA factor of specs that do not set "supersample" */
     eval_progress *prog;
 } eval_gl;
 

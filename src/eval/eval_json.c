@@ -53,6 +53,7 @@ static cJSON *entry_json(const sss_eval_results *res, const sss_eval_entry *e)
         cJSON_AddBoolToObject(o, "psnr_infinite", 0);
     }
     cJSON_AddNumberToObject(o, "frames", e->frames);
+    cJSON_AddNumberToObject(o, "supersample", e->supersample > 0 ? e->supersample : 1);
     if (e->ok) add_num(o, "ms_total", e->total_ms);
     else cJSON_AddNullToObject(o, "ms_total");
     cJSON *passes = cJSON_AddArrayToObject(o, "passes");
@@ -105,6 +106,7 @@ static cJSON *results_json(const sss_eval_results *res)
     cJSON *set = cJSON_AddObjectToObject(root, "settings");
     if (set) {
         cJSON_AddNumberToObject(set, "frames", res->frames);
+        cJSON_AddNumberToObject(set, "supersample", res->supersample > 0 ? res->supersample : 1);
         cJSON_AddStringToObject(set, "reference_quality", res->reference_quality == SSS_REFERENCE_DRAFT ? "draft" : "final");
         cJSON_AddBoolToObject(set, "cached_reference", res->cached_reference);
         cJSON *t = cJSON_AddArrayToObject(set, "techniques");

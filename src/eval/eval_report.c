@@ -191,6 +191,9 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
     }
     sb_puts(b, "</td></tr><tr><th class=\"l\">timing</th><td>");
     sb_printf(b, "median of %d frame%s per technique; ", res->frames, res->frames == 1 ? "" : "s");
+    if (res->supersample > 1)
+        sb_printf(b, "supersampled %d&times;%d (SSAA, every pass at %d&times; the size); ", res->supersample,
+                  res->supersample, res->supersample);
     sb_esc(b, res->timing_method[0] ? res->timing_method : "no frames timed");
     sb_printf(b, "</td></tr><tr><th class=\"l\">reference</th><td>sss reference (CPU), %s quality%s</td></tr>",
               res->reference_quality == SSS_REFERENCE_DRAFT ? "draft" : "final",

@@ -22,6 +22,9 @@ static sss_result validate(const sss_eval_desc *d, int scene_count, sss_error *e
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "eval: frames must be in 1..10000, got %d", d->frames);
     if (d->resolution_count < 0 || d->resolution_count > EVAL_MAX_QUALITY_SIZES)
         return sss_error_set(err, SSS_ERROR_LIMIT, "eval: at most %d quality resolutions", EVAL_MAX_QUALITY_SIZES);
+    if (d->supersample < 0 || d->supersample > SSS_GL_MAX_SUPERSAMPLE)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "eval: supersample must be in 1..%d (0: 1, off), got %d",
+                             SSS_GL_MAX_SUPERSAMPLE, d->supersample);
     if (d->timing_resolution_count < 0 || d->technique_count < 0 || d->sam_count_count < 0)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "eval: negative count");
     const sss_eval_size *lists[2] = {d->resolutions, d->timing_resolutions};
@@ -299,6 +302,8 @@ sss_result sss_eval_run(const char *const *scene_args, int scene_count, const ss
     st.rc.prog = &st.prog;
     st.rc.frames = desc.frames ? desc.frames : 3;
     out->frames = st.rc.frames;
+    st.rc.supersample = desc.supersample ? desc.supersample : 1;
+    out->supersample = st.rc.supersample;
     out->reference_quality = desc.reference_quality;
     out->cached_reference = desc.cached_reference;
     utc_now(out->created);

@@ -56,14 +56,34 @@ sss_result eval_run_technique(eval_gl *rc, const sss_scene *view, double t, cons
         return SSS_OK;
     }
     sss_error err = {0};
+    /* "supersample" in a spec is the renderer's SSAA factor, not a technique parameter */
+    sss_gl_param_value params[EVAL_MAX_SPEC_PARAMS + 1];
+    int np = 0, k = rc->supersample > 0 ? rc->supersample : 1;
+    for (int i = 0; i < nparams && i < EVAL_MAX_SPEC_PARAMS + 1; i++) {
+        if (strcmp(spec->params[i].name, "supersample") != 0) {
+            params[np++] = spec->params[i];
+            continue;
+        }
+        double v = spec->params[i].value;
+        if (v != floor(v) || v < 0 || v > SSS_GL_MAX_SUPERSAMPLE) {
+            char msg[128];
+            snprintf(msg, sizeof msg, "supersample = %g must be an integer in 1..%d (0: 1, off)", v,
+                     SSS_GL_MAX_SUPERSAMPLE);
+            eval_fail_entry(e, msg);
+            return SSS_OK;
+        }
+        k = v == 0 ? 1 : (int)v;
+    }
+    e->supersample = k;
     sss_gl_renderer_desc rd;
     memset(&rd, 0, sizeof rd);
     rd.technique = spec->name;
     rd.width = view->camera.width;
     rd.height = view->camera.height;
-    rd.params = spec->params;
-    rd.param_count = nparams;
+    rd.params = params;
+    rd.param_count = np;
     rd.timings = 1;
+    rd.supersample = k;
     char st[256];
     snprintf(st, sizeof st, "%s: set-up", stage);
     eval_progress_update(rc->prog, 0.0, st);

@@ -74,6 +74,10 @@ static sss_result finish_context(sss_gl_context *ctx, int want_major, int want_m
     GLint v = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &v);
     ctx->max_texture_size = v;
+    GLint vp[2] = {0, 0};
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, vp);
+    ctx->max_viewport[0] = vp[0] > 0 ? vp[0] : v; /* (always set by a 4.5 context) */
+    ctx->max_viewport[1] = vp[1] > 0 ? vp[1] : v;
     while (glGetError() != GL_NO_ERROR) {}
     return SSS_OK;
 }

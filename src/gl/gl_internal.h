@@ -30,6 +30,7 @@ struct sss_gl_context {
     const char *platform;
     char renderer[256], version[256];
     int software, debug, max_texture_size;
+    int max_viewport[2];     /* GL_MAX_VIEWPORT_DIMS */
     char debug_message[512]; /* first KHR_debug error since the last gl_check */
     EGLDisplay egl_display;
     EGLContext egl_context;
@@ -264,7 +265,11 @@ struct sss_gl_renderer {
     const char *data_file;         /* sss_gl_renderer_desc.data_file (may be NULL) */
     double params[GL_MAX_PARAMS];  /* technique parameters, in info.params order */
     double shared[GL_P_SHARED_COUNT];
-    int width, height;
+    int width, height;             /* the size every pass renders at: the output size x supersample */
+    int supersample;               /* SSAA factor k >= 1 (sss_gl_renderer_desc.supersample) */
+    int out_width, out_height;     /* the output size (read back, presented) */
+    GLuint prog_ssaa, ssaa_tex, ssaa_fbo; /* the k x k box filter into the output image (ssaa.c) */
+    size_t ssaa_bytes;
     double time;
     gl_scene gs;
     gl_frame frame;
@@ -280,6 +285,23 @@ struct sss_gl_renderer {
 
 /* Technique parameter by index (as declared in the technique's table). */
 static inline double gl_param(const sss_gl_renderer *r, int i) { return r->params[i]; }
+
+/* The SSAA factor k: r->width x r->height are k x the output size, so a length of p output pixels is
+ * k p render pixels. Techniques scale parameters counted in pixels (pattern sizes, resolution divisors)
+ * by it, so that supersampling changes the sampling density, not the image (docs/supersampling.md). */
+static inline int gl_supersample(const sss_gl_renderer *r) { return r->supersample > 1 ? r->supersample : 1; }
+
+/* ssaa.c: supersampling antialiasing. */
+/* Checks a factor (1..SSS_GL_MAX_SUPERSAMPLE) and the render size it gives for an output size. */
+sss_result gl_ssaa_check(const sss_gl_context *ctx, int width, int height, int k, sss_error *err);
+/* (Re)creates the output image and its framebuffer for r->out_width x r->out_height when k > 1 (the
+ * program is built on first use); frees them when k = 1. */
+sss_result gl_ssaa_resize(sss_gl_renderer *r, sss_error *err);
+void gl_ssaa_free(sss_gl_renderer *r);
+/* The box filter frame.final -> the output image (no-op when k = 1), timed as "resolve_ssaa". */
+sss_result gl_ssaa_resolve(sss_gl_renderer *r, sss_error *err);
+/* The output-size linear image: the resolved one, or frame.final when k = 1. */
+GLuint gl_output_texture(const sss_gl_renderer *r);
 
 /* scene_gpu.c */
 sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err);

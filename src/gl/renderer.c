@@ -147,6 +147,9 @@ sss_result sss_gl_renderer_create(sss_gl_context *ctx, const sss_scene *scene, c
         return sss_error_set(err, SSS_ERROR_LIMIT, "image size %dx%d outside 1..%d", width, height,
                              ctx->max_texture_size < SSS_SCENE_MAX_IMAGE_SIZE ? ctx->max_texture_size
                                                                              : SSS_SCENE_MAX_IMAGE_SIZE);
+    int k = desc.supersample == 0 ? 1 : desc.supersample;
+    sss_result res = gl_ssaa_check(ctx, width, height, k, err);
+    if (res != SSS_OK) return res;
     if (tech->info.param_count > GL_MAX_PARAMS)
         return sss_error_set(err, SSS_ERROR_LIMIT, "technique %s declares too many parameters", tech->info.name);
     if (!sss_gl_context_make_current(ctx))
@@ -157,13 +160,15 @@ sss_result sss_gl_renderer_create(sss_gl_context *ctx, const sss_scene *scene, c
     r->scene = scene;
     r->tech = tech;
     r->data_file = desc.data_file;
-    r->width = width;
-    r->height = height;
+    r->supersample = k;
+    r->out_width = width;
+    r->out_height = height;
+    r->width = width * k;
+    r->height = height * k;
     for (int i = 0; i < tech->info.param_count; i++) r->params[i] = tech->info.params[i].default_value;
     int n = 0;
     const sss_gl_param_info *sp = sss_gl_shared_params(&n);
     for (int i = 0; i < n; i++) r->shared[i] = sp[i].default_value;
-    sss_result res = SSS_OK;
     for (int i = 0; i < desc.param_count && res == SSS_OK; i++)
         res = set_param_value(r, desc.params[i].name, desc.params[i].value, NULL, err);
     gl_timer_init(&r->timer, desc.timings, ctx->software);
@@ -176,7 +181,8 @@ sss_result sss_gl_renderer_create(sss_gl_context *ctx, const sss_scene *scene, c
         res = build_scene(r, err);
     }
     if (res == SSS_OK)
-        res = gl_frame_create(&r->frame, width, height, (tech->needs & GL_NEED_NORMAL_MIPS) != 0, err);
+        res = gl_frame_create(&r->frame, r->width, r->height, (tech->needs & GL_NEED_NORMAL_MIPS) != 0, err);
+    if (res == SSS_OK) res = gl_ssaa_resize(r, err);
     if (res == SSS_OK) res = create_technique(r, err);
     if (res == SSS_OK) res = gl_check(ctx, "renderer creation", err);
     if (res != SSS_OK) {
@@ -192,6 +198,7 @@ void sss_gl_renderer_destroy(sss_gl_renderer *r)
     if (!r) return;
     sss_gl_context_make_current(r->ctx);
     destroy_technique(r);
+    gl_ssaa_free(r);
     gl_frame_free(&r->frame);
     gl_scene_free(&r->gs);
     GLuint progs[5] = {r->prog_gbuffer, r->prog_shadow, r->prog_illum, r->prog_reduce, r->prog_present};
@@ -225,28 +232,52 @@ sss_result sss_gl_renderer_update_lights(sss_gl_renderer *r, sss_error *err)
     return gl_lights_update(r, err);
 }
 
+/* New output size and SSAA factor (already checked): frame targets at k x the size, the output image,
+ * the technique's targets. */
+static sss_result apply_size(sss_gl_renderer *r, int width, int height, int k, sss_error *err)
+{
+    if (width == r->out_width && height == r->out_height && k == r->supersample) return SSS_OK;
+    sss_gl_context_make_current(r->ctx);
+    gl_frame_free(&r->frame);
+    r->supersample = k;
+    r->out_width = width;
+    r->out_height = height;
+    r->width = width * k;
+    r->height = height * k;
+    r->frame_rendered = 0;
+    sss_result res = gl_frame_create(&r->frame, r->width, r->height, (r->tech->needs & GL_NEED_NORMAL_MIPS) != 0, err);
+    if (res == SSS_OK) res = gl_ssaa_resize(r, err);
+    if (res == SSS_OK && r->tech->resize) res = r->tech->resize(r, r->tech_state, err);
+    return res;
+}
+
 sss_result sss_gl_renderer_resize(sss_gl_renderer *r, int width, int height, sss_error *err)
 {
     if (!r) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "renderer is NULL");
     if (width < 1 || height < 1 || width > r->ctx->max_texture_size || height > r->ctx->max_texture_size)
         return sss_error_set(err, SSS_ERROR_LIMIT, "image size %dx%d outside 1..%d", width, height,
                              r->ctx->max_texture_size);
-    if (width == r->width && height == r->height) return SSS_OK;
-    sss_gl_context_make_current(r->ctx);
-    gl_frame_free(&r->frame);
-    r->width = width;
-    r->height = height;
-    r->frame_rendered = 0;
-    sss_result res = gl_frame_create(&r->frame, width, height, (r->tech->needs & GL_NEED_NORMAL_MIPS) != 0, err);
-    if (res == SSS_OK && r->tech->resize) res = r->tech->resize(r, r->tech_state, err);
-    return res;
+    sss_result res = gl_ssaa_check(r->ctx, width, height, r->supersample, err);
+    if (res != SSS_OK) return res;
+    return apply_size(r, width, height, r->supersample, err);
 }
 
 void sss_gl_renderer_size(const sss_gl_renderer *r, int *width, int *height)
 {
-    if (width) *width = r ? r->width : 0;
-    if (height) *height = r ? r->height : 0;
+    if (width) *width = r ? r->out_width : 0;
+    if (height) *height = r ? r->out_height : 0;
 }
+
+sss_result sss_gl_renderer_set_supersample(sss_gl_renderer *r, int supersample, sss_error *err)
+{
+    if (!r) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "renderer is NULL");
+    int k = supersample == 0 ? 1 : supersample;
+    sss_result res = gl_ssaa_check(r->ctx, r->out_width, r->out_height, k, err);
+    if (res != SSS_OK) return res;
+    return apply_size(r, r->out_width, r->out_height, k, err);
+}
+
+int sss_gl_renderer_get_supersample(const sss_gl_renderer *r) { return r ? gl_supersample(r) : 0; }
 
 /* ---- Frames --------------------------------------------------------------------------------- */
 
@@ -292,6 +323,7 @@ sss_result sss_gl_renderer_render(sss_gl_renderer *r, double time, sss_error *er
     }
     gl_timer_end(t);
     if (res == SSS_OK) res = r->tech->render(r, r->tech_state, err);
+    if (res == SSS_OK) res = gl_ssaa_resolve(r, err);
     gl_timer_frame_end(t);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (res == SSS_OK) res = gl_check(r->ctx, "the end of the frame", err);
@@ -303,13 +335,13 @@ sss_result sss_gl_renderer_read(sss_gl_renderer *r, sss_image *out, sss_error *e
 {
     if (!r || !out || !out->pixels)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_renderer_read: no renderer or image");
-    if (out->width != r->width || out->height != r->height)
+    if (out->width != r->out_width || out->height != r->out_height)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "read-back image is %dx%d, the renderer %dx%d",
-                             out->width, out->height, r->width, r->height);
+                             out->width, out->height, r->out_width, r->out_height);
     if (!r->frame_rendered) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "no frame rendered yet");
     sss_gl_context_make_current(r->ctx);
     sss_image tmp;
-    sss_result res = gl_read_texture_rgb(r->frame.final, 0, r->width, r->height, &tmp, err);
+    sss_result res = gl_read_texture_rgb(gl_output_texture(r), 0, r->out_width, r->out_height, &tmp, err);
     if (res != SSS_OK) return res;
     size_t bad = sss_image_count_nonfinite(&tmp);
     if (bad) {
@@ -317,7 +349,7 @@ sss_result sss_gl_renderer_read(sss_gl_renderer *r, sss_image *out, sss_error *e
         return sss_error_set(err, SSS_ERROR_NUMERIC, "technique %s produced %zu NaN/Inf values",
                              r->tech->info.name, bad);
     }
-    memcpy(out->pixels, tmp.pixels, sizeof(float) * 3 * (size_t)r->width * (size_t)r->height);
+    memcpy(out->pixels, tmp.pixels, sizeof(float) * 3 * (size_t)r->out_width * (size_t)r->out_height);
     sss_image_free(&tmp);
     return gl_check(r->ctx, "the read-back", err);
 }
@@ -329,7 +361,8 @@ sss_result sss_gl_renderer_read_buffer(sss_gl_renderer *r, const char *name, sss
     if (!r->frame_rendered) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "no frame rendered yet");
     sss_gl_context_make_current(r->ctx);
     GLuint tex = 0;
-    if (strcmp(name, "final") == 0) tex = r->frame.final;
+    if (strcmp(name, "final") == 0) tex = gl_output_texture(r);
+    else if (strcmp(name, "supersampled") == 0) tex = r->frame.final;
     else if (strcmp(name, "reflected") == 0) tex = r->frame.refl;
     else if (strcmp(name, "irradiance") == 0) tex = r->frame.irr;
     else if (r->tech->buffer) tex = r->tech->buffer(r, r->tech_state, name);
@@ -352,8 +385,8 @@ sss_result sss_gl_renderer_present(sss_gl_renderer *r, sss_error *err)
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, w, h);
     glUseProgram(r->prog_present);
-    glBindTextureUnit(0, r->frame.final);
-    glUniform2f(glGetUniformLocation(r->prog_present, "u_scale"), (float)r->width / w, (float)r->height / h);
+    glBindTextureUnit(0, gl_output_texture(r));
+    glUniform2f(glGetUniformLocation(r->prog_present, "u_scale"), (float)r->out_width / w, (float)r->out_height / h);
     gl_draw_fullscreen(r);
     return gl_check(r->ctx, "present", err);
 }
@@ -378,9 +411,10 @@ void sss_gl_renderer_stats(sss_gl_renderer *r, sss_gl_stats *out)
     if (!out) return;
     memset(out, 0, sizeof *out);
     if (!r) return;
-    out->texture_bytes = r->gs.texture_bytes + r->frame.bytes;
+    out->texture_bytes = r->gs.texture_bytes + r->frame.bytes + r->ssaa_bytes;
     out->buffer_bytes = r->gs.buffer_bytes;
     out->lut_bytes = r->gs.lut_bytes;
+    /* per render pixel here and in the technique's stats, then per output pixel (k^2 of them) */
     out->per_pixel_bytes = r->frame.bytes / ((size_t)r->width * (size_t)r->height);
     out->splat_total = r->gs.splat_total;
     out->material_count = r->gs.material_count;
@@ -388,4 +422,6 @@ void sss_gl_renderer_stats(sss_gl_renderer *r, sss_gl_stats *out)
     out->virtual_light_count = r->gs.vpl_count;
     out->object_count = (int)r->scene->object_count;
     if (r->tech->stats && r->tech_state) r->tech->stats(r, r->tech_state, out);
+    size_t k = (size_t)gl_supersample(r);
+    out->per_pixel_bytes = out->per_pixel_bytes * k * k + r->ssaa_bytes / ((size_t)r->out_width * (size_t)r->out_height);
 }

@@ -100,10 +100,15 @@ static GLuint fbo_for(const GLuint *tex, int count)
     return fbo;
 }
 
+/* The translucency divisor in render pixels: translucency_divisor counts output pixels, so with
+ * supersampling (k) the low-resolution buffer keeps its size, width/d x height/d of the output, and the
+ * image and the splatting cost stay those of k = 1 (docs/supersampling.md). */
+static int divisor(const sss_gl_renderer *r) { return (int)gl_param(r, P_DIVISOR) * gl_supersample(r); }
+
 static sss_result make_targets(sss_gl_renderer *r, maisch_state *s, sss_error *err)
 {
     free_targets(s);
-    int d = (int)gl_param(r, P_DIVISOR);
+    int d = divisor(r);
     s->low_w = (r->width + d - 1) / d;
     s->low_h = (r->height + d - 1) / d;
     s->tex_recv = gl_texture_2d(GL_RGBA32F, s->low_w, s->low_h, 1, &s->bytes);
@@ -145,7 +150,7 @@ static sss_result maisch_create(sss_gl_renderer *r, void *state, sss_error *err)
 static sss_result maisch_resize(sss_gl_renderer *r, void *state, sss_error *err)
 {
     maisch_state *s = state;
-    int d = (int)gl_param(r, P_DIVISOR);
+    int d = divisor(r);
     if (s->tex_screen && s->low_w == (r->width + d - 1) / d && s->low_h == (r->height + d - 1) / d) {
         GLint w = 0;
         glGetTextureLevelParameteriv(s->tex_screen, 0, GL_TEXTURE_WIDTH, &w);
@@ -180,7 +185,7 @@ static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, sss_error *er
     glViewport(0, 0, s->low_w, s->low_h);
     glDisable(GL_BLEND);
     glUseProgram(s->prog_recv);
-    set_i(s->prog_recv, "u_divisor", (int)gl_param(r, P_DIVISOR));
+    set_i(s->prog_recv, "u_divisor", divisor(r));
     gl_draw_fullscreen(r);
     /* additive splatting into the accumulation target (float blending, no clamping) */
     glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_accum);
@@ -245,6 +250,8 @@ static sss_result maisch_render(sss_gl_renderer *r, void *state, sss_error *err)
         set_i(prog, "u_preintegrated", (int)gl_param(r, P_PREINTEGRATED));
         set_i(prog, "u_filtered", filtered);
         set_i(prog, "u_screen_bound", (int)gl_param(r, P_SCREEN_BOUND));
+        /* the pattern's sizes count output pixels (docs/supersampling.md) */
+        set_i(prog, "u_supersample", gl_supersample(r));
         gl_draw_fullscreen(r);
         res = gl_check(r->ctx, "maisch2020: screen-space pass", err);
         if (res != SSS_OK) return res;

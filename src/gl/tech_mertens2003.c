@@ -180,6 +180,16 @@ static sss_result mertens_resize(sss_gl_renderer *r, void *state, sss_error *err
 
 static void set_i(GLuint prog, const char *name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
 
+/* The interleaving block in render pixels: `pattern` counts output pixels, so with supersampling (k)
+ * the block and the blur that recombines it cover the same part of the image as at k = 1 (k^2 times
+ * the strata, each render pixel still takes `samples`); pattern 1 (off: every pixel all strata, no
+ * blur) stays off. docs/supersampling.md. */
+static int pattern(const sss_gl_renderer *r)
+{
+    int p = (int)gl_param(r, P_PATTERN);
+    return p > 1 ? p * gl_supersample(r) : 1;
+}
+
 static sss_result mertens_render(sss_gl_renderer *r, void *state, sss_error *err)
 {
     mertens_state *s = state;
@@ -215,7 +225,7 @@ static sss_result mertens_render(sss_gl_renderer *r, void *state, sss_error *err
     set_i(p, "u_samples", (int)gl_param(r, P_SAMPLES));
     set_i(p, "u_uniform", (int)gl_param(r, P_UNIFORM));
     glUniform1f(glGetUniformLocation(p, "u_uniform_radius"), (float)gl_param(r, P_UNIFORM_RADIUS));
-    set_i(p, "u_pattern", (int)gl_param(r, P_PATTERN));
+    set_i(p, "u_pattern", pattern(r));
     set_i(p, "u_jacobian", (int)gl_param(r, P_JACOBIAN));
     set_i(p, "u_renormalize", (int)gl_param(r, P_RENORMALIZE));
     set_i(p, "u_jitter", (int)gl_param(r, P_JITTER));
@@ -239,7 +249,7 @@ static sss_result mertens_render(sss_gl_renderer *r, void *state, sss_error *err
     glBindTextureUnit(2, r->frame.albedo);
     glBindTextureUnit(3, r->frame.refl);
     glBindTextureUnit(4, s->tex_est);
-    set_i(p, "u_pattern", (int)gl_param(r, P_PATTERN));
+    set_i(p, "u_pattern", pattern(r));
     set_i(p, "u_blur", (int)gl_param(r, P_BLUR));
     glUniform1f(glGetUniformLocation(p, "u_blur_normal"), (float)gl_param(r, P_BLUR_NORMAL));
     gl_draw_fullscreen(r);

@@ -230,6 +230,10 @@ fail | render @BAD@/scene_sphere_radius_1e39.json -o @OUT@/out.png | scene_spher
 fail | reference @BAD@/scene_sphere_radius_1e39.json -o @OUT@/out.png | scene_sphere_radius_1e39\.json;objects\[1\]
 fail | reference @BAD@/scene_unknown_technique.json -o @OUT@/no_folder/out.exr | no_folder/out\.exr
 fail | export pbrt @BAD@/scene_valid.json -o @OUT@/no_folder/out.pbrt | no_folder/out
+# ---- supersampling antialiasing: the factor per axis is 1..4
+fail | render @BAD@/scene_valid.json -o @OUT@/out.png --supersample 9 | --supersample;1\.\.4;got 9
+fail | render @BAD@/scene_valid.json -o @OUT@/out.png --supersample -1 | --supersample;1\.\.4
+fail | eval @BAD@/scene_valid.json --out @OUT@/eval --supersample 9 | --supersample;1\.\.4
 EOF
 )
 
