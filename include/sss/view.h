@@ -39,6 +39,8 @@ typedef struct sss_view_desc {
     int reference;                    /* render the reference of the first view at once; with frames,
                                          wait for it and report the DSSIM of the last frame (log) */
     int reference_draft;              /* references at draft quality (R; Shift+R is always draft) */
+    int supersample;                  /* antialiasing of every technique (sss_gl_renderer_desc.supersample:
+                                         1..4, 0 -> 1 = off) */
     /* Messages for the user ("saved sss-view-0000.png", reference finished, ...); may be NULL. */
     void (*log)(void *user, const char *message);
     void *log_user;

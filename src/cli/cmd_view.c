@@ -18,7 +18,7 @@ static void print_usage(FILE *f)
     fprintf(f,
             "usage: sss view SCENE.json [--technique NAME] [--width W --height H] [--param NAME=VALUE ...]\n"
             "                [--time T] [--animate] [--frames N [--screenshot FILE.png]] [--no-overlay]\n"
-            "                [--reference] [--draft-reference] [--input EVENTS]\n"
+            "                [--reference] [--draft-reference] [--supersample K] [--input EVENTS]\n"
             "\n"
             "Shows SCENE.json in a window with a real-time technique (needs a display; without one use\n"
             "`sss render`, or run under `xvfb-run -a`). An overlay shows the technique, the frame time,\n"
@@ -38,6 +38,8 @@ static void print_usage(FILE *f)
             "  --reference         render the CPU reference of the first view in the background at once;\n"
             "                      with --frames, wait for it and print the DSSIM of the last frame\n"
             "  --draft-reference   references at draft quality (faster, noisier)\n"
+            "  --supersample K     antialiasing (`sss render --supersample`): K x K samples per pixel,\n"
+            "                      K in 1..4 (default 1: off); about K^2 the frame time\n"
             "  --input EVENTS      with --frames: input events, one per frame, comma-separated (tests):\n"
             "                      keys (tab, shift+tab, 1, 2, 3, b, m, shift+m, +, -, l, shift+l, space,\n"
             "                      s, c, o, h), orbit:DX:DY and pan:DX:DY (drags in pixels, y down),\n"
@@ -93,6 +95,12 @@ int sss_cmd_view(int argc, char **argv)
             d.reference = 1;
         } else if (strcmp(a, "--draft-reference") == 0) {
             d.reference_draft = 1;
+        } else if (strcmp(a, "--supersample") == 0) {
+            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &d.supersample))
+                return CLI_EXIT_USAGE;
+            if (d.supersample < 1 || d.supersample > SSS_GL_MAX_SUPERSAMPLE)
+                return cli_usage_error(CMD, "--supersample must be in 1..%d (the antialiasing factor per axis; 1: off), got %d",
+                                       SSS_GL_MAX_SUPERSAMPLE, d.supersample);
         } else if (strcmp(a, "--param") == 0) {
             if (!(v = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
             const char *eq = strchr(v, '=');

@@ -66,6 +66,7 @@ sss_result view_make_renderer(viewer *v, int tech, sss_error *err)
     d.params = params;
     d.param_count = kept;
     d.timings = 1;
+    d.supersample = v->desc->supersample;
     sss_gl_renderer *r = NULL;
     sss_result res = sss_gl_renderer_create(v->ctx, v->scene, &d, &r, err);
     free(params);
