@@ -6,7 +6,9 @@
  *     "shadows"      cube maps (point lights, area-light VPLs), 2D maps (spot, directional, environment)
  *     "illumination" reflected radiance of the visible surface and transmitted irradiance F_t E
  *     "mipmaps"      area-weighted mip chains of positions/areas, irradiance/ids (and normals on request)
- *   then the technique's own passes, ending with a pass that writes the linear target frame.final.
+ *   then the technique's own passes, ending with a pass that writes the linear target frame.final;
+ *   with supersampling (r->supersample = k > 1) all of the above run at k x the output size (r->width,
+ *   r->height) and "resolve_ssaa" (ssaa.c) box-filters frame.final into the output image.
  * Binding points are fixed (GL_UBO_*, GL_SSBO_*, GL_UNIT_*) so shaders and C agree; see common.glsl.
  * The camera projection (u_proj) is reversed-Z with an infinite far plane: passes that rasterise with
  * it set glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), clear depth to 0, test GL_GREATER, and restore
