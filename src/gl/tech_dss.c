@@ -3,7 +3,9 @@
  * low-resolution splat mesh, tessellated by camera distance and area (a compute pass subdivides large
  * triangles into sub-surfels instead of the hardware tessellator), splatted additively into a
  * multi-resolution G-buffer with l_max = 3 levels and epsilon = 0.1 (tech_dss_shells.h), no view-based
- * culling, only irradiance culling.
+ * culling, only irradiance culling. Surfels the camera sees are moved from the splat mesh's chords onto
+ * the rendered surface (surface_snap, dss_generate.comp.glsl): DSS tessellates the rendered geometry,
+ * and the chords of a coarse splat mesh lie farther from it than short kernels reach.
  *
  * Passes after the shared G-buffer / shadows / illumination: "surfels" (generation + irradiance),
  * "receivers" (the pyramid), "splatting" (all levels), "resolve" (upsampling, sum, exit factor). */
@@ -12,7 +14,7 @@
 #include "gl/tech_dss_shells.h"
 
 enum { P_LEVELS = 0, P_EPSILON, P_SURFEL_PIXELS, P_MAX_TESS, P_PREINTEGRATED, P_IRRADIANCE_CULL, P_SHADOW_OFFSET,
-       P_MAX_SURFELS, P_COUNT };
+       P_SNAP, P_MAX_SURFELS, P_COUNT };
 
 static const sss_gl_param_info params[P_COUNT] = {
     [P_LEVELS] = {"levels", SSS_GL_PARAM_INT, 3, 1, SHELL_MAX_LEVELS,
@@ -30,6 +32,10 @@ static const sss_gl_param_info params[P_COUNT] = {
                            "surfels whose largest F_t E channel is at most this are culled (DSS)"},
     [P_SHADOW_OFFSET] = {"splat_shadow_offset", SSS_GL_PARAM_FLOAT, 0.5, 0, 10,
                          "surfel irradiance looked up this many sqrt(triangle area) above the surface"},
+    [P_SNAP] = {"surface_snap", SSS_GL_PARAM_FLOAT, 0.5, 0, 10,
+                "visible surfels within this many sqrt(triangle area) of the rendered surface (G-buffer) move onto "
+                "it and take its F_t E (DSS surfels lie on the rendered geometry); 0: all stay on the splat "
+                "mesh's chords"},
     [P_MAX_SURFELS] = {"max_surfels", SSS_GL_PARAM_INT, 1048576, 1, 16777216,
                        "capacity of the surfel buffer (48 bytes each); surfels beyond it are dropped"},
 };
@@ -92,6 +98,10 @@ static sss_result dss_render(sss_gl_renderer *r, void *state, sss_error *err)
     set_f(s->prog_gen, "u_shadow_offset", gl_param(r, P_SHADOW_OFFSET));
     set_f(s->prog_gen, "u_surfel_pixels", gl_param(r, P_SURFEL_PIXELS));
     set_i(s->prog_gen, "u_max_tess", (int)gl_param(r, P_MAX_TESS));
+    set_f(s->prog_gen, "u_snap", gl_param(r, P_SNAP));
+    glBindTextureUnit(0, r->frame.pos);
+    glBindTextureUnit(1, r->frame.nrm);
+    glBindTextureUnit(2, r->frame.irr);
     gl_dispatch_splat_triangles(r, s->prog_gen);
     res = gl_check(r->ctx, "dss: surfel generation", err);
     if (res != SSS_OK) return res;
