@@ -28,6 +28,7 @@ enum {
     P_FILTERED,
     P_SPLAT_PREINTEGRATED,
     P_SCREEN_BOUND,
+    P_OCCLUDED,
     P_COUNT
 };
 
@@ -62,6 +63,9 @@ static const sss_gl_param_info params[P_COUNT] = {
                                "splats read R'_d(r', A) (1, seed 000) or R_d(r') at the disc-adjusted distance"},
     [P_SCREEN_BOUND] = {"layer_distance_bound", SSS_GL_PARAM_BOOL, 1, 0, 1,
                         "outer samples at least d_(i-1)/2 pixels (at their depth) from x_o, where their cell lies"},
+    [P_OCCLUDED] = {"occluded_margin", SSS_GL_PARAM_FLOAT, 3, 0, 100,
+                    "also splat front-facing triangles more than this many sqrt(area) behind the visible surface "
+                    "(hidden by another part or object); 0: off (the paper: back-facing only)"},
 };
 
 #define SPLAT_BYTES 48 /* three vec4: centre + area, normal + object, F_t E + disc radius */
@@ -175,6 +179,7 @@ static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, sss_error *er
     set_i(s->prog_gen, "u_cull_rule", (int)gl_param(r, P_CULL_RULE));
     set_f(s->prog_gen, "u_irradiance_cull", (float)gl_param(r, P_IRRADIANCE_CULL));
     set_f(s->prog_gen, "u_shadow_offset", (float)gl_param(r, P_SHADOW_OFFSET));
+    set_f(s->prog_gen, "u_occluded_margin", (float)gl_param(r, P_OCCLUDED));
     glUniform1ui(glGetUniformLocation(s->prog_gen, "u_capacity"), s->capacity);
     gl_dispatch_splat_triangles(r, s->prog_gen);
     sss_result res = gl_check(r->ctx, "maisch2020: splat generation", err);
