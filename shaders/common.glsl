@@ -282,8 +282,10 @@ float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 // same factor as the CPU reference, so both images are comparable in absolute terms.
 float exit_factor(Material m, vec3 n, vec3 v)
 {
-    float cos_o = dot(n, v);
-    // interpolated normals may face slightly away at silhouettes: use the grazing limit there
+    // |n . v|, as the ground truth (ref_render.c): an interpolated normal may face away from the camera
+    // on a visible triangle (creases, silhouettes); clamping to grazing made F_t ~ 0 there, i.e. isolated
+    // black pixels on lit skin
+    float cos_o = abs(dot(n, v));
     float ft = 1.0 - fr_dielectric(max(cos_o, 1e-4), 1.0, m.params.x);
     return ft / (PI * m.params.y);
 }
