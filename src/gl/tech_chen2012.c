@@ -28,7 +28,7 @@
 #include "gl/tech_dss_shells.h"
 
 enum { P_SIZE = 0, P_BUFFER_LEVELS, P_TEXEL_FRACTION, P_MAX_LIGHTS, P_PREINTEGRATED, P_IRRADIANCE_CULL,
-       P_VIEW_LEVELS, P_VIEW_EPSILON, P_MAX_SPLATS, P_ENV_SIZE, P_COUNT };
+       P_VIEW_LEVELS, P_VIEW_EPSILON, P_MAX_SPLATS, P_ENV_SIZE, P_FINE, P_COUNT };
 
 /* The splat buffer's first capacity (12 MB); it grows when the lights select more, up to max_splats. */
 #define INITIAL_SPLATS 262144u
@@ -49,7 +49,8 @@ static const sss_gl_param_info params[P_COUNT] = {
     [P_VIEW_LEVELS] = {"view_levels", SSS_GL_PARAM_INT, 4, 1, SHELL_MAX_LEVELS,
                        "levels of the camera-side splatting buffer (multiresolution splatting)"},
     [P_VIEW_EPSILON] = {"view_epsilon", SSS_GL_PARAM_FLOAT, 0.1, 1e-3, 1,
-                        "camera level l serves receivers at least 2^l pixels / epsilon from the splat"},
+                        "camera level l (2^l output pixels) serves receivers at least 2^l pixels / epsilon from "
+                        "the splat"},
     [P_MAX_SPLATS] = {"max_splats", SSS_GL_PARAM_INT, 8388608, 1, 16777216,
                       "largest splat buffer (48 bytes a splat, all lights): it grows to what the lights select, "
                       "up to this; splats beyond it are dropped"},
@@ -59,6 +60,11 @@ static const sss_gl_param_info params[P_COUNT] = {
      * 256 is within 0.0005 of the full-size buffers at a sixth of the time (128 loses 0.0016). */
     [P_ENV_SIZE] = {"env_buffer_size", SSS_GL_PARAM_INT, 256, 16, 8192,
                     "texels per side of the irradiance buffer of an environment map's directional lights"},
+    [P_FINE] = {"view_fine_radius", SSS_GL_PARAM_FLOAT, 2, 0, 64,
+                "with supersampling (k > 1): receivers within this many output pixels of a splat are splatted per "
+                "render pixel (an extra camera level; the sharp near field antialiased, ~6% more splatting on the "
+                "eval scenes), at most level 0's 2 / view_epsilon; 0: the k = 1 image, antialiased at edges only "
+                "(docs/supersampling.md)"},
 };
 
 /* One light-view irradiance buffer (tech_chen2012_tsm.h) with its mip levels. */
@@ -69,12 +75,12 @@ typedef struct chen_tsm {
 } chen_tsm;
 
 typedef struct chen_state {
+    shell_targets shells; /* first: shell_targets_of() */
     GLuint prog_tsm, prog_reduce, prog_select;
     chen_tsm main, env; /* env: environment lights' buffer when env_buffer_size != buffer_size */
     const chen_tsm *last; /* the buffer of the last light rendered (chen_buffer) */
     GLuint splats, cmd;
     unsigned capacity;
-    shell_targets shells;
     tsm_bounds bounds;
     int lights_used;
 } chen_state;
@@ -164,7 +170,7 @@ static sss_result make_resources(sss_gl_renderer *r, chen_state *s, sss_error *e
     resize_splats(s, !s->splats ? (limit < INITIAL_SPLATS ? limit : INITIAL_SPLATS)
                                 : (s->capacity > limit ? limit : s->capacity), 0);
     res = gl_check(r->ctx, "chen2012: irradiance buffer", err);
-    if (res == SSS_OK) res = shell_resize(r, &s->shells, (int)gl_param(r, P_VIEW_LEVELS), err);
+    if (res == SSS_OK) res = shell_resize(r, &s->shells, (int)gl_param(r, P_VIEW_LEVELS), gl_param(r, P_FINE), err);
     return res;
 }
 

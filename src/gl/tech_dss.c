@@ -14,16 +14,17 @@
 #include "gl/tech_dss_shells.h"
 
 enum { P_LEVELS = 0, P_EPSILON, P_SURFEL_PIXELS, P_MAX_TESS, P_PREINTEGRATED, P_IRRADIANCE_CULL, P_SHADOW_OFFSET,
-       P_SNAP, P_MAX_SURFELS, P_COUNT };
+       P_SNAP, P_MAX_SURFELS, P_FINE, P_COUNT };
 
 static const sss_gl_param_info params[P_COUNT] = {
     [P_LEVELS] = {"levels", SSS_GL_PARAM_INT, 3, 1, SHELL_MAX_LEVELS,
                   "levels of the multi-resolution G-buffer, l_max (seed 000, section 8: 3)"},
     [P_EPSILON] = {"epsilon", SSS_GL_PARAM_FLOAT, 0.1, 1e-3, 1,
-                   "level l serves receivers at least 2^l pixels / epsilon away (seed 000, section 8: 0.1)"},
+                   "level l (2^l output pixels) serves receivers at least 2^l pixels / epsilon away (seed 000, "
+                   "section 8: 0.1)"},
     [P_SURFEL_PIXELS] = {"surfel_pixels", SSS_GL_PARAM_FLOAT, 4, 0.5, 1024,
-                         "tessellation target: projected edge length of a surfel in pixels (DSS: by distance "
-                         "and area)"},
+                         "tessellation target: projected edge length of a surfel in (output) pixels (DSS: by "
+                         "distance and area)"},
     [P_MAX_TESS] = {"max_tessellation", SSS_GL_PARAM_INT, 64, 1, 64,
                     "largest subdivision of a triangle edge (the hardware tessellation limit, 64)"},
     [P_PREINTEGRATED] = {"preintegrated", SSS_GL_PARAM_BOOL, 1, 0, 1,
@@ -38,13 +39,18 @@ static const sss_gl_param_info params[P_COUNT] = {
                 "mesh's chords"},
     [P_MAX_SURFELS] = {"max_surfels", SSS_GL_PARAM_INT, 1048576, 1, 16777216,
                        "capacity of the surfel buffer (48 bytes each); surfels beyond it are dropped"},
+    [P_FINE] = {"fine_radius", SSS_GL_PARAM_FLOAT, 2, 0, 64,
+                "with supersampling (k > 1): receivers within this many output pixels of a surfel are splatted per "
+                "render pixel (an extra level; the sharp near field antialiased, ~6% more splatting on the eval "
+                "scenes), at most level 0's 2 / epsilon; 0: the k = 1 image, antialiased at edges only "
+                "(docs/supersampling.md)"},
 };
 
 typedef struct dss_state {
+    shell_targets shells; /* first: shell_targets_of() */
     GLuint prog_gen;
     GLuint splats, cmd;
     unsigned capacity;
-    shell_targets shells;
 } dss_state;
 
 static sss_result make_buffer(sss_gl_renderer *r, dss_state *s, sss_error *err)
@@ -67,7 +73,7 @@ static sss_result dss_create(sss_gl_renderer *r, void *state, sss_error *err)
     glCreateBuffers(1, &s->cmd);
     glNamedBufferStorage(s->cmd, 4 * sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
     res = make_buffer(r, s, err);
-    if (res == SSS_OK) res = shell_resize(r, &s->shells, (int)gl_param(r, P_LEVELS), err);
+    if (res == SSS_OK) res = shell_resize(r, &s->shells, (int)gl_param(r, P_LEVELS), gl_param(r, P_FINE), err);
     return res;
 }
 
@@ -75,7 +81,7 @@ static sss_result dss_resize(sss_gl_renderer *r, void *state, sss_error *err)
 {
     dss_state *s = state;
     sss_result res = make_buffer(r, s, err);
-    if (res == SSS_OK) res = shell_resize(r, &s->shells, (int)gl_param(r, P_LEVELS), err);
+    if (res == SSS_OK) res = shell_resize(r, &s->shells, (int)gl_param(r, P_LEVELS), gl_param(r, P_FINE), err);
     return res;
 }
 
@@ -96,7 +102,9 @@ static sss_result dss_render(sss_gl_renderer *r, void *state, sss_error *err)
     glUniform1ui(glGetUniformLocation(s->prog_gen, "u_capacity"), s->capacity);
     set_f(s->prog_gen, "u_irradiance_cull", gl_param(r, P_IRRADIANCE_CULL));
     set_f(s->prog_gen, "u_shadow_offset", gl_param(r, P_SHADOW_OFFSET));
-    set_f(s->prog_gen, "u_surfel_pixels", gl_param(r, P_SURFEL_PIXELS));
+    /* surfel_pixels counts output pixels: k render pixels each, so supersampling keeps the surfels
+     * (docs/supersampling.md; in render pixels k = 2 made k^2 the surfels) */
+    set_f(s->prog_gen, "u_surfel_pixels", gl_param(r, P_SURFEL_PIXELS) * gl_supersample(r));
     set_i(s->prog_gen, "u_max_tess", (int)gl_param(r, P_MAX_TESS));
     set_f(s->prog_gen, "u_snap", gl_param(r, P_SNAP));
     glBindTextureUnit(0, r->frame.pos);

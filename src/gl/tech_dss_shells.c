@@ -1,71 +1,98 @@
 /* gl/tech_dss_shells.c — multi-resolution shell splatting (see tech_dss_shells.h). */
+#include <math.h>
 #include <string.h>
 
 #include "gl/tech_dss_shells.h"
 
 sss_result shell_create(shell_targets *s, sss_error *err)
 {
-    sss_result res = gl_program_vf("fullscreen.vert.glsl", "receivers.frag.glsl", NULL, &s->prog_recv, err);
+    sss_result res = gl_program_vf("fullscreen.vert.glsl", "dss_receivers.frag.glsl", NULL, &s->prog_recv, err);
+    if (res == SSS_OK)
+        res = gl_program_vf("fullscreen.vert.glsl", "dss_receivers.frag.glsl", "#define FINE 1\n", &s->prog_recv_fine,
+                            err);
     if (res == SSS_OK) res = gl_program_vf("dss_splat.vert.glsl", "dss_splat.frag.glsl", NULL, &s->prog_splat, err);
     if (res == SSS_OK)
         res = gl_program_vf("fullscreen.vert.glsl", "dss_resolve.frag.glsl", NULL, &s->prog_resolve, err);
+    /* the splatting work, for tests (shell_splat_fragments): core in GL 4.6, an extension before */
+    if (res == SSS_OK && (epoxy_gl_version() >= 46 || epoxy_has_gl_extension("GL_ARB_pipeline_statistics_query")))
+        glGenQueries(1, &s->query); /* Mesa's glCreateQueries refuses pipeline-statistics targets */
     return res;
 }
 
 static void free_targets(shell_targets *s)
 {
-    for (int l = 0; l < SHELL_MAX_LEVELS; l++) {
+    for (int l = 0; l <= SHELL_MAX_LEVELS; l++) {
         if (s->fbo_recv[l]) glDeleteFramebuffers(1, &s->fbo_recv[l]);
         if (s->fbo_accum[l]) glDeleteFramebuffers(1, &s->fbo_accum[l]);
         if (s->recv[l]) glDeleteTextures(1, &s->recv[l]);
         if (s->accum[l]) glDeleteTextures(1, &s->accum[l]);
         s->fbo_recv[l] = s->fbo_accum[l] = s->recv[l] = s->accum[l] = 0;
     }
+    if (s->link) glDeleteTextures(1, &s->link);
+    s->link = 0;
     s->levels = 0;
     s->bytes = 0;
-    s->frame_w = s->frame_h = 0;
+    s->frame_w = s->frame_h = s->base = s->fine = 0;
 }
 
 void shell_free(shell_targets *s)
 {
     free_targets(s);
-    GLuint p[3] = {s->prog_recv, s->prog_splat, s->prog_resolve};
-    for (int i = 0; i < 3; i++)
+    GLuint p[4] = {s->prog_recv, s->prog_recv_fine, s->prog_splat, s->prog_resolve};
+    for (int i = 0; i < 4; i++)
         if (p[i]) glDeleteProgram(p[i]);
-    s->prog_recv = s->prog_splat = s->prog_resolve = 0;
+    s->prog_recv = s->prog_recv_fine = s->prog_splat = s->prog_resolve = 0;
+    if (s->query) glDeleteQueries(1, &s->query);
+    s->query = 0;
+    s->query_pending = 0;
 }
 
-sss_result shell_resize(sss_gl_renderer *r, shell_targets *s, int levels, sss_error *err)
+/* Target i (a pyramid level or SHELL_FINE) with texels d render pixels wide. */
+static sss_result make_target(sss_gl_renderer *r, shell_targets *s, int i, int d, sss_error *err)
+{
+    s->w[i] = (r->width + d - 1) / d;
+    s->h[i] = (r->height + d - 1) / d;
+    s->recv[i] = gl_texture_2d(GL_RGBA32F, s->w[i], s->h[i], 1, &s->bytes);
+    s->accum[i] = gl_texture_2d(GL_RGBA32F, s->w[i], s->h[i], 1, &s->bytes);
+    glTextureParameteri(s->accum[i], GL_TEXTURE_MIN_FILTER, GL_LINEAR); /* bilinear upsampling */
+    glTextureParameteri(s->accum[i], GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glCreateFramebuffers(1, &s->fbo_recv[i]);
+    glNamedFramebufferTexture(s->fbo_recv[i], GL_COLOR_ATTACHMENT0, s->recv[i], 0);
+    glNamedFramebufferTexture(s->fbo_recv[i], GL_COLOR_ATTACHMENT1, s->accum[i], 0);
+    if (i == SHELL_FINE) {
+        s->link = gl_texture_2d(GL_RGBA32F, s->w[i], s->h[i], 1, &s->bytes);
+        glNamedFramebufferTexture(s->fbo_recv[i], GL_COLOR_ATTACHMENT2, s->link, 0);
+    }
+    glNamedFramebufferDrawBuffers(s->fbo_recv[i], i == SHELL_FINE ? 3 : 2, bufs);
+    glCreateFramebuffers(1, &s->fbo_accum[i]);
+    glNamedFramebufferTexture(s->fbo_accum[i], GL_COLOR_ATTACHMENT0, s->accum[i], 0);
+    glNamedFramebufferDrawBuffers(s->fbo_accum[i], 1, bufs);
+    if (glCheckNamedFramebufferStatus(s->fbo_recv[i], GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE ||
+        glCheckNamedFramebufferStatus(s->fbo_accum[i], GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "incomplete %dx%d splatting target (level %d)", s->w[i],
+                             s->h[i], i == SHELL_FINE ? -1 : i);
+    return SSS_OK;
+}
+
+sss_result shell_resize(sss_gl_renderer *r, shell_targets *s, int levels, double fine_radius, sss_error *err)
 {
     if (levels < 1) levels = 1;
     if (levels > SHELL_MAX_LEVELS) levels = SHELL_MAX_LEVELS;
-    if (s->levels == levels && s->frame_w == r->width && s->frame_h == r->height) return SSS_OK;
+    int k = gl_supersample(r);
+    int fine = k > 1 && fine_radius > 0.0;
+    s->fine_radius = fine_radius;
+    if (s->levels == levels && s->frame_w == r->width && s->frame_h == r->height && s->base == k && s->fine == fine)
+        return SSS_OK;
     free_targets(s);
     s->levels = levels;
     s->frame_w = r->width;
     s->frame_h = r->height;
-    for (int l = 0; l < levels; l++) {
-        int d = 1 << l;
-        s->w[l] = (r->width + d - 1) / d;
-        s->h[l] = (r->height + d - 1) / d;
-        s->recv[l] = gl_texture_2d(GL_RGBA32F, s->w[l], s->h[l], 1, &s->bytes);
-        s->accum[l] = gl_texture_2d(GL_RGBA32F, s->w[l], s->h[l], 1, &s->bytes);
-        glTextureParameteri(s->accum[l], GL_TEXTURE_MIN_FILTER, GL_LINEAR); /* bilinear upsampling */
-        glTextureParameteri(s->accum[l], GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-        glCreateFramebuffers(1, &s->fbo_recv[l]);
-        glNamedFramebufferTexture(s->fbo_recv[l], GL_COLOR_ATTACHMENT0, s->recv[l], 0);
-        glNamedFramebufferTexture(s->fbo_recv[l], GL_COLOR_ATTACHMENT1, s->accum[l], 0);
-        glNamedFramebufferDrawBuffers(s->fbo_recv[l], 2, bufs);
-        glCreateFramebuffers(1, &s->fbo_accum[l]);
-        glNamedFramebufferTexture(s->fbo_accum[l], GL_COLOR_ATTACHMENT0, s->accum[l], 0);
-        glNamedFramebufferDrawBuffers(s->fbo_accum[l], 1, bufs);
-        if (glCheckNamedFramebufferStatus(s->fbo_recv[l], GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE ||
-            glCheckNamedFramebufferStatus(s->fbo_accum[l], GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "incomplete %dx%d splatting target (level %d)", s->w[l],
-                                 s->h[l], l);
-    }
-    return gl_check(r->ctx, "splatting targets", err);
+    s->base = k;
+    s->fine = fine;
+    sss_result res = fine ? make_target(r, s, SHELL_FINE, 1, err) : SSS_OK;
+    for (int l = 0; l < levels && res == SSS_OK; l++) res = make_target(r, s, l, k << l, err); /* 2^l output px */
+    return res == SSS_OK ? gl_check(r->ctx, "splatting targets", err) : res;
 }
 
 void shell_receivers(sss_gl_renderer *r, shell_targets *s)
@@ -75,12 +102,21 @@ void shell_receivers(sss_gl_renderer *r, shell_targets *s)
     glBindTextureUnit(0, r->frame.pos);
     glBindTextureUnit(1, r->frame.nrm);
     GLint u_div = glGetUniformLocation(s->prog_recv, "u_divisor");
+    glUniform1i(glGetUniformLocation(s->prog_recv, "u_base"), s->base);
     for (int l = 0; l < s->levels; l++) {
         glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_recv[l]);
         glViewport(0, 0, s->w[l], s->h[l]);
-        glUniform1i(u_div, 1 << l);
+        glUniform1i(u_div, s->base << l);
         gl_draw_fullscreen(r);
     }
+    if (!s->fine) return;
+    /* the render-resolution level, after level 0 (it records which level-0 receiver each pixel reads) */
+    glUseProgram(s->prog_recv_fine);
+    glBindTextureUnit(2, s->recv[0]);
+    glUniform1i(glGetUniformLocation(s->prog_recv_fine, "u_base"), s->base);
+    glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_recv[SHELL_FINE]);
+    glViewport(0, 0, s->w[SHELL_FINE], s->h[SHELL_FINE]);
+    gl_draw_fullscreen(r);
 }
 
 void shell_splat(sss_gl_renderer *r, shell_targets *s, GLuint splats, GLuint cmd, unsigned capacity,
@@ -91,19 +127,39 @@ void shell_splat(sss_gl_renderer *r, shell_targets *s, GLuint splats, GLuint cmd
     glBlendFunc(GL_ONE, GL_ONE);
     glUseProgram(s->prog_splat);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_SPLATS, splats);
-    glUniform1i(glGetUniformLocation(s->prog_splat, "u_levels"), s->levels);
-    glUniform1f(glGetUniformLocation(s->prog_splat, "u_epsilon"), (float)epsilon);
     glUniform1ui(glGetUniformLocation(s->prog_splat, "u_capacity"), capacity);
     glUniform1i(glGetUniformLocation(s->prog_splat, "u_preintegrated"), preintegrated);
-    GLint u_level = glGetUniformLocation(s->prog_splat, "u_level");
+    glUniform1f(glGetUniformLocation(s->prog_splat, "u_base"), (float)s->base);
+    GLint u_shell = glGetUniformLocation(s->prog_splat, "u_shell");
+    GLint u_last = glGetUniformLocation(s->prog_splat, "u_last");
+    GLint u_fine = glGetUniformLocation(s->prog_splat, "u_fine");
+    GLint u_margin = glGetUniformLocation(s->prog_splat, "u_margin");
+    /* level 0's outer radius for the fine level, which takes back what level 0 counted (-1: the reach) */
+    glUniform1f(glGetUniformLocation(s->prog_splat, "u_outer0"), s->levels > 1 ? (float)(2.0 / epsilon) : -1.0f);
     glBindVertexArray(r->vao_empty);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, cmd);
-    for (int l = 0; l < s->levels; l++) {
-        glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_accum[l]);
-        glViewport(0, 0, s->w[l], s->h[l]);
-        glBindTextureUnit(0, s->recv[l]);
-        glUniform1i(u_level, l);
+    if (s->query) glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, s->query);
+    /* shell radii in output pixels (x the world size of one at the splat's depth): D_0 = 0,
+     * D_l = 2^l / epsilon; the fine level [0, D), D at most level 0's outer radius */
+    double fine_d = fmin(s->fine_radius, 2.0 / epsilon);
+    for (int l = s->fine ? -1 : 0; l < s->levels; l++) {
+        int i = l < 0 ? SHELL_FINE : l;
+        double inner = l <= 0 ? 0.0 : ldexp(1.0, l) / epsilon;
+        double outer = l < 0 ? fine_d : ldexp(1.0, l + 1) / epsilon;
+        glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_accum[i]);
+        glViewport(0, 0, s->w[i], s->h[i]);
+        glBindTextureUnit(0, s->recv[i]);
+        glBindTextureUnit(1, l < 0 ? s->link : s->recv[i]);
+        glBindTextureUnit(2, s->recv[0]);
+        glUniform1i(u_fine, l < 0);
+        glUniform1f(u_margin, l < 0 ? (float)(0.75 * (s->base - 1) / s->base) : 0.0f); /* >= 0.71 (k - 1) / k */
+        glUniform2f(u_shell, (float)inner, (float)outer);
+        glUniform1i(u_last, l == s->levels - 1); /* the last shell reaches the kernel's reach */
         glDrawArraysIndirect(GL_TRIANGLE_STRIP, NULL);
+    }
+    if (s->query) {
+        glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
+        s->query_pending = 1;
     }
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     glBindVertexArray(0);
@@ -121,7 +177,12 @@ void shell_resolve(sss_gl_renderer *r, shell_targets *s)
     glBindTextureUnit(2, r->frame.albedo);
     glBindTextureUnit(3, r->frame.refl);
     for (int l = 0; l < SHELL_MAX_LEVELS; l++) glBindTextureUnit(4 + (GLuint)l, s->accum[l < s->levels ? l : 0]);
+    glBindTextureUnit(8, s->recv[0]);
+    glBindTextureUnit(9, s->fine ? s->accum[SHELL_FINE] : s->accum[0]);
+    glBindTextureUnit(10, s->fine ? s->link : s->accum[0]);
     glUniform1i(glGetUniformLocation(s->prog_resolve, "u_levels"), s->levels);
+    glUniform1i(glGetUniformLocation(s->prog_resolve, "u_base"), s->base);
+    glUniform1i(glGetUniformLocation(s->prog_resolve, "u_fine"), s->fine);
     gl_draw_fullscreen(r);
 }
 
@@ -130,4 +191,20 @@ unsigned shell_splat_count(GLuint cmd, unsigned capacity)
     GLuint c[4] = {0, 0, 0, 0};
     if (cmd) glGetNamedBufferSubData(cmd, 0, sizeof c, c);
     return c[1] < capacity ? c[1] : capacity;
+}
+
+long long shell_splat_fragments(shell_targets *s)
+{
+    if (!s || !s->query || !s->query_pending) return -1;
+    GLuint64 n = 0;
+    glGetQueryObjectui64v(s->query, GL_QUERY_RESULT, &n);
+    return (long long)n;
+}
+
+extern const gl_technique gl_technique_dss, gl_technique_chen2012;
+
+shell_targets *shell_targets_of(sss_gl_renderer *r)
+{
+    if (!r || !r->tech_state || (r->tech != &gl_technique_dss && r->tech != &gl_technique_chen2012)) return NULL;
+    return (shell_targets *)r->tech_state;
 }
