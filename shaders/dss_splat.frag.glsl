@@ -3,30 +3,33 @@
 // F_t E A R_d(|x_i - x_o|) (or the disc-integrated R'_d(r, A) of seed 000 Eq. 5 with
 // u_preintegrated), for receivers on the splat's object whose distance lies in this level's shell.
 // Additive blending accumulates all splats (no depth test).
-// u_fine, the render-resolution level (k > 1; tech_dss_shells.h): level 0 already holds every splat
+// FINE, the render-resolution level (k > 1; tech_dss_shells.h): level 0 already holds every splat
 // within its shell at the level-0 receiver R_o that stands for this pixel x (r_link), so a splat c
 // near x moves part of its transport from R_o to x itself: w(|x - c|) K(|x - c|) - w(|R_o - c|)
-// K(|R_o - c|), w = 1 - smoothstep(D/2, D, .) (v_shell.y = D). The output pixel's render pixels then
-// sample the sharp part of the transport each at its own point (the antialiasing); the same weight
-// on both sides keeps the mean (over a uniform surface the two terms integrate alike: the plane's
-// energy; weighting R_o's term by w(|x - c|) gave +1%), and w going to 0 at D leaves no ring where a
-// splat's fine shell ends (a hard split [0, D) at x, [D, ...) at R_o counted some splats twice and
-// others never: rings around the sparse, large splats of eval_twist). The quad reaches beyond D by
-// the farthest a render pixel's centre lies from its output pixel's, 0.71 (k - 1) / k output pixels
-// (u_margin), so it covers every pixel whose own R_o is within D of c while x is not (a pixel that
-// takes a neighbour's R_o at an edge and is left out keeps level 0's value for that splat).
+// K(|R_o - c|), w = 1 - smoothstep(0, D, .) (v_shell.y = D). The output pixel's render pixels then
+// sample the sharp part of the transport each at its own point (the antialiasing). The same weight on
+// both sides keeps the mean (over a uniform surface the two terms integrate alike: the plane's
+// energy; weighting R_o's term by w(|x - c|) gave +2 .. +4.5%); a weight falling smoothly over all of
+// [0, D] leaves no ring around a splat: a hard split ([0, D) at x, [D, ...) at R_o) counted some
+// splats twice and others never, and a taper over [D/2, D] still showed rings around the sparse,
+// large splats of eval_twist (their difference is ~ |x - R_o|^2 w'' K, w'' 6x smaller here). The quad
+// reaches beyond D by the farthest a render pixel's centre lies from its output pixel's,
+// 0.71 (k - 1) / k output pixels (u_margin), so it covers every pixel whose R_o is within D of c
+// while x is not (a pixel that takes a neighbour's R_o at an edge and is left out keeps level 0's
+// value for that splat).
 #include "common.glsl"
 
 layout(binding = 0) uniform sampler2D r_receiver; // xyz; w: object id + 1
-layout(binding = 1) uniform sampler2D r_link;     // u_fine: level-0 texel of this pixel, xy; w: valid
-layout(binding = 2) uniform sampler2D r_recv0;    // u_fine: level 0's receivers
+#ifdef FINE
+layout(binding = 1) uniform sampler2D r_link;     // level-0 texel of this pixel, xy; w: valid
+layout(binding = 2) uniform sampler2D r_recv0;    // level 0's receivers
+#endif
 
 uniform int u_preintegrated;
-uniform int u_fine;
 
 flat in vec4 v_centre;
 flat in vec4 v_flux;
-flat in vec3 v_shell; // inner, outer radius; z: level 0's outer radius (u_fine)
+flat in vec3 v_shell; // inner, outer radius; z: level 0's outer radius (FINE)
 flat in vec4 v_lut;
 flat in vec4 v_lut_scales;
 flat in ivec2 v_lut_mode;
@@ -40,17 +43,19 @@ void main()
     LutInfo L = LutInfo(v_lut.x, v_lut.y, v_lut.z, v_lut.w, v_lut_mode.x, v_lut_mode.y != 0, v_lut_scales);
     float area = u_preintegrated != 0 ? v_centre.w : 0.0;
     vec3 k;
-    if (u_fine != 0) {
+#ifdef FINE // a program of its own: llvmpipe pays for both sides of a branch on a uniform
+    {
         vec4 link = texelFetch(r_link, ivec2(gl_FragCoord.xy), 0);
         if (link.w < 0.5) discard; // no level-0 receiver stands for this pixel (the resolve interpolates)
         float ro = length(texelFetch(r_recv0, ivec2(link.xy), 0).xyz - v_centre.xyz);
-        float wx = 1.0 - smoothstep(0.5 * v_shell.y, v_shell.y, r);
-        float wo = ro < v_shell.z ? 1.0 - smoothstep(0.5 * v_shell.y, v_shell.y, ro) : 0.0; // level 0 counted it
+        float wx = 1.0 - smoothstep(0.0, v_shell.y, r);
+        float wo = ro < v_shell.z ? 1.0 - smoothstep(0.0, v_shell.y, ro) : 0.0; // level 0 counted it
         if (wx <= 0.0 && wo <= 0.0) discard;
         k = (wx > 0.0 ? wx * lut_eval(L, r, area) : vec3(0.0)) - (wo > 0.0 ? wo * lut_eval(L, ro, area) : vec3(0.0));
-    } else {
-        if (r < v_shell.x || r >= v_shell.y) discard;
-        k = lut_eval(L, r, area);
     }
+#else
+    if (r < v_shell.x || r >= v_shell.y) discard;
+    k = lut_eval(L, r, area);
+#endif
     o_accum = vec4(v_flux.rgb * k, 0.0);
 }

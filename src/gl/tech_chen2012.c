@@ -60,10 +60,10 @@ static const sss_gl_param_info params[P_COUNT] = {
      * 256 is within 0.0005 of the full-size buffers at a sixth of the time (128 loses 0.0016). */
     [P_ENV_SIZE] = {"env_buffer_size", SSS_GL_PARAM_INT, 256, 16, 8192,
                     "texels per side of the irradiance buffer of an environment map's directional lights"},
-    [P_FINE] = {"view_fine_radius", SSS_GL_PARAM_FLOAT, 2, 0, 64,
+    [P_FINE] = {"view_fine_radius", SSS_GL_PARAM_FLOAT, 2.5, 0, 64,
                 "with supersampling (k > 1): receivers within this many output pixels of a splat are splatted per "
-                "render pixel (an extra camera level; the sharp near field antialiased, ~6% more splatting on the "
-                "eval scenes), at most level 0's 2 / view_epsilon; 0: the k = 1 image, antialiased at edges only "
+                "render pixel (an extra camera level; the sharp near field antialiased, 5-10% more splatting on "
+                "the eval scenes), at most level 0's 2 / view_epsilon; 0: the k = 1 image, antialiased at edges only "
                 "(docs/supersampling.md)"},
 };
 

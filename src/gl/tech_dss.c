@@ -39,10 +39,10 @@ static const sss_gl_param_info params[P_COUNT] = {
                 "mesh's chords"},
     [P_MAX_SURFELS] = {"max_surfels", SSS_GL_PARAM_INT, 1048576, 1, 16777216,
                        "capacity of the surfel buffer (48 bytes each); surfels beyond it are dropped"},
-    [P_FINE] = {"fine_radius", SSS_GL_PARAM_FLOAT, 2, 0, 64,
+    [P_FINE] = {"fine_radius", SSS_GL_PARAM_FLOAT, 2.5, 0, 64,
                 "with supersampling (k > 1): receivers within this many output pixels of a surfel are splatted per "
-                "render pixel (an extra level; the sharp near field antialiased, ~6% more splatting on the eval "
-                "scenes), at most level 0's 2 / epsilon; 0: the k = 1 image, antialiased at edges only "
+                "render pixel (an extra level; the sharp near field antialiased, 5-10% more splatting on the "
+                "eval scenes), at most level 0's 2 / epsilon; 0: the k = 1 image, antialiased at edges only "
                 "(docs/supersampling.md)"},
 };
 

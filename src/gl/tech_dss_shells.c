@@ -12,6 +12,8 @@ sss_result shell_create(shell_targets *s, sss_error *err)
                             err);
     if (res == SSS_OK) res = gl_program_vf("dss_splat.vert.glsl", "dss_splat.frag.glsl", NULL, &s->prog_splat, err);
     if (res == SSS_OK)
+        res = gl_program_vf("dss_splat.vert.glsl", "dss_splat.frag.glsl", "#define FINE 1\n", &s->prog_splat_fine, err);
+    if (res == SSS_OK)
         res = gl_program_vf("fullscreen.vert.glsl", "dss_resolve.frag.glsl", NULL, &s->prog_resolve, err);
     /* the splatting work, for tests (shell_splat_fragments): core in GL 4.6, an extension before */
     if (res == SSS_OK && (epoxy_gl_version() >= 46 || epoxy_has_gl_extension("GL_ARB_pipeline_statistics_query")))
@@ -38,10 +40,10 @@ static void free_targets(shell_targets *s)
 void shell_free(shell_targets *s)
 {
     free_targets(s);
-    GLuint p[4] = {s->prog_recv, s->prog_recv_fine, s->prog_splat, s->prog_resolve};
-    for (int i = 0; i < 4; i++)
+    GLuint p[5] = {s->prog_recv, s->prog_recv_fine, s->prog_splat, s->prog_splat_fine, s->prog_resolve};
+    for (int i = 0; i < 5; i++)
         if (p[i]) glDeleteProgram(p[i]);
-    s->prog_recv = s->prog_recv_fine = s->prog_splat = s->prog_resolve = 0;
+    s->prog_recv = s->prog_recv_fine = s->prog_splat = s->prog_splat_fine = s->prog_resolve = 0;
     if (s->query) glDeleteQueries(1, &s->query);
     s->query = 0;
     s->query_pending = 0;
@@ -119,44 +121,50 @@ void shell_receivers(sss_gl_renderer *r, shell_targets *s)
     gl_draw_fullscreen(r);
 }
 
+/* One level's draw: its shell [inner, outer) in output pixels (x the world size of one at the splat's
+ * depth); the last shell reaches the kernel's reach. */
+static void splat_level(shell_targets *s, GLuint prog, int i, double inner, double outer, int last)
+{
+    glUseProgram(prog);
+    glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_accum[i]);
+    glViewport(0, 0, s->w[i], s->h[i]);
+    glBindTextureUnit(0, s->recv[i]);
+    glUniform2f(glGetUniformLocation(prog, "u_shell"), (float)inner, (float)outer);
+    glUniform1i(glGetUniformLocation(prog, "u_last"), last);
+    glDrawArraysIndirect(GL_TRIANGLE_STRIP, NULL);
+}
+
 void shell_splat(sss_gl_renderer *r, shell_targets *s, GLuint splats, GLuint cmd, unsigned capacity,
                  double epsilon, int preintegrated)
 {
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
-    glUseProgram(s->prog_splat);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_SPLATS, splats);
-    glUniform1ui(glGetUniformLocation(s->prog_splat, "u_capacity"), capacity);
-    glUniform1i(glGetUniformLocation(s->prog_splat, "u_preintegrated"), preintegrated);
-    glUniform1f(glGetUniformLocation(s->prog_splat, "u_base"), (float)s->base);
-    GLint u_shell = glGetUniformLocation(s->prog_splat, "u_shell");
-    GLint u_last = glGetUniformLocation(s->prog_splat, "u_last");
-    GLint u_fine = glGetUniformLocation(s->prog_splat, "u_fine");
-    GLint u_margin = glGetUniformLocation(s->prog_splat, "u_margin");
-    /* level 0's outer radius for the fine level, which takes back what level 0 counted (-1: the reach) */
-    glUniform1f(glGetUniformLocation(s->prog_splat, "u_outer0"), s->levels > 1 ? (float)(2.0 / epsilon) : -1.0f);
+    /* the fine level has a program of its own (dss_splat.frag.glsl, FINE) */
+    GLuint progs[2] = {s->prog_splat, s->prog_splat_fine};
+    for (int j = 0; j < 2; j++) {
+        glUseProgram(progs[j]);
+        glUniform1ui(glGetUniformLocation(progs[j], "u_capacity"), capacity);
+        glUniform1i(glGetUniformLocation(progs[j], "u_preintegrated"), preintegrated);
+        glUniform1f(glGetUniformLocation(progs[j], "u_base"), (float)s->base);
+        /* the fine level takes back what level 0 counted, up to its outer radius (-1: the reach), and its
+         * quads reach 0.75 (k - 1) / k >= 0.71 (k - 1) / k output pixels further */
+        glUniform1f(glGetUniformLocation(progs[j], "u_outer0"), s->levels > 1 ? (float)(2.0 / epsilon) : -1.0f);
+        glUniform1f(glGetUniformLocation(progs[j], "u_margin"), j ? (float)(0.75 * (s->base - 1) / s->base) : 0.0f);
+    }
     glBindVertexArray(r->vao_empty);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, cmd);
     if (s->query) glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, s->query);
-    /* shell radii in output pixels (x the world size of one at the splat's depth): D_0 = 0,
-     * D_l = 2^l / epsilon; the fine level [0, D), D at most level 0's outer radius */
-    double fine_d = fmin(s->fine_radius, 2.0 / epsilon);
-    for (int l = s->fine ? -1 : 0; l < s->levels; l++) {
-        int i = l < 0 ? SHELL_FINE : l;
-        double inner = l <= 0 ? 0.0 : ldexp(1.0, l) / epsilon;
-        double outer = l < 0 ? fine_d : ldexp(1.0, l + 1) / epsilon;
-        glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_accum[i]);
-        glViewport(0, 0, s->w[i], s->h[i]);
-        glBindTextureUnit(0, s->recv[i]);
-        glBindTextureUnit(1, l < 0 ? s->link : s->recv[i]);
+    /* D_0 = 0, D_l = 2^l / epsilon output pixels; the fine level [0, D), D at most level 0's outer radius */
+    if (s->fine) {
+        glBindTextureUnit(1, s->link);
         glBindTextureUnit(2, s->recv[0]);
-        glUniform1i(u_fine, l < 0);
-        glUniform1f(u_margin, l < 0 ? (float)(0.75 * (s->base - 1) / s->base) : 0.0f); /* >= 0.71 (k - 1) / k */
-        glUniform2f(u_shell, (float)inner, (float)outer);
-        glUniform1i(u_last, l == s->levels - 1); /* the last shell reaches the kernel's reach */
-        glDrawArraysIndirect(GL_TRIANGLE_STRIP, NULL);
+        splat_level(s, s->prog_splat_fine, SHELL_FINE, 0.0, fmin(s->fine_radius, 2.0 / epsilon), 0);
     }
+    for (int l = 0; l < s->levels; l++)
+        splat_level(s, s->prog_splat, l, l ? ldexp(1.0, l) / epsilon : 0.0, ldexp(1.0, l + 1) / epsilon,
+                    l == s->levels - 1);
     if (s->query) {
         glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
         s->query_pending = 1;

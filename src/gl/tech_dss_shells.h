@@ -23,12 +23,13 @@
  * With k > 1 one more level at the render resolution (SHELL_FINE) samples the sharpest part of the
  * transport per render pixel: where a narrow kernel (Skin1's blue: under a pixel) is sampled once per
  * output pixel, the splats' lattice shows as moire, which supersampling should average away. For a
- * render pixel x, every splat c within fine_radius D output pixels adds w(|x - c|) (K(|x - c|) -
- * K(|R_o - c|)), R_o the level-0 receiver standing for x, w = 1 - smoothstep(D/2, D, .): level 0 keeps
- * its whole shell, each splat counts once per pixel and nothing jumps where the fine shell ends (a
- * split [0, D) here / [D, 2 / epsilon) in level 0, measured at x and at R_o, counted some splats
- * twice and others never: rings around the sparse splats of eval_twist). It costs (2 D k)^2
- * fragments per splat (eval_front/eval_backlit: +6% for D = 2).
+ * render pixel x, every splat c within fine_radius D output pixels adds w(|x - c|) K(|x - c|) -
+ * w(|R_o - c|) K(|R_o - c|), R_o the level-0 receiver standing for x, w = 1 - smoothstep(0, D, .):
+ * level 0 keeps its whole shell, each splat counts once per pixel on average (the mean is kept) and
+ * nothing jumps around a splat (a split [0, D) here / [D, 2 / epsilon) in level 0, measured at x and
+ * at R_o, counted some splats twice and others never: rings around the sparse splats of eval_twist).
+ * It costs quads of radius D + 0.75 (k - 1) / k output pixels per splat (eval_backlit +5%, eval_front
+ * +10% splatting fragments for D = 2.5; dss_splat.frag.glsl).
  *
  * Splat records are maisch2020's (48 bytes): centre + area, normal + object id + 1, F_t E + disc
  * radius; the draw count is the instance count of a DrawArraysIndirect command (4, n, 0, 0). */
@@ -47,7 +48,7 @@ typedef struct shell_targets {
     GLuint recv[SHELL_MAX_LEVELS + 1], accum[SHELL_MAX_LEVELS + 1];
     GLuint fbo_recv[SHELL_MAX_LEVELS + 1], fbo_accum[SHELL_MAX_LEVELS + 1];
     GLuint link;                /* SHELL_FINE: each render pixel's level-0 texel (dss_receivers.frag.glsl) */
-    GLuint prog_recv, prog_recv_fine, prog_splat, prog_resolve;
+    GLuint prog_recv, prog_recv_fine, prog_splat, prog_splat_fine, prog_resolve;
     size_t bytes;
     int frame_w, frame_h, base; /* base: render pixels per level-0 texel side, the SSAA factor k */
     int fine;                   /* the render-resolution level SHELL_FINE exists */
