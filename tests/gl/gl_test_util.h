@@ -39,9 +39,10 @@ static inline int gt_load(const char *name, sss_scene *scene)
     return 1;
 }
 
-/* Renders with technique (NULL: the scene's) and "name=value" parameters; out is created. */
-static inline int gt_render(const sss_scene *scene, const char *technique, double time, const sss_gl_param_value *params,
-                     int nparams, sss_image *out)
+/* Renders with technique (NULL: the scene's), "name=value" parameters and supersampling factor k
+ * (sss_gl_renderer_desc.supersample; 0: off) at the camera's size; out is created. */
+static inline int gt_render_k(const sss_scene *scene, const char *technique, double time,
+                              const sss_gl_param_value *params, int nparams, int k, sss_image *out)
 {
     sss_error err = {0};
     sss_gl_renderer_desc d;
@@ -49,19 +50,28 @@ static inline int gt_render(const sss_scene *scene, const char *technique, doubl
     d.technique = technique;
     d.params = params;
     d.param_count = nparams;
+    d.supersample = k;
     sss_gl_renderer *r = NULL;
     memset(out, 0, sizeof *out);
     if (sss_gl_renderer_create(gt_ctx(), scene, &d, &r, &err) != SSS_OK ||
         sss_gl_renderer_render(r, time, &err) != SSS_OK ||
         sss_image_create(out, scene->camera.width, scene->camera.height, &err) != SSS_OK ||
         sss_gl_renderer_read(r, out, &err) != SSS_OK) {
-        fprintf(stderr, "render failed: %s\n", err.message);
+        fprintf(stderr, "%s, supersample %d: render failed: %s\n", technique ? technique : "scene's technique", k,
+                err.message);
         sss_gl_renderer_destroy(r);
         sss_image_free(out);
         return 0;
     }
     sss_gl_renderer_destroy(r);
     return 1;
+}
+
+/* gt_render_k without supersampling. */
+static inline int gt_render(const sss_scene *scene, const char *technique, double time, const sss_gl_param_value *params,
+                     int nparams, sss_image *out)
+{
+    return gt_render_k(scene, technique, time, params, nparams, 0, out);
 }
 
 static inline int gt_read_ref(const char *name, sss_image *out)

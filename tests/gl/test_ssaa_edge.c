@@ -17,7 +17,7 @@
  *    give the image of a new renderer with those settings. */
 #include <unistd.h>
 
-#include "ssaa_test_util.h"
+#include "gl_test_util.h"
 
 #define SIZE 48
 #define FOV_DEG 30.0
@@ -117,7 +117,7 @@ static void test_edge(const sss_scene *scene)
     for (int k = 1; k <= 4; k++) {
         if (k == 2) continue;
         sss_image im;
-        if (!ssaa_render(scene, "local", NULL, 0, k, &im)) {
+        if (!gt_render_k(scene, "local", 0.0, NULL, 0, k, &im)) {
             CHECK(0);
             continue;
         }

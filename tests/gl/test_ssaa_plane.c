@@ -36,7 +36,7 @@
  *    (chen2012) and 12x (dss). */
 #include "gl/tech_dss_shells.h"
 #include "splat_plane_util.h"
-#include "ssaa_test_util.h"
+#include "gl_test_util.h"
 
 typedef struct plane_case {
     const char *technique;
@@ -53,7 +53,7 @@ typedef struct splat_work {
     long long fragments;
 } splat_work;
 
-/* ssaa_render that also reads the splatting work before the renderer goes. */
+/* gt_render_k that also reads the splatting work before the renderer goes. */
 static int render_k(const sss_scene *scene, const char *technique, const sss_gl_param_value *params, int nparams,
                     int k, sss_image *out, splat_work *work)
 {

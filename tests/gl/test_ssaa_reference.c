@@ -5,7 +5,7 @@
  * subsurface scattering. With k = 2 the box filter integrates the same footprint with 4 samples: the
  * DSSIM must drop, by at least 10% (measured: local on the head of eval_front 0.0261 -> 0.0216, -17%;
  * maisch2020 on the thin tube of eval_trefoil_low, all silhouette, 0.0150 -> 0.0104, -30%). */
-#include "ssaa_test_util.h"
+#include "gl_test_util.h"
 
 static void check_scene(const char *file, const char *ref_file, const char *technique)
 {
@@ -25,7 +25,7 @@ static void check_scene(const char *file, const char *ref_file, const char *tech
         return;
     }
     sss_image a, b;
-    if (ssaa_render(&scene, technique, NULL, 0, 1, &a) && ssaa_render(&scene, technique, NULL, 0, 2, &b)) {
+    if (gt_render_k(&scene, technique, 0.0, NULL, 0, 1, &a) && gt_render_k(&scene, technique, 0.0, NULL, 0, 2, &b)) {
         CHECK(sss_image_count_nonfinite(&b) == 0);
         double d1 = gt_dssim(&a, &ref), d2 = gt_dssim(&b, &ref);
         printf("%s, %s: DSSIM k = 1 %.4f, k = 2 %.4f (%+.0f%%)\n", file, technique, d1, d2, 100.0 * (d2 / d1 - 1.0));
