@@ -6,8 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "gl/gl_internal.h"
+#include "gl_probe_util.h"
 #include "sss/material.h"
 
 #define N_PAIRS 64
@@ -31,18 +30,9 @@ static const char *const probe_src =
 
 int main(void)
 {
-    sss_error err = {0};
-    sss_gl_context *ctx = NULL;
-    if (sss_gl_context_create(NULL, &ctx, &err) != SSS_OK) {
-        fprintf(stderr, "%s\n", err.message);
-        return 1;
-    }
-    GLuint prog = 0;
-    gl_shader_stage st = {GL_COMPUTE_SHADER, "exit_factor_probe.comp.glsl", probe_src};
-    CHECK(gl_program_build(&st, 1, NULL, &prog, &err) == SSS_OK);
-    if (!prog) {
-        fprintf(stderr, "%s\n", err.message);
-        sss_gl_context_destroy(ctx);
+    gt_probe probe;
+    if (!gt_probe_create(&probe, "exit_factor_probe.comp.glsl", probe_src, sizeof(float) * 8 * N_PAIRS)) {
+        CHECK(0);
         return CHECK_DONE();
     }
     /* The view direction v = +z; normals at angles from 0 to 180 degrees to it (past 90: facing away),
@@ -62,27 +52,7 @@ int main(void)
         data[i][7] = (float)c;
         expect[i] = (1.0 - sss_fresnel_dielectric(fabs(cos_o), 1.0, eta)) / (PI * c);
     }
-    GLuint objs = 0, io = 0, mats = 0, lights = 0, scales = 0;
-    glCreateBuffers(1, &objs);
-    glCreateBuffers(1, &io);
-    glCreateBuffers(1, &mats);
-    glCreateBuffers(1, &lights);
-    glCreateBuffers(1, &scales);
-    glNamedBufferStorage(objs, sizeof(gl_object_record), NULL, 0);
-    glNamedBufferStorage(mats, 64, NULL, 0);
-    glNamedBufferStorage(lights, 144, NULL, 0);
-    glNamedBufferStorage(scales, 16, NULL, 0);
-    glNamedBufferStorage(io, sizeof data, data, GL_DYNAMIC_STORAGE_BIT);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_OBJECTS, objs);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_MATERIALS, mats);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_LIGHTS, lights);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_LUT_SCALES, scales);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, io);
-    glUseProgram(prog);
-    glUniform1ui(glGetUniformLocation(prog, "u_count"), N_PAIRS);
-    glDispatchCompute((N_PAIRS + 63) / 64, 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(io, 0, sizeof data, data);
+    gt_probe_run(&probe, data, sizeof data, N_PAIRS);
     double worst_front = 0.0, worst_away = 0.0;
     for (int i = 0; i < N_PAIRS; i++) {
         double rel = fabs(data[i][0] - expect[i]) / expect[i];
@@ -93,10 +63,6 @@ int main(void)
            worst_away);
     CHECK(worst_front < 1e-4);
     CHECK(worst_away < 1e-4);
-    CHECK(gl_check(ctx, "exit factor probe", &err) == SSS_OK);
-    GLuint bufs[5] = {objs, io, mats, lights, scales};
-    glDeleteBuffers(5, bufs);
-    glDeleteProgram(prog);
-    sss_gl_context_destroy(ctx);
+    gt_probe_destroy(&probe, "exit factor probe");
     return CHECK_DONE();
 }

@@ -5,8 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "gl/gl_internal.h"
+#include "gl_probe_util.h"
 
 #define N_POINTS 200
 
@@ -35,17 +34,9 @@ static double frand(unsigned *s)
 
 int main(void)
 {
-    sss_error err = {0};
-    sss_gl_context *ctx = NULL;
-    if (sss_gl_context_create(NULL, &ctx, &err) != SSS_OK) {
-        fprintf(stderr, "%s\n", err.message);
-        return 1;
-    }
-    GLuint prog = 0;
-    gl_shader_stage st = {GL_COMPUTE_SHADER, "animation_probe.comp.glsl", probe_src};
-    CHECK(gl_program_build(&st, 1, NULL, &prog, &err) == SSS_OK);
-    if (!prog) {
-        fprintf(stderr, "%s\n", err.message);
+    gt_probe probe;
+    if (!gt_probe_create(&probe, "animation_probe.comp.glsl", probe_src, sizeof(float) * 8 * N_POINTS)) {
+        CHECK(0);
         return CHECK_DONE();
     }
     const float lo[3] = {-0.3f, 0.1f, -0.2f}, hi[3] = {0.5f, 1.7f, 0.25f};
@@ -64,22 +55,6 @@ int main(void)
         len = sqrt(len);
         for (int k = 0; k < 3; k++) nrm[i][k] = (float)(nrm[i][k] / (len > 0.0 ? len : 1.0));
     }
-    GLuint objs = 0, io = 0, mats = 0, lights = 0, scales = 0;
-    glCreateBuffers(1, &objs);
-    glCreateBuffers(1, &io);
-    glCreateBuffers(1, &mats);
-    glCreateBuffers(1, &lights);
-    glCreateBuffers(1, &scales);
-    glNamedBufferStorage(mats, 64, NULL, 0);
-    glNamedBufferStorage(lights, 144, NULL, 0);
-    glNamedBufferStorage(scales, 16, NULL, 0);
-    glNamedBufferStorage(io, sizeof(float) * 8 * N_POINTS, NULL, GL_DYNAMIC_STORAGE_BIT);
-    glNamedBufferStorage(objs, sizeof(gl_object_record), NULL, GL_DYNAMIC_STORAGE_BIT);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_OBJECTS, objs);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_MATERIALS, mats);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_LIGHTS, lights);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_LUT_SCALES, scales);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, io);
     double extent = 0.0;
     for (int k = 0; k < 3; k++) extent = fmax(extent, hi[k] - lo[k]);
     for (int a = 0; a < 3; a++)
@@ -95,7 +70,7 @@ int main(void)
             rec.bounds_min[3] = (float)anim.type;
             rec.bounds_max[3] = (float)anim.amplitude;
             rec.anim[0] = (float)anim.period;
-            glNamedBufferSubData(objs, 0, sizeof rec, &rec);
+            glNamedBufferSubData(probe.objs, 0, sizeof rec, &rec);
             float data[N_POINTS][8];
             for (int i = 0; i < N_POINTS; i++) {
                 for (int k = 0; k < 3; k++) {
@@ -104,13 +79,9 @@ int main(void)
                 }
                 data[i][3] = data[i][7] = 0.0f;
             }
-            glNamedBufferSubData(io, 0, sizeof data, data);
-            glUseProgram(prog);
-            glUniform1ui(glGetUniformLocation(prog, "u_count"), N_POINTS);
-            glUniform1f(glGetUniformLocation(prog, "u_time"), (float)times[ti]);
-            glDispatchCompute((N_POINTS + 63) / 64, 1, 1);
-            glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-            glGetNamedBufferSubData(io, 0, sizeof data, data);
+            glUseProgram(probe.prog);
+            glUniform1f(glGetUniformLocation(probe.prog, "u_time"), (float)times[ti]);
+            gt_probe_run(&probe, data, sizeof data, N_POINTS);
             double worst_p = 0.0, worst_n = 0.0;
             for (int i = 0; i < N_POINTS; i++) {
                 float p[3], n[3];
@@ -135,10 +106,6 @@ int main(void)
             CHECK(worst_p < 2e-5 * extent);
             CHECK(worst_n < 1e-5);
         }
-    CHECK(gl_check(ctx, "animation probe", &err) == SSS_OK);
-    GLuint bufs[5] = {objs, io, mats, lights, scales};
-    glDeleteBuffers(5, bufs);
-    glDeleteProgram(prog);
-    sss_gl_context_destroy(ctx);
+    gt_probe_destroy(&probe, "animation probe");
     return CHECK_DONE();
 }
