@@ -302,20 +302,8 @@ const char *sss_fuzz_sam(const uint8_t *data, size_t size)
 void sss_fuzz_set_fixtures(const char *dir) { fixtures_dir = dir; }
 
 /* Full loads are skipped above this many procedural triangles (the limits allow 2^27 per object:
- * a legitimate but slow input, not a bug), and for the open bugs when sss_fuzz_skip_open_bugs. */
+ * a legitimate but slow input, not a bug). */
 #define SCENE_TRIANGLE_BUDGET 300000.0
-
-int sss_fuzz_skip_open_bugs;
-
-/* OPEN (tests/data/fuzz-regressions/scene/open-*_beyond_float.json): procedural shapes accept sizes
- * whose vertices overflow float. */
-static int open_bug_procedural_overflow(const sss_procedural *p)
-{
-    const double big = 1e37;
-    return fabs(p->radius) > big || fabs(p->major) > big || fabs(p->minor) > big || fabs(p->tube) > big ||
-           fabs(p->size) > big || fabs(p->box_size[0]) > big || fabs(p->box_size[1]) > big ||
-           fabs(p->box_size[2]) > big;
-}
 
 static double procedural_triangles(const sss_procedural *p)
 {
@@ -385,7 +373,6 @@ static const char *check_scene(const sss_scene *s, int meshes, double *triangles
             return broken("objects[%zu]: animation", i);
         if (o->procedural.shape != SSS_SHAPE_MESH) {
             *triangles += procedural_triangles(&o->procedural);
-            if (sss_fuzz_skip_open_bugs && open_bug_procedural_overflow(&o->procedural)) *triangles = INFINITY;
         }
         else if (!o->mesh_path) return broken("objects[%zu]: mesh object without a path", i);
         if (!meshes) {

@@ -28,11 +28,6 @@ const char *sss_fuzz_sam(const uint8_t *data, size_t size);   /* sss_sam_decode 
  * Must be set before sss_fuzz_scene. */
 void sss_fuzz_set_fixtures(const char *dir);
 
-/* Set by the fuzz binaries (not the replay test): steer around bugs already reported and committed as
- * open-* regressions, so that a run keeps exploring instead of finding them again. Each case is listed
- * in fuzz_harness.c next to the bug; remove it once the bug is fixed. */
-extern int sss_fuzz_skip_open_bugs;
-
 typedef struct sss_fuzz_target {
     const char *name; /* "ply": also the folder name under tests/data/fuzz-regressions/ and fuzz/corpus/ */
     sss_fuzz_fn fn;

@@ -14,7 +14,6 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     (void)argc;
     (void)argv;
     sss_fuzz_set_fixtures(SSS_FUZZ_FIXTURES);
-    sss_fuzz_skip_open_bugs = 1;
     return 0;
 }
 

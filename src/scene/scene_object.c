@@ -20,13 +20,20 @@ static sss_result parse_transform(scene_ctx *c, const cJSON *item, sss_transform
         return jr_fail_key(r, "rotate", SSS_ERROR_INVALID_ARGUMENT,
                            "the axis (the first three numbers) must be non-zero");
     if ((res = jr_number_or_vec(r, item, "scale", 0, 1, 3, t->scale, NULL)) != SSS_OK) return res;
-    for (int i = 0; i < 3; i++)
+    for (int i = 0; i < 3; i++) {
         if (t->scale[i] == 0)
             return jr_fail_key(r, "scale", SSS_ERROR_INVALID_ARGUMENT, "must be non-zero");
-    size_t mark = jr_enter_key(r, "rotate");
-    res = sss_transform_update(t, NULL);
-    if (res != SSS_OK) res = jr_fail(r, res, "the transform is not finite");
-    jr_leave(r, mark);
+        /* Normals transform with 1/scale: a subnormal scale would make the normal matrix infinite. */
+        if (!isfinite(1.0 / t->scale[i]))
+            return jr_fail_key(r, "scale", SSS_ERROR_INVALID_ARGUMENT, "%.3g is too small (1/scale overflows)",
+                               t->scale[i]);
+    }
+    sss_error err = {0};
+    res = sss_transform_update(t, &err);
+    if (res != SSS_OK) {
+        const char *msg = strncmp(err.message, "transform: ", 11) == 0 ? err.message + 11 : err.message;
+        res = jr_fail(r, res, "%s", msg);
+    }
     return res;
 }
 

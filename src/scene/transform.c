@@ -44,6 +44,12 @@ sss_result sss_transform_update(sss_transform *t, sss_error *err)
     }
     t->matrix[12] = t->matrix[13] = t->matrix[14] = 0;
     t->matrix[15] = 1;
+    /* Finite inputs can still overflow 1/scale (a subnormal scale): refuse rather than hand out inf. */
+    for (int i = 0; i < 16; i++)
+        if (!isfinite(t->matrix[i]) || (i < 9 && !isfinite(t->normal_matrix[i])))
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                                 "transform: scale %g %g %g is too small (1/scale overflows)", t->scale[0],
+                                 t->scale[1], t->scale[2]);
     return SSS_OK;
 }
 

@@ -74,6 +74,11 @@ static void test_transform_compose(void)
     sss_transform_identity(&bad);
     bad.translate[0] = NAN;
     CHECK(sss_transform_update(&bad, &err) == SSS_ERROR_INVALID_ARGUMENT);
+    /* A subnormal scale is finite and non-zero, but the normal matrix (1/scale) would be infinite. */
+    sss_transform_identity(&bad);
+    bad.scale[0] = 1e-320;
+    CHECK(sss_transform_update(&bad, &err) == SSS_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(err.message, "too small") != NULL);
 }
 
 /* The normal matrix keeps transformed normals perpendicular to transformed tangents under

@@ -209,6 +209,8 @@ static const bad_case bad_cases[] = {
     {SCENE_OBJS("{" SPHERE ", " DIFFUSE ", \"transform\": {\"rotate\": [0, 1, 0]}}"),
      "objects[0].transform.rotate: expected an array of 4 numbers"},
     {SCENE_OBJS("{" SPHERE ", " DIFFUSE ", \"transform\": {\"scale\": [1, 0, 1]}}"), "objects[0].transform.scale: must be non-zero"},
+    {SCENE_OBJS("{" SPHERE ", " DIFFUSE ", \"transform\": {\"scale\": [1, 1e-320, 1]}}"),
+     "objects[0].transform.scale: 1e-320 is too small (1/scale overflows)"},
     {SCENE_OBJS("{\"procedural\": {\"shape\": \"cone\"}, " DIFFUSE "}"), "objects[0].procedural.shape: unknown shape \"cone\""},
     {SCENE_OBJS("{\"procedural\": {\"shape\": \"plane\", \"size\": -1}, " DIFFUSE "}"), "objects[0].procedural.size: -1"},
     {SCENE_OBJS("{\"procedural\": {\"shape\": \"sphere\", \"radius\": 1, \"subdivisions\": 9}, " DIFFUSE "}"),
