@@ -353,7 +353,7 @@ static const char *check_scene(const sss_scene *s, int meshes, double *triangles
     if (s->light_count > SSS_SCENE_MAX_LIGHTS || (s->light_count && !s->lights))
         return broken("light_count %zu", s->light_count);
     const sss_camera *c = &s->camera;
-    if (!finite_n(c->position, 3) || !finite_n(c->look_at, 3) || !finite_n(c->up, 3) || !(c->fov > 0 && c->fov < 180) ||
+    if (!finite_n(c->position, 3) || !finite_n(c->look_at, 3) || !finite_n(c->up, 3) || !(c->fov >= SSS_SCENE_FOV_MIN && c->fov < 180) ||
         c->width < 1 || c->height < 1 || c->width > SSS_SCENE_MAX_IMAGE_SIZE || c->height > SSS_SCENE_MAX_IMAGE_SIZE)
         return broken("camera out of its documented ranges");
     const sss_camera_basis *b = &s->basis;

@@ -37,7 +37,7 @@
  *
  * Limits: scene file <= SSS_SCENE_MAX_FILE_SIZE bytes; width, height in 1..SSS_SCENE_MAX_IMAGE_SIZE;
  * at most SSS_SCENE_MAX_OBJECTS objects and SSS_SCENE_MAX_LIGHTS lights; technique names shorter than
- * SSS_SCENE_TECHNIQUE_SIZE; fov in (0, 180) exclusive; eta in [SSS_ETA_MIN, SSS_ETA_MAX]; g in (-1, 1);
+ * SSS_SCENE_TECHNIQUE_SIZE; fov in [SSS_SCENE_FOV_MIN, 180); eta in [SSS_ETA_MIN, SSS_ETA_MAX]; g in (-1, 1);
  * kdsubsurface reflectance in (0, 1) exclusive; diffuse reflectance in [0, 1]; procedural sizes > 0 and
  * the tessellation ranges of sss/mesh.h (sphere subdivisions 0..8, torus segments 3..2048 with
  * minor < major, trefoil segments 3..4096 with tube <= radius / 6).
@@ -58,6 +58,7 @@ extern "C" {
 
 #define SSS_SCENE_MAX_FILE_SIZE (64u << 20)
 #define SSS_SCENE_MAX_IMAGE_SIZE 16384
+#define SSS_SCENE_FOV_MIN 1e-6 /* degrees: below, 1 / tan(fov / 2) leaves the float range of GL matrices */
 #define SSS_SCENE_MAX_OBJECTS 65536
 #define SSS_SCENE_MAX_LIGHTS 4096
 #define SSS_SCENE_TECHNIQUE_SIZE 64
@@ -85,7 +86,7 @@ typedef struct sss_camera_basis {
 } sss_camera_basis;
 
 /* Validates the camera (finite vectors, look_at != position, up not parallel to the view direction,
- * fov in (0, 180), width and height in 1..SSS_SCENE_MAX_IMAGE_SIZE) and builds its basis. */
+ * fov in [SSS_SCENE_FOV_MIN, 180), width and height in 1..SSS_SCENE_MAX_IMAGE_SIZE) and builds its basis. */
 sss_result sss_camera_basis_init(const sss_camera *camera, sss_camera_basis *basis, sss_error *err);
 
 /* Primary ray through the raster point (px, py) = (x + dx, y + dy): pixel (x, y) covers
@@ -112,13 +113,19 @@ typedef struct sss_transform {
     double translate[3];  /* default 0 */
     double rotate[4];     /* axis x, y, z (non-zero, not necessarily unit) and angle in degrees;
                              default [0, 1, 0, 0] */
-    double scale[3];      /* default 1; non-zero, may be negative */
+    double scale[3];      /* default 1; |scale| in [SSS_SCENE_SCALE_MIN, SSS_SCENE_SCALE_MAX], may be
+                             negative */
     double matrix[16];    /* M = T R S: scale, then rotate (right-handed about the axis), then translate */
     double normal_matrix[9]; /* row-major 3x3 inverse transpose of M's upper 3x3, = R S^-1 */
 } sss_transform;
 
+/* Scale factors of a transform: beyond them float positions (or 1/scale for normals) lose everything. */
+#define SSS_SCENE_SCALE_MIN 1e-18
+#define SSS_SCENE_SCALE_MAX 1e18
+
 /* Fills matrix and normal_matrix from translate, rotate, scale (which the caller set). Errors: zero
- * or non-finite axis, zero or non-finite scale, non-finite angle or translation. */
+ * or non-finite axis, |scale| outside [SSS_SCENE_SCALE_MIN, SSS_SCENE_SCALE_MAX] or non-finite,
+ * non-finite angle or translation. */
 sss_result sss_transform_update(sss_transform *t, sss_error *err);
 void sss_transform_identity(sss_transform *t);
 void sss_transform_point(const double m[16], const double p[3], double out[3]);

@@ -41,8 +41,9 @@ sss_result ref_camera_init(const sss_camera *c, ref_camera *cam, sss_error *err)
     if (!finite3(c->position)) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "camera.position: not finite");
     if (!finite3(c->look_at)) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "camera.look_at: not finite");
     if (!finite3(c->up)) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "camera.up: not finite");
-    if (!(c->fov > 0.0 && c->fov < 180.0))
-        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "camera.fov: must be in (0, 180) degrees, got %g", c->fov);
+    if (!(c->fov >= SSS_SCENE_FOV_MIN && c->fov < 180.0))
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "camera.fov: must be in [%g, 180) degrees, got %g",
+                             SSS_SCENE_FOV_MIN, c->fov);
     if (c->width < 1 || c->height < 1 || c->width > SSS_IMAGE_MAX_DIM || c->height > SSS_IMAGE_MAX_DIM)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "camera.width, camera.height: must be in 1..%d, got %d x %d",
                              SSS_IMAGE_MAX_DIM, c->width, c->height);

@@ -87,12 +87,9 @@ void sss_animation_deform_normal(const sss_animation *anim, const float bounds_m
     cross3(c, a, ca);
     cross3(a, b, ab);
     double det = a[0] * bc[0] + a[1] * bc[1] + a[2] * bc[2];
-    double sg = det < 0 ? -1.0 : 1.0, m[3], len = 0;
-    for (int i = 0; i < 3; i++) {
-        m[i] = sg * (bc[i] * n[0] + ca[i] * n[1] + ab[i] * n[2]);
-        len += m[i] * m[i];
-    }
-    len = sqrt(len);
+    double sg = det < 0 ? -1.0 : 1.0, m[3];
+    for (int i = 0; i < 3; i++) m[i] = sg * (bc[i] * n[0] + ca[i] * n[1] + ab[i] * n[2]);
+    double len = hypot(hypot(m[0], m[1]), m[2]);
     for (int i = 0; i < 3; i++) out[i] = len > 0 && isfinite(len) ? (float)(m[i] / len) : n[i];
 }
 

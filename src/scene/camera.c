@@ -23,7 +23,7 @@ static void cross3(const double a[3], const double b[3], double out[3])
 
 static int normalize3(double v[3])
 {
-    double n = sqrt(dot3(v, v));
+    double n = hypot(hypot(v[0], v[1]), v[2]); /* no overflow for components near DBL_MAX */
     if (!(n > 0) || !isfinite(n)) return 0;
     for (int i = 0; i < 3; i++) v[i] /= n;
     return 1;
@@ -38,8 +38,9 @@ sss_result sss_camera_basis_init(const sss_camera *cam, sss_camera_basis *b, sss
 {
     if (!finite3(cam->position) || !finite3(cam->look_at) || !finite3(cam->up))
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "camera: position, look_at and up must be finite");
-    if (!(cam->fov > 0 && cam->fov < 180))
-        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "camera: fov %g is out of range (0, 180)", cam->fov);
+    if (!(cam->fov >= SSS_SCENE_FOV_MIN && cam->fov < 180))
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "camera: fov %g is out of range [%g, 180)", cam->fov,
+                             SSS_SCENE_FOV_MIN);
     if (cam->width < 1 || cam->width > SSS_SCENE_MAX_IMAGE_SIZE || cam->height < 1 ||
         cam->height > SSS_SCENE_MAX_IMAGE_SIZE)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "camera: image size %d x %d is out of range 1..%d",
@@ -51,7 +52,7 @@ sss_result sss_camera_basis_init(const sss_camera *cam, sss_camera_basis *b, sss
     if (!normalize3(up)) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "camera: up is a zero vector");
     double right[3];
     cross3(f, up, right);
-    if (!(sqrt(dot3(right, right)) > 1e-6) || !normalize3(right))
+    if (!(hypot(hypot(right[0], right[1]), right[2]) > 1e-6) || !normalize3(right))
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "camera: up is parallel to the view direction");
     memset(b, 0, sizeof *b);
     memcpy(b->origin, cam->position, sizeof b->origin);

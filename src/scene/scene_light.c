@@ -7,7 +7,7 @@
 
 static double len3(const double v[3])
 {
-    return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    return hypot(hypot(v[0], v[1]), v[2]); /* no overflow for components near DBL_MAX */
 }
 
 static sss_result nonneg_colour(jr *r, const cJSON *obj, const char *key, int required, const double *def,
@@ -90,7 +90,10 @@ sss_result scene_parse_light(scene_ctx *c, const cJSON *item, sss_light *l)
         if ((res = jr_check_fields(r, item, fields, SCENE_COUNT(fields))) != SSS_OK) return res;
         if ((res = scene_file_field(c, item, "file", 1, &l->file)) != SSS_OK) return res;
         if ((res = nonneg_colour(r, item, "scale", 0, one, l->scale)) != SSS_OK) return res;
-        return jr_number(r, item, "rotate_y", 0, 0, &l->rotate_y);
+        if ((res = jr_number(r, item, "rotate_y", 0, 0, &l->rotate_y)) != SSS_OK) return res;
+        /* The same rotation in [-360, 360]: 1e308 degrees would overflow to inf radians downstream. */
+        l->rotate_y = fmod(l->rotate_y, 360.0);
+        return SSS_OK;
     }
     return jr_fail_key(r, "type", SSS_ERROR_INVALID_ARGUMENT,
                        "unknown light type \"%s\" (expected point, spot, directional, area or environment)",

@@ -59,11 +59,6 @@ sss_result scene_file_field(scene_ctx *c, const cJSON *obj, const char *key, int
     return SSS_OK;
 }
 
-static double dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 static sss_result parse_camera(scene_ctx *c, const cJSON *item, sss_camera *cam)
 {
     jr *r = &c->r;
@@ -76,7 +71,7 @@ static sss_result parse_camera(scene_ctx *c, const cJSON *item, sss_camera *cam)
     if ((res = jr_vec(r, item, "look_at", 1, NULL, 3, cam->look_at, NULL)) != SSS_OK) return res;
     if ((res = jr_vec(r, item, "up", 0, y_up, 3, cam->up, NULL)) != SSS_OK) return res;
     if ((res = jr_number(r, item, "fov", 0, 35, &cam->fov)) != SSS_OK) return res;
-    if ((res = jr_range(r, "fov", cam->fov, 0, 1, 180, 1)) != SSS_OK) return res;
+    if ((res = jr_range(r, "fov", cam->fov, SSS_SCENE_FOV_MIN, 0, 180, 1)) != SSS_OK) return res;
     long w = 0, h = 0;
     if ((res = jr_int(r, item, "width", 0, 512, 1, SSS_SCENE_MAX_IMAGE_SIZE, &w)) != SSS_OK) return res;
     if ((res = jr_int(r, item, "height", 0, 512, 1, SSS_SCENE_MAX_IMAGE_SIZE, &h)) != SSS_OK) return res;
@@ -85,14 +80,19 @@ static sss_result parse_camera(scene_ctx *c, const cJSON *item, sss_camera *cam)
 
     double f[3] = {cam->look_at[0] - cam->position[0], cam->look_at[1] - cam->position[1],
                    cam->look_at[2] - cam->position[2]};
-    double fl = sqrt(dot3(f, f)), ul = sqrt(dot3(cam->up, cam->up));
+    /* hypot: no overflow for components near DBL_MAX (a difference beyond it is "too far"). */
+    double fl = hypot(hypot(f[0], f[1]), f[2]), ul = hypot(hypot(cam->up[0], cam->up[1]), cam->up[2]);
     if (!(fl > 0)) return jr_fail_key(r, "look_at", SSS_ERROR_INVALID_ARGUMENT, "equals camera.position");
     if (!isfinite(fl)) return jr_fail_key(r, "look_at", SSS_ERROR_INVALID_ARGUMENT, "too far from camera.position");
     if (!(ul > 0)) return jr_fail_key(r, "up", SSS_ERROR_INVALID_ARGUMENT, "must be a non-zero vector");
-    /* |sin| of the angle between up and the view direction. */
-    double cx = f[1] * cam->up[2] - f[2] * cam->up[1], cy = f[2] * cam->up[0] - f[0] * cam->up[2],
-           cz = f[0] * cam->up[1] - f[1] * cam->up[0];
-    if (!(sqrt(cx * cx + cy * cy + cz * cz) / (fl * ul) > 1e-6))
+    /* |sin| of the angle between up and the view direction, from unit vectors. */
+    double fu[3], uu[3];
+    for (int i = 0; i < 3; i++) {
+        fu[i] = f[i] / fl;
+        uu[i] = cam->up[i] / ul;
+    }
+    double cx = fu[1] * uu[2] - fu[2] * uu[1], cy = fu[2] * uu[0] - fu[0] * uu[2], cz = fu[0] * uu[1] - fu[1] * uu[0];
+    if (!(hypot(hypot(cx, cy), cz) > 1e-6))
         return jr_fail_key(r, "up", SSS_ERROR_INVALID_ARGUMENT, "parallel to the view direction (look_at - position)");
     return SSS_OK;
 }

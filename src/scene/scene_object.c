@@ -23,10 +23,10 @@ static sss_result parse_transform(scene_ctx *c, const cJSON *item, sss_transform
     for (int i = 0; i < 3; i++) {
         if (t->scale[i] == 0)
             return jr_fail_key(r, "scale", SSS_ERROR_INVALID_ARGUMENT, "must be non-zero");
-        /* Normals transform with 1/scale: a subnormal scale would make the normal matrix infinite. */
-        if (!isfinite(1.0 / t->scale[i]))
-            return jr_fail_key(r, "scale", SSS_ERROR_INVALID_ARGUMENT, "%.3g is too small (1/scale overflows)",
-                               t->scale[i]);
+        /* Normals transform with 1/scale and positions are floats: keep both far from overflow. */
+        if (!(fabs(t->scale[i]) >= SSS_SCENE_SCALE_MIN && fabs(t->scale[i]) <= SSS_SCENE_SCALE_MAX))
+            return jr_fail_key(r, "scale", SSS_ERROR_INVALID_ARGUMENT, "%.3g is out of range: |scale| in [%g, %g]",
+                               t->scale[i], SSS_SCENE_SCALE_MIN, SSS_SCENE_SCALE_MAX);
     }
     sss_error err = {0};
     res = sss_transform_update(t, &err);

@@ -21,17 +21,22 @@ sss_result sss_transform_update(sss_transform *t, sss_error *err)
         if (!isfinite(t->translate[i]) || !isfinite(t->scale[i]) || t->scale[i] == 0 || !isfinite(t->rotate[i]))
             return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
                                  "transform: translate, scale (non-zero) and rotate must be finite");
+    for (int i = 0; i < 3; i++)
+        if (!(fabs(t->scale[i]) >= SSS_SCENE_SCALE_MIN && fabs(t->scale[i]) <= SSS_SCENE_SCALE_MAX))
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "transform: scale %.3g is out of range: |scale| in [%g, %g]",
+                                 t->scale[i], SSS_SCENE_SCALE_MIN, SSS_SCENE_SCALE_MAX);
     if (!isfinite(t->rotate[3]))
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "transform: rotation angle must be finite");
     double ax = t->rotate[0], ay = t->rotate[1], az = t->rotate[2];
-    double n = sqrt(ax * ax + ay * ay + az * az);
+    double n = hypot(hypot(ax, ay), az); /* hypot: no overflow for axes near DBL_MAX */
     if (!(n > 0) || !isfinite(n))
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "transform: rotation axis must be non-zero");
     ax /= n;
     ay /= n;
     az /= n;
     /* Rodrigues: R = cos I + sin [a]x + (1 - cos) a a^T, right-handed about the axis. */
-    double th = t->rotate[3] * SCENE_PI / 180.0, c = cos(th), s = sin(th), k = 1 - c;
+    /* fmod first: exact in degrees, and 1e308 degrees would overflow to inf radians. */
+    double th = fmod(t->rotate[3], 360.0) * SCENE_PI / 180.0, c = cos(th), s = sin(th), k = 1 - c;
     double R[3][3] = {{c + k * ax * ax, k * ax * ay - s * az, k * ax * az + s * ay},
                       {k * ay * ax + s * az, c + k * ay * ay, k * ay * az - s * ax},
                       {k * az * ax - s * ay, k * az * ay + s * ax, c + k * az * az}};
@@ -44,12 +49,6 @@ sss_result sss_transform_update(sss_transform *t, sss_error *err)
     }
     t->matrix[12] = t->matrix[13] = t->matrix[14] = 0;
     t->matrix[15] = 1;
-    /* Finite inputs can still overflow 1/scale (a subnormal scale): refuse rather than hand out inf. */
-    for (int i = 0; i < 16; i++)
-        if (!isfinite(t->matrix[i]) || (i < 9 && !isfinite(t->normal_matrix[i])))
-            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
-                                 "transform: scale %g %g %g is too small (1/scale overflows)", t->scale[0],
-                                 t->scale[1], t->scale[2]);
     return SSS_OK;
 }
 
@@ -64,7 +63,7 @@ void sss_transform_normal(const double nm[9], const double n[3], double out[3])
 {
     double q[3];
     for (int r = 0; r < 3; r++) q[r] = nm[3 * r] * n[0] + nm[3 * r + 1] * n[1] + nm[3 * r + 2] * n[2];
-    double len = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+    double len = hypot(hypot(q[0], q[1]), q[2]);
     if (len > 0 && isfinite(len))
         for (int i = 0; i < 3; i++) q[i] /= len;
     else

@@ -225,6 +225,7 @@ fail  | render @BAD@/scene_unknown_technique.json -o @OUT@/out.png | no_such_tec
 fail | export pbrt @BAD@/scene_overflow_transform.json -o @OUT@/out.pbrt | scene_overflow_transform\.json;objects\[1\];not finite
 fail  | render @BAD@/scene_overflow_transform.json -o @OUT@/out.png | scene_overflow_transform\.json;objects\[1\];not finite
 fail | reference @BAD@/scene_overflow_transform.json -o @OUT@/out.png | scene_overflow_transform\.json;objects\[1\];not finite
+fail | render @BAD@/scene_scale_subnormal.json -o @OUT@/out.png | scene_scale_subnormal\.json;objects\[1\]\.transform\.scale;out of range
 fail | export pbrt @BAD@/scene_sphere_radius_1e39.json -o @OUT@/out.pbrt | scene_sphere_radius_1e39\.json;objects\[1\]
 fail | render @BAD@/scene_sphere_radius_1e39.json -o @OUT@/out.png | scene_sphere_radius_1e39\.json;objects\[1\]
 fail | reference @BAD@/scene_sphere_radius_1e39.json -o @OUT@/out.png | scene_sphere_radius_1e39\.json;objects\[1\]

@@ -78,7 +78,22 @@ static void test_transform_compose(void)
     sss_transform_identity(&bad);
     bad.scale[0] = 1e-320;
     CHECK(sss_transform_update(&bad, &err) == SSS_ERROR_INVALID_ARGUMENT);
-    CHECK(strstr(err.message, "too small") != NULL);
+    CHECK(strstr(err.message, "out of range") != NULL);
+    sss_transform_identity(&bad);
+    bad.scale[1] = -2e18;
+    CHECK(sss_transform_update(&bad, &err) == SSS_ERROR_INVALID_ARGUMENT);
+    /* The limits themselves are accepted, and an axis near DBL_MAX is normalised (no overflow). */
+    sss_transform lim;
+    sss_transform_identity(&lim);
+    lim.scale[0] = SSS_SCENE_SCALE_MIN;
+    lim.scale[2] = -SSS_SCENE_SCALE_MAX;
+    lim.rotate[0] = 1e308;
+    lim.rotate[1] = 1e308;
+    lim.rotate[3] = 90;
+    CHECK(sss_transform_update(&lim, &err) == SSS_OK);
+    double nq[3];
+    sss_transform_normal(lim.normal_matrix, (double[]){1, 0, 0}, nq);
+    CHECK(fabs(hypot(hypot(nq[0], nq[1]), nq[2]) - 1) < 1e-12);
 }
 
 /* The normal matrix keeps transformed normals perpendicular to transformed tangents under
@@ -179,9 +194,9 @@ static void test_world_mesh(void)
     /* The source mesh is untouched. */
     CHECK(obj.mesh.positions[3] == 1.0f && obj.mesh.indices[1] == 2);
     sss_mesh_free(&w);
-    /* Non-finite time is refused; a huge scale that overflows float is reported, not returned. */
+    /* Non-finite time is refused; a huge translation that overflows float is reported, not returned. */
     CHECK(sss_scene_object_world_mesh(&obj, NAN, &w, &err) == SSS_ERROR_INVALID_ARGUMENT);
-    make_transform(&obj.transform, (double[]){0, 0, 0}, (double[]){0, 1, 0, 0}, (double[]){1e300, 1, 1});
+    make_transform(&obj.transform, (double[]){1e300, 0, 0}, (double[]){0, 1, 0, 0}, (double[]){1, 1, 1});
     CHECK(sss_scene_object_world_mesh(&obj, 0.0, &w, &err) == SSS_ERROR_NUMERIC);
     sss_mesh_free(&obj.mesh);
 }

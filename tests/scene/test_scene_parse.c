@@ -109,6 +109,36 @@ static void test_defaults(void)
     sss_scene_free(&s);
 }
 
+/* Finite values at the edge of the double range are either refused or give a unit basis, unit light
+ * directions and finite matrices (found by probing every number of a scene with +-1e308, 1e-300,
+ * 1e-320, 5e-324: sqrt(x^2 + ...) overflowed, 1e308 degrees overflowed to inf radians). */
+static void test_extreme_values(void)
+{
+    const char *json =
+        "{\"camera\": {\"position\": [0, 0, 1e300], \"look_at\": [0, 0, -1e300], \"up\": [0, 1e308, 1e308]},"
+        " \"objects\": [{\"procedural\": {\"shape\": \"sphere\", \"radius\": 1},"
+        "   \"transform\": {\"rotate\": [1e308, 0, 1e308, 1e308], \"scale\": [1e-18, 1e18, -1]},"
+        "   \"material\": {\"type\": \"diffuse\", \"reflectance\": [0.5, 0.5, 0.5]}}],"
+        " \"lights\": [{\"type\": \"directional\", \"direction\": [1e308, -1e308, 0], \"radiance\": [1, 1, 1]},"
+        "  {\"type\": \"environment\", \"file\": \"assets/sky.hdr\", \"rotate_y\": -1e308}]}";
+    sss_scene s;
+    sss_error err = {0};
+    sss_result res = sss_scene_parse(json, strlen(json), SCENES, "extreme.json", NULL, &s, &err);
+    CHECK_MSG(res == SSS_OK, "%s", err.message);
+    if (res != SSS_OK) return;
+    const double h = sqrt(0.5);
+    CHECK(fabs(s.lights[0].direction[0] - h) < 1e-12 && fabs(s.lights[0].direction[1] + h) < 1e-12);
+    /* fmod keeps the rotation (-1e308 is a multiple of 360 up to rounding: any value in (-360, 360)). */
+    CHECK(isfinite(s.lights[1].rotate_y) && fabs(s.lights[1].rotate_y) < 360);
+    int finite = 1;
+    for (int i = 0; i < 16; i++) finite &= isfinite(s.objects[0].transform.matrix[i]);
+    for (int i = 0; i < 9; i++) finite &= isfinite(s.objects[0].transform.normal_matrix[i]);
+    CHECK(finite);
+    const sss_camera_basis *b = &s.basis;
+    CHECK(fabs(b->forward[2] + 1) < 1e-12 && fabs(hypot(hypot(b->up[0], b->up[1]), b->up[2]) - 1) < 1e-12);
+    sss_scene_free(&s);
+}
+
 /* ---- Bad scenes ------------------------------------------------------------------------------ */
 
 #define CAM "\"camera\": {\"position\": [0, 0, 5], \"look_at\": [0, 0, 0]}"
@@ -199,7 +229,8 @@ static const bad_case bad_cases[] = {
     {SCENE_OBJS("{" SPHERE ", \"material\": {\"type\": \"glass\"}}"), "objects[0].material.type: unknown material type"},
     {WITH_CAMERA("\"position\": [0, 0, 5], \"look_at\": [0, 0, 0], \"width\": 0"), "camera.width: 0 is out of range 1..16384"},
     {WITH_CAMERA("\"position\": [0, 0, 5], \"look_at\": [0, 0, 0], \"height\": 20000"), "camera.height"},
-    {WITH_CAMERA("\"position\": [0, 0, 5], \"look_at\": [0, 0, 0], \"fov\": 0"), "camera.fov: 0: out of range (0, 180)"},
+    {WITH_CAMERA("\"position\": [0, 0, 5], \"look_at\": [0, 0, 0], \"fov\": 0"), "camera.fov: 0: out of range [1e-06, 180)"},
+    {WITH_CAMERA("\"position\": [0, 0, 5], \"look_at\": [0, 0, 0], \"fov\": 5e-324"), "camera.fov: 4.94066e-324: out of range"},
     {WITH_CAMERA("\"position\": [0, 0, 5], \"look_at\": [0, 0, 0], \"fov\": 180"), "camera.fov: 180"},
     {WITH_CAMERA("\"position\": [1, 2, 3], \"look_at\": [1, 2, 3]"), "camera.look_at: equals camera.position"},
     {WITH_CAMERA("\"position\": [0, 5, 0], \"look_at\": [0, 0, 0]"), "camera.up: parallel to the view direction"},
@@ -210,7 +241,9 @@ static const bad_case bad_cases[] = {
      "objects[0].transform.rotate: expected an array of 4 numbers"},
     {SCENE_OBJS("{" SPHERE ", " DIFFUSE ", \"transform\": {\"scale\": [1, 0, 1]}}"), "objects[0].transform.scale: must be non-zero"},
     {SCENE_OBJS("{" SPHERE ", " DIFFUSE ", \"transform\": {\"scale\": [1, 1e-320, 1]}}"),
-     "objects[0].transform.scale: 1e-320 is too small (1/scale overflows)"},
+     "objects[0].transform.scale: 1e-320 is out of range: |scale| in [1e-18, 1e+18]"},
+    {SCENE_OBJS("{" SPHERE ", " DIFFUSE ", \"transform\": {\"scale\": [1, 1, -1e19]}}"),
+     "objects[0].transform.scale: -1e+19 is out of range"},
     {SCENE_OBJS("{\"procedural\": {\"shape\": \"cone\"}, " DIFFUSE "}"), "objects[0].procedural.shape: unknown shape \"cone\""},
     {SCENE_OBJS("{\"procedural\": {\"shape\": \"plane\", \"size\": -1}, " DIFFUSE "}"), "objects[0].procedural.size: -1"},
     {SCENE_OBJS("{\"procedural\": {\"shape\": \"sphere\", \"radius\": 1, \"subdivisions\": 9}, " DIFFUSE "}"),
@@ -332,6 +365,7 @@ int main(void)
 {
     test_example();
     test_defaults();
+    test_extreme_values();
     test_bad_scenes();
     test_syntax_location();
     test_files();
