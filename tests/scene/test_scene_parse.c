@@ -13,6 +13,15 @@ static int vec3_is(const double *v, double x, double y, double z)
     return v[0] == x && v[1] == y && v[2] == z;
 }
 
+/* Parses json (relative paths from SCENES) into *s; 1 on success, else reports the error and 0. */
+static int parse_ok(const char *json, const char *name, sss_scene *s)
+{
+    sss_error err = {0};
+    sss_result res = sss_scene_parse(json, strlen(json), SCENES, name, NULL, s, &err);
+    CHECK_MSG(res == SSS_OK, "%s: %s", name, err.message);
+    return res == SSS_OK;
+}
+
 /* SCENE.md's example scene, copied verbatim into tests/data/scenes/example.json; its mesh
  * assets/dragon.ply is a fixture octahedron there. */
 static void test_example(void)
@@ -60,10 +69,7 @@ static void test_defaults(void)
                        " \"objects\": [{\"mesh\": \"assets/dragon.ply\",\n"
                        "   \"material\": {\"type\": \"subsurface\", \"medium\": \"marble\"}}]}";
     sss_scene s;
-    sss_error err = {0};
-    sss_result res = sss_scene_parse(json, strlen(json), SCENES, "defaults.json", NULL, &s, &err);
-    CHECK_MSG(res == SSS_OK, "%s", err.message);
-    if (res != SSS_OK) return;
+    if (!parse_ok(json, "defaults.json", &s)) return;
     CHECK(s.camera.fov == 35 && s.camera.width == 512 && s.camera.height == 512);
     CHECK(vec3_is(s.camera.up, 0, 1, 0));
     const sss_scene_object *o = &s.objects[0];
@@ -87,9 +93,7 @@ static void test_defaults(void)
                          "  {\"type\": \"directional\", \"direction\": [0, -2, 0], \"radiance\": [3, 3, 3]},"
                          "  {\"type\": \"spot\", \"position\": [0, 3, 0], \"look_at\": [0, 0, 0],"
                          "   \"cone_angle\": 30, \"cone_delta\": 5, \"intensity\": [2, 2, 2]}]}";
-    res = sss_scene_parse(lights, strlen(lights), SCENES, "lights.json", NULL, &s, &err);
-    CHECK_MSG(res == SSS_OK, "%s", err.message);
-    if (res != SSS_OK) return;
+    if (!parse_ok(lights, "lights.json", &s)) return;
     CHECK(s.light_count == 4);
     CHECK(s.lights[0].type == SSS_LIGHT_AREA && s.lights[0].two_sided == 0);
     CHECK(s.lights[1].type == SSS_LIGHT_ENVIRONMENT && vec3_is(s.lights[1].scale, 1, 1, 1) &&
@@ -103,9 +107,7 @@ static void test_defaults(void)
     const char *tex = "{\"camera\": {\"position\": [0, 3, 3], \"look_at\": [0, 0, 0]},"
                       " \"objects\": [{\"procedural\": {\"shape\": \"plane\", \"size\": 2},"
                       "   \"material\": {\"type\": \"subsurface\", \"medium\": \"Skin1\", \"texture\": \"assets/albedo.png\"}}]}";
-    res = sss_scene_parse(tex, strlen(tex), SCENES, "tex.json", NULL, &s, &err);
-    CHECK_MSG(res == SSS_OK, "%s", err.message);
-    if (res == SSS_OK) CHECK(s.objects[0].mesh.uvs != NULL && strstr(s.objects[0].material.texture, "albedo.png"));
+    if (parse_ok(tex, "tex.json", &s)) CHECK(s.objects[0].mesh.uvs != NULL && strstr(s.objects[0].material.texture, "albedo.png"));
     sss_scene_free(&s);
 }
 
@@ -122,10 +124,7 @@ static void test_extreme_values(void)
         " \"lights\": [{\"type\": \"directional\", \"direction\": [1e308, -1e308, 0], \"radiance\": [1, 1, 1]},"
         "  {\"type\": \"environment\", \"file\": \"assets/sky.hdr\", \"rotate_y\": -1e308}]}";
     sss_scene s;
-    sss_error err = {0};
-    sss_result res = sss_scene_parse(json, strlen(json), SCENES, "extreme.json", NULL, &s, &err);
-    CHECK_MSG(res == SSS_OK, "%s", err.message);
-    if (res != SSS_OK) return;
+    if (!parse_ok(json, "extreme.json", &s)) return;
     const double h = sqrt(0.5);
     CHECK(fabs(s.lights[0].direction[0] - h) < 1e-12 && fabs(s.lights[0].direction[1] + h) < 1e-12);
     /* fmod keeps the rotation (-1e308 is a multiple of 360 up to rounding: any value in (-360, 360)). */
