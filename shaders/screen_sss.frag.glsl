@@ -13,6 +13,8 @@
 //    normalised to 4^l pixels (mip_reduce.comp.glsl), so w^2 / 4^l scales any texel to a cell;
 //  - each sample adds F_t E A R'_d(|x_i - x_o|, A) (Eq. 6) with world-space distances, A the sample's
 //    surface area (the mip texel's area scaled to the cell), times sqrt(i) for layer i (section 6.1);
+//    with u_split > 1 (footprint_split, a departure: docs/maisch2020.md) an obliquely seen sample is a
+//    strip, not a disc, and is cut into near-square pieces along it (oblique_pixel, cell);
 //  - supersampling (u_supersample = k): the pattern's sizes count output pixels, k render pixels each,
 //    so layer i covers the same part of the image (and gets the same sqrt(i)) at every k: the inner
 //    kernel is the square of (2n + 1) output pixels, every render pixel in it one sample (the ones its
@@ -22,6 +24,7 @@
 
 layout(binding = 0) uniform sampler2D t_pos; // mips: xyz, w area
 layout(binding = 1) uniform sampler2D t_irr; // mips: rgb F_t E, w object id + 1
+layout(binding = 2) uniform sampler2D t_nrm; // level 0 only: xyz shading normal
 
 uniform int u_n;
 uniform int u_nl;
@@ -31,6 +34,7 @@ uniform int u_preintegrated;
 uniform int u_filtered;
 uniform int u_screen_bound;
 uniform int u_supersample;
+uniform int u_split; // footprint_split: most pieces per oblique full-resolution sample (<= 1: one disc)
 
 layout(location = 0) out vec4 o_sum;
 
@@ -60,13 +64,61 @@ bool same_object(vec4 P, vec4 I, float id)
 // from x_o's view ray: d_(i-1) / 2 pixels at the mean's depth. A bilinear read of a coarse level also
 // averages texels overlapping the inner region, whose mean may come too close (bright blobs on
 // curved surfaces at coarse levels); the bound keeps the cell where it is.
-vec3 cell(LutInfo L, vec3 xo, vec3 pos, vec3 irr, float a, float d_prev)
+vec3 cell(LutInfo L, vec3 xo, vec3 pos, vec3 irr, float a, float d_prev, float cell_px)
 {
-    float r_min = u_screen_bound != 0
-                      ? 0.5 * d_prev * max(dot(pos - u_camera_pos.xyz, u_camera_fwd.xyz), u_misc.w) * u_camera_fwd.w
-                      : 0.0;
+    float depth = max(dot(pos - u_camera_pos.xyz, u_camera_fwd.xyz), u_misc.w);
+    float r_min = u_screen_bound != 0 ? 0.5 * d_prev * depth * u_camera_fwd.w : 0.0;
+    if (u_split > 1) {
+        // An obliquely seen cell is a strip too (oblique_pixel): its area a over its face-on area
+        // (cell_px pixels at its depth) is its elongation, along the surface's tangent toward the
+        // viewer, which for a steep strip is nearly the view ray v; one disc of area a would reach
+        // x_o's kernel peak from beside it (a sphere's rim: +20-35% with grazing_sources).
+        float wf2 = cell_px * depth * depth * u_camera_fwd.w * u_camera_fwd.w;
+        float e = min(a / max(wf2, 1e-30), float(u_split));
+        int m = int(e + 0.5);
+        if (m > 1) {
+            float ae = min(a, float(u_split) * wf2);
+            float len = sqrt(ae * e);
+            vec3 v = normalize(u_camera_pos.xyz - pos);
+            float ap = ae / float(m);
+            vec3 s = vec3(0.0);
+            for (int k = 0; k < m; k++) {
+                float o = ((float(k) + 0.5) / float(m) - 0.5) * len;
+                s += lut_eval(L, max(length(pos + o * v - xo), r_min), u_preintegrated != 0 ? ap : 0.0);
+            }
+            return irr * ap * s;
+        }
+    }
     float r = max(length(pos - xo), r_min);
     return irr * a * lut_eval(L, r, u_preintegrated != 0 ? a : 0.0);
+}
+
+// A full-resolution sample's patch seen at n.v = c is a w x w/c strip on the surface (w^2 = a c, its
+// face-on footprint), long along t, the tangent toward the viewer. One disc of its area (Eq. 6) is far
+// wider than the strip across it: at grazing angles the discs of neighbouring pixels overlap x_o's
+// kernel peak and a short kernel is counted several times (a sphere's rim with grazing_sources: +100-200%;
+// the paper's pixels at n.v 0.2-0.3: +35-91%). Instead the strip is cut into m ~ 1/c near-square pieces along t, each a disc of
+// a / m at its own distance. The strip's length is capped at u_split widths: a pixel at a curved
+// silhouette covers only ~sqrt(2 R / w) widths of surface (R the curvature radius), not the
+// unbounded w / c of its tangent plane.
+vec3 oblique_pixel(LutInfo L, vec3 xo, vec3 p, vec3 n, float a)
+{
+    vec3 v = normalize(u_camera_pos.xyz - p);
+    float nv = dot(n, v);
+    float c = abs(nv);
+    float e = min(1.0 / max(c, 1e-6), float(u_split)); // elongation of the (capped) strip
+    int m = max(int(e + 0.5), 1);
+    if (m == 1) return a * lut_eval(L, length(p - xo), u_preintegrated != 0 ? a : 0.0);
+    float ae = a * min(1.0, c * float(u_split)); // area of the capped strip
+    float len = sqrt(ae * e);                    // its length: w e, w^2 = ae / e
+    vec3 t = normalize(v - nv * n);
+    float ap = ae / float(m);
+    vec3 s = vec3(0.0);
+    for (int k = 0; k < m; k++) {
+        float o = ((float(k) + 0.5) / float(m) - 0.5) * len;
+        s += lut_eval(L, length(p + o * t - xo), u_preintegrated != 0 ? ap : 0.0);
+    }
+    return ap * s;
 }
 
 void main()
@@ -92,10 +144,14 @@ void main()
             vec4 P = texelFetch(t_pos, q, 0);
             vec4 I = texelFetch(t_irr, q, 0);
             if (I.w != id || P.w <= 0.0) continue;
-            float r = length(P.xyz - xo);
             // the fraction of the render pixel inside the square (1 but at its edge for even k)
             float a = P.w * clamp(h + 0.5 - float(abs(dx)), 0.0, 1.0) * clamp(h + 0.5 - float(abs(dy)), 0.0, 1.0);
-            sum += I.rgb * a * lut_eval(L, r, u_preintegrated != 0 ? a : 0.0);
+            if (u_split > 1) {
+                sum += I.rgb * oblique_pixel(L, xo, P.xyz, texelFetch(t_nrm, q, 0).xyz, a);
+            } else {
+                float r = length(P.xyz - xo);
+                sum += I.rgb * a * lut_eval(L, r, u_preintegrated != 0 ? a : 0.0);
+            }
         }
     vec2 centre = vec2(px) + 0.5;
     float d_prev = 2.0 * h;
@@ -126,12 +182,13 @@ void main()
                 if (any(lessThanEqual(hi, lo))) continue;
                 float cover = (hi.x - lo.x) * (hi.y - lo.y) / (w * w);
                 float to_cell = area_scale * cover; // a texel's area -> this sample's
+                float cell_px = w * w * cover;      // the cell's pixels (face-on area at its depth)
                 sp = 0.5 * (lo + hi);
                 if (level == 0) {
                     vec4 P = texelFetch(t_pos, ivec2(sp), 0);
                     vec4 I = texelFetch(t_irr, ivec2(sp), 0);
                     if (I.w != id || P.w <= 0.0) continue;
-                    layer_sum += cell(L, xo, P.xyz, I.rgb, P.w * to_cell, d_prev);
+                    layer_sum += cell(L, xo, P.xyz, I.rgb, P.w * to_cell, d_prev, cell_px);
 #ifdef PER_TEXEL_READS
                 } else if (u_filtered == 2) {
                     // Bilinear weights on the four texels. Where their mean positions agree (each
@@ -162,12 +219,12 @@ void main()
                     for (int c = 0; c < 4; c++)
                         if (wk[c] > 0.0 && distance(Pk[c].xyz / Pk[c].w, mean) > sqrt(Pk[c].w)) one_surface = false;
                     if (one_surface) {
-                        layer_sum += cell(L, xo, mean, If.rgb / Pf.w, Pf.w * to_cell, d_prev);
+                        layer_sum += cell(L, xo, mean, If.rgb / Pf.w, Pf.w * to_cell, d_prev, cell_px);
                     } else {
                         for (int c = 0; c < 4; c++)
                             if (wk[c] > 0.0)
                                 layer_sum += wk[c] * cell(L, xo, Pk[c].xyz / Pk[c].w, Ik[c].rgb / Pk[c].w,
-                                                          Pk[c].w * to_cell, d_prev);
+                                                          Pk[c].w * to_cell, d_prev, cell_px);
                     }
 #endif
                 } else if (u_filtered == 1) {
@@ -176,12 +233,12 @@ void main()
                     vec2 uv = level_coord(sp, texel, size, size0) / vec2(size);
                     vec4 P = textureLod(t_pos, uv, float(level)), I = textureLod(t_irr, uv, float(level));
                     if (!same_object(P, I, id)) continue;
-                    layer_sum += cell(L, xo, P.xyz / P.w, I.rgb / P.w, P.w * to_cell, d_prev);
+                    layer_sum += cell(L, xo, P.xyz / P.w, I.rgb / P.w, P.w * to_cell, d_prev, cell_px);
                 } else {
                     ivec2 q = min(ivec2(floor(level_coord(sp, texel, size, size0))), size - 1);
                     vec4 P = texelFetch(t_pos, q, level), I = texelFetch(t_irr, q, level);
                     if (!same_object(P, I, id)) continue;
-                    layer_sum += cell(L, xo, P.xyz / P.w, I.rgb / P.w, P.w * to_cell, d_prev);
+                    layer_sum += cell(L, xo, P.xyz / P.w, I.rgb / P.w, P.w * to_cell, d_prev, cell_px);
                 }
             }
         sum += bright * layer_sum;

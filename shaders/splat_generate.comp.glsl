@@ -40,6 +40,7 @@ uniform int u_cull_rule;
 uniform float u_irradiance_cull;
 uniform float u_occluded_margin; // 0: off (the paper); in units of sqrt(triangle area)
 uniform float u_shadow_offset; // in units of sqrt(triangle area)
+uniform float u_grazing_sources; // > 0: Eq. 8's cut-off for splats (the screen pass gathers the rest)
 uniform int u_has_uv;          // the splat mesh has texture coordinates
 
 // The G-buffer surface at p's projection: true when there is one, with how far it lies in front of p
@@ -92,7 +93,9 @@ void main()
 
     // Splitting criteria (Eq. 2, Eq. 8) against the G-buffer at the projected centre.
     vec3 v = normalize(u_camera_pos.xyz - c);
-    bool grazing = dot(n, v) < u_misc.y;
+    // With grazing_sources the screen-space pass gathers visible pixels down to that n.v: splats with
+    // n.v above it would count visible surface twice (a chord of the rim dips behind the G-buffer).
+    bool grazing = dot(n, v) < (u_grazing_sources > 0.0 ? min(u_grazing_sources, u_misc.y) : u_misc.y);
     bool hidden = true;
     float in_front; // how far the G-buffer surface lies in front of c (when there is one)
     if (gbuffer_at(c, in_front)) {

@@ -29,6 +29,8 @@ enum {
     P_SPLAT_PREINTEGRATED,
     P_SCREEN_BOUND,
     P_OCCLUDED,
+    P_SPLIT,
+    P_GRAZING_SOURCES,
     P_COUNT
 };
 
@@ -66,6 +68,13 @@ static const sss_gl_param_info params[P_COUNT] = {
     [P_OCCLUDED] = {"occluded_margin", SSS_GL_PARAM_FLOAT, 3, 0, 100,
                     "also splat front-facing triangles more than this many sqrt(area) behind the visible surface "
                     "(hidden by another part or object); 0: off (the paper: back-facing only)"},
+    [P_SPLIT] = {"footprint_split", SSS_GL_PARAM_INT, 8, 1, 64,
+                 "samples seen obliquely (a pixel at n.v = c; a cell whose area is e x its face-on area) count as "
+                 "round(min(1/c or e, this)) pieces along their foreshortened axis, the strip capped at this many "
+                 "widths; 1: one disc per sample (the paper, Eq. 6)"},
+    [P_GRAZING_SOURCES] = {"grazing_sources", SSS_GL_PARAM_FLOAT, 0.05, 0, 1,
+                           "visible pixels with this <= |n.v| < grazing_cutoff stay in the screen-space sum (area "
+                           "w^2/|n.v|, mips rebuilt) and splats need n.v below this instead; 0: off (the paper, Eq. 8)"},
 };
 
 #define SPLAT_BYTES 48 /* three vec4: centre + area, normal + object, F_t E + disc radius */
@@ -73,6 +82,7 @@ static const sss_gl_param_info params[P_COUNT] = {
 typedef struct maisch_state {
     GLuint prog_gen, prog_recv, prog_splat, prog_up, prog_ss, prog_combine;
     GLuint prog_ss_texel; /* the screen-space pass with filtered_layers = 2 (built when first used) */
+    GLuint prog_grazing;  /* grazing_sources: areas of the grazing pixels (built when first used) */
     GLuint splats, cmd;
     unsigned capacity;
     int low_w, low_h;
@@ -180,6 +190,7 @@ static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, sss_error *er
     set_f(s->prog_gen, "u_irradiance_cull", (float)gl_param(r, P_IRRADIANCE_CULL));
     set_f(s->prog_gen, "u_shadow_offset", (float)gl_param(r, P_SHADOW_OFFSET));
     set_f(s->prog_gen, "u_occluded_margin", (float)gl_param(r, P_OCCLUDED));
+    set_f(s->prog_gen, "u_grazing_sources", (float)gl_param(r, P_GRAZING_SOURCES));
     glUniform1ui(glGetUniformLocation(s->prog_gen, "u_capacity"), s->capacity);
     gl_dispatch_splat_triangles(r, s->prog_gen);
     sss_result res = gl_check(r->ctx, "maisch2020: splat generation", err);
@@ -222,11 +233,39 @@ static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, sss_error *er
     return gl_check(r->ctx, "maisch2020: upsampling", err);
 }
 
+/* grazing_sources: the visible pixels Eq. 8 took out of the screen-space sum get their projected area
+ * back in level 0 of the position chain (grazing_area.comp.glsl) and the mip chain is rebuilt from it,
+ * so inner samples and outer layers both see them; the splats' Eq. 8 cut-off drops to match. */
+static sss_result pass_grazing(sss_gl_renderer *r, maisch_state *s, sss_error *err)
+{
+    double gs = gl_param(r, P_GRAZING_SOURCES);
+    if (!(gs > 0.0) || !(gs < gl_param(r, P_GRAZING))) return SSS_OK;
+    if (!s->prog_grazing) {
+        sss_result res = gl_program_compute("grazing_area.comp.glsl", NULL, &s->prog_grazing, err);
+        if (res != SSS_OK) return res;
+    }
+    gl_timer_begin(&r->timer, "grazing_area");
+    glUseProgram(s->prog_grazing);
+    glBindImageTexture(0, r->frame.pos, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glBindTextureUnit(1, r->frame.nrm);
+    set_f(s->prog_grazing, "u_grazing_sources", (float)gs);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glDispatchCompute((GLuint)(r->frame.width + 7) / 8, (GLuint)(r->frame.height + 7) / 8, 1);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    sss_result res = gl_check(r->ctx, "maisch2020: grazing areas", err);
+    if (res == SSS_OK) res = gl_pass_mipmaps(r, err);
+    return res;
+}
+
 static sss_result maisch_render(sss_gl_renderer *r, void *state, sss_error *err)
 {
     maisch_state *s = state;
     sss_result res = maisch_resize(r, s, err);
     if (res != SSS_OK) return res;
+    if ((int)gl_param(r, P_SCREEN)) {
+        res = pass_grazing(r, s, err);
+        if (res != SSS_OK) return res;
+    }
     int use_trans = (int)gl_param(r, P_TRANSLUCENCY) && s->capacity > 0;
     int use_screen = (int)gl_param(r, P_SCREEN);
     if (use_trans) {
@@ -248,6 +287,8 @@ static sss_result maisch_render(sss_gl_renderer *r, void *state, sss_error *err)
         glUseProgram(prog);
         glBindTextureUnit(0, r->frame.pos);
         glBindTextureUnit(1, r->frame.irr);
+        glBindTextureUnit(2, r->frame.nrm);
+        set_i(prog, "u_split", (int)gl_param(r, P_SPLIT));
         set_i(prog, "u_n", (int)gl_param(r, P_N));
         set_i(prog, "u_nl", (int)gl_param(r, P_NL));
         set_i(prog, "u_layers", (int)gl_param(r, P_LAYERS));
@@ -283,8 +324,9 @@ static void maisch_destroy(sss_gl_renderer *r, void *state)
     (void)r;
     maisch_state *s = state;
     free_targets(s);
-    GLuint p[7] = {s->prog_gen, s->prog_recv, s->prog_splat, s->prog_up, s->prog_ss, s->prog_combine, s->prog_ss_texel};
-    for (int i = 0; i < 7; i++)
+    GLuint p[8] = {s->prog_gen, s->prog_recv, s->prog_splat, s->prog_up,
+                   s->prog_ss, s->prog_combine, s->prog_ss_texel, s->prog_grazing};
+    for (int i = 0; i < 8; i++)
         if (p[i]) glDeleteProgram(p[i]);
     if (s->splats) glDeleteBuffers(1, &s->splats);
     if (s->cmd) glDeleteBuffers(1, &s->cmd);
