@@ -8,6 +8,10 @@
 // transmitted irradiance F_t E at the centre (shadow maps; sqrt(albedo) at entry). Only irradiance
 // culling: no view-based culling (seed 000, section 8).
 //
+// Each surfel also carries the lattice's spacing h = the sub-triangles' longest edge, from which the
+// splatting sizes its footprint (footprint, dss_splat.frag.glsl): its own area is small against h on
+// thin triangles, and a disc of that area left the lattice in the image.
+//
 // Surface snapping (u_snap > 0): the sub-surfels lie on the chords of the coarse splat mesh, which on
 // the 4096-triangle head lie 0.25 mm (median) to 1.6 mm (99th percentile) from the rendered surface,
 // while Skin1's blue and green kernels fall off within 0.7 and 1.4 mm (1/sigma_tr): a receiver 1 mm
@@ -27,7 +31,7 @@ layout(local_size_x = 64) in;
 struct Splat {
     vec4 centre;     // xyz; w: area
     vec4 normal;     // xyz; w: object id + 1
-    vec4 irradiance; // rgb F_t E; w: disc radius sqrt(area / pi)
+    vec4 irradiance; // rgb F_t E; w: the spacing h of the surfels (their footprint: dss_splat.frag.glsl)
 };
 
 layout(std430, binding = 4) writeonly buffer SplatBlock { Splat splats[]; };
@@ -98,6 +102,7 @@ void main()
     float edge = max(length(e1), max(length(e2), length(p[2] - p[1])));
     int nt = clamp(int(ceil(edge / (pixel * u_surfel_pixels))), 1, u_max_tess);
     float sub_area = area / float(nt * nt);
+    float spacing = edge / float(nt); // the sub-triangles' longest edge
     // the sub-surfels of a chord triangle lie inside a convex surface: lift the shadow lookups
     vec3 lift = n * u_shadow_offset * sqrt(area);
     bool textured = u_has_uv != 0 && m.params.w >= 0.0;
@@ -128,7 +133,6 @@ void main()
                 if (max(et.r, max(et.g, et.b)) <= u_irradiance_cull) continue;
                 uint slot = atomicAdd(cmd_instances, 1u);
                 if (slot >= u_capacity) continue;
-                splats[slot] = Splat(vec4(x, sub_area), vec4(n, float(u_object + 1)),
-                                     vec4(et, sqrt(sub_area / PI)));
+                splats[slot] = Splat(vec4(x, sub_area), vec4(n, float(u_object + 1)), vec4(et, spacing));
             }
 }

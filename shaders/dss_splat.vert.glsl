@@ -12,7 +12,7 @@
 struct Splat {
     vec4 centre;     // xyz; w: area
     vec4 normal;     // xyz; w: object id + 1
-    vec4 irradiance; // rgb F_t E; w: disc radius
+    vec4 irradiance; // rgb F_t E; w: disc radius (chen2012), the surfel spacing h (dss_generate.comp.glsl)
 };
 layout(std430, binding = 4) readonly buffer SplatBlock { Splat splats[]; };
 
@@ -22,10 +22,12 @@ uniform float u_outer0; // level 0's outer radius in output pixels (for the fine
 uniform float u_margin; // the fine level: its quad reaches this many output pixels beyond D (dss_splat.frag.glsl)
 uniform uint u_capacity;
 uniform float u_base; // render pixels per output pixel (the SSAA factor k)
+uniform float u_footprint; // dss: f, the footprint's outer radius in surfel spacings; 0: the splat's own disc
 
 flat out vec4 v_centre;   // xyz; w: area
 flat out vec4 v_flux;     // rgb F_t E A; w: object id + 1
 flat out vec3 v_shell;    // inner and outer radius (world units); z: level 0's outer radius
+flat out float v_foot;    // the footprint's outer disc radius f h (world units); 0: one disc of the splat's area
 // the material's LUT cascade (common.glsl LutInfo), read once per splat instead of per fragment
 flat out vec4 v_lut;      // layer0, r_max, a_max, size
 flat out vec4 v_lut_scales;
@@ -34,6 +36,7 @@ flat out ivec2 v_lut_mode; // levels, sqrt axes
 void main()
 {
     v_shell = vec3(0.0);
+    v_foot = 0.0;
     v_centre = vec4(0.0);
     v_flux = vec4(0.0);
     v_lut = vec4(0.0);
@@ -47,6 +50,7 @@ void main()
     float reach = m.spec.w;
     LutInfo L = lut_info(mat);
     v_centre = s.centre;
+    v_foot = u_footprint * s.irradiance.w; // dss surfels carry their spacing h in irradiance.w
     v_flux = vec4(s.irradiance.rgb * s.centre.w, s.normal.w);
     v_lut = vec4(L.layer0, L.rmax, L.amax, L.size);
     v_lut_scales = L.scales;

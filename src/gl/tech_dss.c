@@ -5,7 +5,9 @@
  * multi-resolution G-buffer with l_max = 3 levels and epsilon = 0.1 (tech_dss_shells.h), no view-based
  * culling, only irradiance culling. Surfels the camera sees are moved from the splat mesh's chords onto
  * the rendered surface (surface_snap, dss_generate.comp.glsl): DSS tessellates the rendered geometry,
- * and the chords of a coarse splat mesh lie farther from it than short kernels reach.
+ * and the chords of a coarse splat mesh lie farther from it than short kernels reach. A surfel's kernel
+ * is R_d averaged over a tapered footprint sized by the surfel lattice's spacing (footprint,
+ * dss_splat.frag.glsl), not over a disc of its own area, which printed the lattice (docs/dss.md).
  *
  * Passes after the shared G-buffer / shadows / illumination: "surfels" (generation + irradiance),
  * "receivers" (the pyramid), "splatting" (all levels), "resolve" (upsampling, sum, exit factor). */
@@ -14,7 +16,7 @@
 #include "gl/tech_dss_shells.h"
 
 enum { P_LEVELS = 0, P_EPSILON, P_SURFEL_PIXELS, P_MAX_TESS, P_PREINTEGRATED, P_IRRADIANCE_CULL, P_SHADOW_OFFSET,
-       P_SNAP, P_MAX_SURFELS, P_FINE, P_COUNT };
+       P_SNAP, P_MAX_SURFELS, P_FINE, P_FOOTPRINT, P_COUNT };
 
 static const sss_gl_param_info params[P_COUNT] = {
     [P_LEVELS] = {"levels", SSS_GL_PARAM_INT, 3, 1, SHELL_MAX_LEVELS,
@@ -44,6 +46,11 @@ static const sss_gl_param_info params[P_COUNT] = {
                 "render pixel (an extra level; the sharp near field antialiased, 5-10% more splatting on the "
                 "eval scenes), at most level 0's 2 / epsilon; 0: the k = 1 image, antialiased at edges only "
                 "(docs/supersampling.md)"},
+    [P_FOOTPRINT] = {"footprint", SSS_GL_PARAM_FLOAT, 1, 0, 8,
+                     "a surfel's transport is R_d averaged over three discs of radii 0.5, 0.75 and 1 times f h (h: "
+                     "the surfel's spacing, its sub-triangle's longest edge; f = this), so that overlapping surfels "
+                     "sum to a smooth field: one disc of the surfel's own area printed their lattice into the image "
+                     "(docs/dss.md); 0: that one disc; with preintegrated only"},
 };
 
 typedef struct dss_state {
@@ -120,6 +127,7 @@ static sss_result dss_render(sss_gl_renderer *r, void *state, sss_error *err)
     if (res != SSS_OK) return res;
 
     gl_timer_begin(&r->timer, "splatting");
+    s->shells.footprint = (float)gl_param(r, P_FOOTPRINT);
     shell_splat(r, &s->shells, s->splats, s->cmd, s->capacity, gl_param(r, P_EPSILON),
                 (int)gl_param(r, P_PREINTEGRATED));
     res = gl_check(r->ctx, "dss: splatting", err);

@@ -148,6 +148,7 @@ void shell_splat(sss_gl_renderer *r, shell_targets *s, GLuint splats, GLuint cmd
         glUniform1ui(glGetUniformLocation(progs[j], "u_capacity"), capacity);
         glUniform1i(glGetUniformLocation(progs[j], "u_preintegrated"), preintegrated);
         glUniform1f(glGetUniformLocation(progs[j], "u_base"), (float)s->base);
+        glUniform1f(glGetUniformLocation(progs[j], "u_footprint"), preintegrated ? s->footprint : 0.0f);
         /* the fine level takes back what level 0 counted, up to its outer radius (-1: the reach), and its
          * quads reach 0.75 (k - 1) / k >= 0.71 (k - 1) / k output pixels further */
         glUniform1f(glGetUniformLocation(progs[j], "u_outer0"), s->levels > 1 ? (float)(2.0 / epsilon) : -1.0f);

@@ -32,7 +32,7 @@
  * +10% splatting fragments for D = 2.5; dss_splat.frag.glsl).
  *
  * Splat records are maisch2020's (48 bytes): centre + area, normal + object id + 1, F_t E + disc
- * radius; the draw count is the instance count of a DrawArraysIndirect command (4, n, 0, 0). */
+ * radius (chen2012) or the surfel lattice's spacing h (dss, whose footprint it sizes); the draw count is the instance count of a DrawArraysIndirect command (4, n, 0, 0). */
 #ifndef SSS_GL_TECH_DSS_SHELLS_H
 #define SSS_GL_TECH_DSS_SHELLS_H
 
@@ -53,6 +53,8 @@ typedef struct shell_targets {
     int frame_w, frame_h, base; /* base: render pixels per level-0 texel side, the SSAA factor k */
     int fine;                   /* the render-resolution level SHELL_FINE exists */
     double fine_radius;         /* its radius D in output pixels (<= level 0's 2 / epsilon) */
+    float footprint;            /* dss: the surfels' footprint, f in units of their spacing h (dss_splat.frag.glsl,
+                                 * docs/dss.md); 0 (chen2012): one disc of the splat's area */
     GLuint query;               /* fragment shader invocations of the splatting (0: not supported) */
     int query_pending;
 } shell_targets;
