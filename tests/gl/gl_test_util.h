@@ -39,18 +39,25 @@ static inline int gt_load(const char *name, sss_scene *scene)
     return 1;
 }
 
-/* Renders with technique (NULL: the scene's), "name=value" parameters and supersampling factor k
- * (sss_gl_renderer_desc.supersample; 0: off) at the camera's size; out is created. */
-static inline int gt_render_k(const sss_scene *scene, const char *technique, double time,
-                              const sss_gl_param_value *params, int nparams, int k, sss_image *out)
+/* A renderer description: technique (NULL: the scene's), parameters, supersampling factor k (0: off). */
+static inline sss_gl_renderer_desc gt_desc(const char *technique, const sss_gl_param_value *params, int nparams, int k)
 {
-    sss_error err = {0};
     sss_gl_renderer_desc d;
     memset(&d, 0, sizeof d);
     d.technique = technique;
     d.params = params;
     d.param_count = nparams;
     d.supersample = k;
+    return d;
+}
+
+/* Renders with technique (NULL: the scene's), "name=value" parameters and supersampling factor k
+ * (sss_gl_renderer_desc.supersample; 0: off) at the camera's size; out is created. */
+static inline int gt_render_k(const sss_scene *scene, const char *technique, double time,
+                              const sss_gl_param_value *params, int nparams, int k, sss_image *out)
+{
+    sss_error err = {0};
+    sss_gl_renderer_desc d = gt_desc(technique, params, nparams, k);
     sss_gl_renderer *r = NULL;
     memset(out, 0, sizeof *out);
     if (sss_gl_renderer_create(gt_ctx(), scene, &d, &r, &err) != SSS_OK ||
@@ -65,6 +72,26 @@ static inline int gt_render_k(const sss_scene *scene, const char *technique, dou
     }
     sss_gl_renderer_destroy(r);
     return 1;
+}
+
+/* Renders one frame with technique and reads its internal buffers names[0..count) (see
+ * sss_gl_renderer_read_buffer) into out[0..count), which are created; 0 (all freed) on failure. */
+static inline int gt_render_buffers(const sss_scene *scene, const char *technique, const sss_gl_param_value *params,
+                                    int nparams, const char *const *names, sss_image *out, int count)
+{
+    sss_error err = {0};
+    sss_gl_renderer_desc d = gt_desc(technique, params, nparams, 0);
+    sss_gl_renderer *r = NULL;
+    memset(out, 0, (size_t)count * sizeof *out);
+    int ok = sss_gl_renderer_create(gt_ctx(), scene, &d, &r, &err) == SSS_OK &&
+             sss_gl_renderer_render(r, 0.0, &err) == SSS_OK;
+    for (int i = 0; ok && i < count; i++) ok = sss_gl_renderer_read_buffer(r, names[i], &out[i], &err) == SSS_OK;
+    if (!ok) {
+        fprintf(stderr, "%s: render or buffer read failed: %s\n", technique, err.message);
+        for (int i = 0; i < count; i++) sss_image_free(&out[i]);
+    }
+    sss_gl_renderer_destroy(r);
+    return ok;
 }
 
 /* gt_render_k without supersampling. */

@@ -14,21 +14,26 @@
  * where the window falls by 3%.) */
 static char grid_path[256];
 
-/* tag names the temporary file (one per test program). */
-static inline int write_grid(const char *tag)
+/* The plane as nx x nz cells (two triangles each); tag names the temporary file (one per test program). */
+static inline int write_grid_cells(const char *tag, int nx, int nz)
 {
     snprintf(grid_path, sizeof grid_path, "/tmp/sss_test_%s_%ld.obj", tag, (long)getpid());
     FILE *f = fopen(grid_path, "w");
     if (!f) return 0;
-    int n = 32;
-    for (int j = 0; j <= n; j++)
-        for (int i = 0; i <= n; i++) fprintf(f, "v %g 0 %g\n", -1.0 + 2.0 * i / n, -1.0 + 2.0 * j / n);
-    for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++) {
-            int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 1, d = c + 1;
+    for (int j = 0; j <= nz; j++)
+        for (int i = 0; i <= nx; i++) fprintf(f, "v %g 0 %g\n", -1.0 + 2.0 * i / nx, -1.0 + 2.0 * j / nz);
+    for (int j = 0; j < nz; j++)
+        for (int i = 0; i < nx; i++) {
+            int a = j * (nx + 1) + i + 1, b = a + 1, c = a + nx + 1, d = c + 1;
             fprintf(f, "f %d %d %d\nf %d %d %d\n", a, c, b, b, c, d); /* counter-clockwise seen from +y */
         }
     return fclose(f) == 0;
+}
+
+/* The 32 x 32 grid above. */
+static inline int write_grid(const char *tag)
+{
+    return write_grid_cells(tag, 32, 32);
 }
 
 /* Skin1 at 200 mm per unit (the red kernel reaches ~0.08 units) seen head-on from 1 unit, 64 x 64,

@@ -18,45 +18,7 @@
  *    (measured 0.2%, 0.5%, 0.9%, means -0.1..-0.3%; footprint = 0: stripes, 30%, 56%, 78%, means
  *    +0.3..+1.2%).
  *  - footprint = 0's deviation must exceed the default's (the test sees the lattice). */
-#include <unistd.h>
-
-#include "gl_test_util.h"
-
-static char mesh_path[256];
-
-/* A 2 x 2 plane in the xz-plane facing +y, nx x nz cells of two triangles. */
-static int write_plane(int nx, int nz)
-{
-    FILE *f = fopen(mesh_path, "w");
-    if (!f) return 0;
-    for (int j = 0; j <= nz; j++)
-        for (int i = 0; i <= nx; i++) fprintf(f, "v %g 0 %g\n", -1.0 + 2.0 * i / nx, -1.0 + 2.0 * j / nz);
-    for (int j = 0; j < nz; j++)
-        for (int i = 0; i < nx; i++) {
-            int a = j * (nx + 1) + i + 1, b = a + 1, c = a + nx + 1, d = c + 1;
-            fprintf(f, "f %d %d %d\nf %d %d %d\n", a, c, b, b, c, d); /* counter-clockwise seen from +y */
-        }
-    return fclose(f) == 0;
-}
-
-/* Skin1 at 200 mm per unit seen head-on from 1 unit, 64 x 64, lit straight down (E = 1). */
-static int plane(sss_scene *scene)
-{
-    char json[2048];
-    snprintf(json, sizeof json,
-             "{\"camera\": {\"position\": [0, 1, 0], \"look_at\": [0, 0, 0], \"up\": [0, 0, -1], \"fov\": 30,"
-             " \"width\": 64, \"height\": 64},"
-             " \"objects\": [{\"mesh\": \"%s\","
-             " \"material\": {\"type\": \"subsurface\", \"medium\": \"Skin1\", \"scale\": 200.0, \"eta\": 1.33}}],"
-             " \"lights\": [{\"type\": \"directional\", \"direction\": [0, -1, 0], \"radiance\": [1, 1, 1]}]}",
-             mesh_path);
-    sss_error err = {0};
-    if (sss_scene_parse(json, strlen(json), ".", "plane", NULL, scene, &err) != SSS_OK) {
-        fprintf(stderr, "%s\n", err.message);
-        return 0;
-    }
-    return 1;
-}
+#include "splat_plane_util.h"
 
 /* Mean and relative standard deviation per channel of the central half of the image. */
 static void centre_stats(const sss_image *im, double mean[3], double rsd[3])
@@ -80,7 +42,7 @@ static void centre_stats(const sss_image *im, double mean[3], double rsd[3])
 static void check_plane(const char *label, int nx, int nz)
 {
     sss_scene scene;
-    if (!write_plane(nx, nz) || !plane(&scene)) {
+    if (!write_grid_cells("dss_lattice", nx, nz) || !plane_scene(0, 0, &scene)) {
         CHECK(0);
         return;
     }
@@ -112,9 +74,8 @@ static void check_plane(const char *label, int nx, int nz)
 
 int main(void)
 {
-    snprintf(mesh_path, sizeof mesh_path, "/tmp/sss_test_dss_lattice_%ld.obj", (long)getpid());
     check_plane("grid plane", 32, 32);
     check_plane("thin-cell plane", 4, 32);
-    remove(mesh_path);
+    remove(grid_path);
     return CHECK_DONE();
 }

@@ -88,26 +88,15 @@ static void band_error(const sss_image *sum, double eta, const double rho[3], do
 
 static int render_sum(const sss_scene *scene, const sss_gl_param_value *p, int np, sss_image *sum)
 {
-    sss_error err = {0};
-    sss_gl_renderer_desc d;
-    memset(&d, 0, sizeof d);
-    d.technique = "maisch2020";
-    d.params = p;
-    d.param_count = np;
-    sss_gl_renderer *r = NULL;
-    sss_image tr = {0};
+    static const char *const names[2] = {"screen", "translucency_full"};
+    sss_image b[2];
     memset(sum, 0, sizeof *sum);
-    int ok = sss_gl_renderer_create(gt_ctx(), scene, &d, &r, &err) == SSS_OK &&
-             sss_gl_renderer_render(r, 0.0, &err) == SSS_OK &&
-             sss_gl_renderer_read_buffer(r, "screen", sum, &err) == SSS_OK &&
-             sss_gl_renderer_read_buffer(r, "translucency_full", &tr, &err) == SSS_OK;
-    if (!ok) fprintf(stderr, "maisch2020: %s\n", err.message);
-    if (ok) {
-        ok = sum->width == SIZE && sum->height == SIZE && tr.width == SIZE && tr.height == SIZE;
-        for (size_t i = 0; ok && i < 3 * (size_t)SIZE * SIZE; i++) sum->pixels[i] += tr.pixels[i];
-    }
-    sss_image_free(&tr);
-    sss_gl_renderer_destroy(r);
+    if (!gt_render_buffers(scene, "maisch2020", p, np, names, b, 2)) return 0;
+    int ok = b[0].width == SIZE && b[0].height == SIZE && b[1].width == SIZE && b[1].height == SIZE;
+    for (size_t i = 0; ok && i < 3 * (size_t)SIZE * SIZE; i++) b[0].pixels[i] += b[1].pixels[i];
+    sss_image_free(&b[1]);
+    if (ok) *sum = b[0];
+    else sss_image_free(&b[0]);
     return ok;
 }
 
