@@ -27,6 +27,13 @@ static const sss_gl_param_info params[] = {
      "disagree (two surfaces) each at their own position; 0 texelFetch (blocky copies)"},
     {"layer_distance_bound", SSS_GL_PARAM_BOOL, 1, 0, 1,
      "outer samples at least d_(i-1)/2 pixels (at their depth) from x_o, where their cell lies"},
+    {"footprint_split", SSS_GL_PARAM_INT, 8, 1, 64,
+     "samples seen obliquely (a pixel at n.v = c; a cell whose area is e x its face-on area) count as "
+     "round(min(1/c or e, this)) pieces along their foreshortened axis, the strip capped at this many widths; "
+     "1: one disc per sample (the paper, Eq. 6)"},
+    {"grazing_sources", SSS_GL_PARAM_FLOAT, 0.05, 0, 1,
+     "visible pixels with this <= |n.v| < grazing_cutoff stay in the screen-space sum (area w^2/|n.v|, mips "
+     "rebuilt); 0: off (the paper, Eq. 8)"},
 };
 #define PARAM_COUNT ((int)(sizeof params / sizeof params[0]))
 

@@ -39,12 +39,13 @@ static void test_equal_to_maisch(void)
         return;
     }
     sss_gl_param_value none[1] = {{"translucency", 0}};
-    sss_gl_param_value changed[4] = {{"n", 1}, {"layers", 6}, {"brightening", 0}, {"translucency", 0}};
+    sss_gl_param_value changed[6] = {{"n", 1},           {"layers", 6},          {"brightening", 0},
+                                     {"grazing_sources", 0.1}, {"footprint_split", 3}, {"translucency", 0}};
     for (int k = 0; k < 2; k++) {
         sss_image a, b;
         const sss_gl_param_value *p = k ? changed : none;
-        int np = k ? 4 : 1;
-        CHECK(gt_render(&scene, "screen", 0.0, k ? changed : NULL, k ? 3 : 0, &a));
+        int np = k ? 6 : 1;
+        CHECK(gt_render(&scene, "screen", 0.0, k ? changed : NULL, k ? 5 : 0, &a));
         CHECK(gt_render(&scene, "maisch2020", 0.0, p, np, &b));
         int same = same_image(&a, &b);
         printf("screen %s parameters: %s maisch2020 with translucency = 0\n", k ? "changed" : "default",
