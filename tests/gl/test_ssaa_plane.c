@@ -58,12 +58,7 @@ static int render_k(const sss_scene *scene, const char *technique, const sss_gl_
                     int k, sss_image *out, splat_work *work)
 {
     sss_error err = {0};
-    sss_gl_renderer_desc d;
-    memset(&d, 0, sizeof d);
-    d.technique = technique;
-    d.params = params;
-    d.param_count = nparams;
-    d.supersample = k;
+    sss_gl_renderer_desc d = gt_desc(technique, params, nparams, k);
     sss_gl_renderer *r = NULL;
     memset(out, 0, sizeof *out);
     work->drawn = 0;
