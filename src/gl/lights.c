@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gl/env_cut.h"
 #include "gl/gl_internal.h"
 
 #define ENV_MAX_WIDTH 256
@@ -84,64 +85,6 @@ static void mul_cm(const float a[16], const float b[16], float out[16])
             t[4 * c + r] = s;
         }
     memcpy(out, t, sizeof t);
-}
-
-/* Environment direction of SCENE.md / sss/reference.h: m = (sin t sin p, cos t, -sin t cos p),
- * p = 2 pi (u - 0.5) - rad(rotate_y), t = pi v (v = 0 the top row). */
-static vec3d env_direction(double u, double v, double rotate_y)
-{
-    double phi = 2.0 * M_PI * (u - 0.5) - rotate_y * M_PI / 180.0, th = M_PI * v;
-    return (vec3d){sin(th) * sin(phi), cos(th), -sin(th) * cos(phi)};
-}
-
-typedef struct env_region {
-    int x0, y0, x1, y1; /* pixel rectangle [x0, x1) x [y0, y1) */
-} env_region;
-
-typedef struct env_map {
-    int w, h;
-    double *lum;   /* solid-angle weighted luminance per pixel */
-    double *rgb;   /* radiance * solid angle per pixel */
-    double *sum;   /* summed-area table of lum, (w + 1) x (h + 1) */
-} env_map;
-
-static double region_energy(const env_map *e, env_region r)
-{
-    size_t W = (size_t)e->w + 1;
-    return e->sum[(size_t)r.y1 * W + (size_t)r.x1] - e->sum[(size_t)r.y0 * W + (size_t)r.x1] -
-           e->sum[(size_t)r.y1 * W + (size_t)r.x0] + e->sum[(size_t)r.y0 * W + (size_t)r.x0];
-}
-
-/* Splits along the longer side (angular width: columns shrink by sin(theta)) at the energy median. */
-static int split_region(const env_map *e, env_region r, env_region *a, env_region *b)
-{
-    double th = M_PI * 0.5 * (r.y0 + r.y1) / e->h;
-    double wx = (r.x1 - r.x0) * sin(th) * 2.0, wy = (r.y1 - r.y0); /* u spans 2 pi, v spans pi */
-    double total = region_energy(e, r);
-    *a = *b = r;
-    if ((wx >= wy && r.x1 - r.x0 > 1) || r.y1 - r.y0 <= 1) {
-        if (r.x1 - r.x0 <= 1) return 0;
-        int best = r.x0 + 1;
-        for (int x = r.x0 + 1; x < r.x1; x++) {
-            env_region t = r;
-            t.x1 = x;
-            best = x;
-            if (region_energy(e, t) >= 0.5 * total) break;
-        }
-        a->x1 = best;
-        b->x0 = best;
-    } else {
-        int best = r.y0 + 1;
-        for (int y = r.y0 + 1; y < r.y1; y++) {
-            env_region t = r;
-            t.y1 = y;
-            best = y;
-            if (region_energy(e, t) >= 0.5 * total) break;
-        }
-        a->y1 = best;
-        b->y0 = best;
-    }
-    return 1;
 }
 
 /* An environment map as read once per renderer: the file downsampled (box filter) to at most
@@ -249,39 +192,6 @@ void gl_env_cache_free(gl_scene *gs)
     gs->env_cache_count = 0;
 }
 
-/* The light's map scaled, with luminance and its summed-area table for the median cut. */
-static sss_result env_load(sss_gl_renderer *r, const sss_light *L, env_map *e, sss_error *err)
-{
-    const struct gl_env_cache *c = NULL;
-    sss_result res = env_cached(r, L, &c, err);
-    if (res != SSS_OK) return res;
-    e->w = c->w;
-    e->h = c->h;
-    e->lum = calloc((size_t)e->w * e->h, sizeof *e->lum);
-    e->rgb = calloc((size_t)e->w * e->h * 3, sizeof *e->rgb);
-    e->sum = calloc(((size_t)e->w + 1) * ((size_t)e->h + 1), sizeof *e->sum);
-    if (!e->lum || !e->rgb || !e->sum)
-        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (environment map)");
-    for (size_t idx = 0; idx < (size_t)e->w * e->h; idx++) {
-        for (int k = 0; k < 3; k++) e->rgb[3 * idx + k] = c->rgb[3 * idx + k] * L->scale[k];
-        e->lum[idx] = 0.2126 * e->rgb[3 * idx] + 0.7152 * e->rgb[3 * idx + 1] + 0.0722 * e->rgb[3 * idx + 2];
-    }
-    size_t W = (size_t)e->w + 1;
-    for (int y = 0; y < e->h; y++)
-        for (int x = 0; x < e->w; x++)
-            e->sum[(size_t)(y + 1) * W + x + 1] = e->lum[(size_t)y * e->w + x] + e->sum[(size_t)y * W + x + 1] +
-                                                  e->sum[(size_t)(y + 1) * W + x] - e->sum[(size_t)y * W + x];
-    return SSS_OK;
-}
-
-static void env_free(env_map *e)
-{
-    free(e->lum);
-    free(e->rgb);
-    free(e->sum);
-    memset(e, 0, sizeof *e);
-}
-
 static int env_light_count(const sss_gl_renderer *r)
 {
     int k = (int)r->shared[GL_P_ENV_LIGHTS], p = 1;
@@ -354,74 +264,38 @@ static sss_result light_records(sss_gl_renderer *r, light_set *ls, sss_error *er
             continue;
         }
         if (L->type == SSS_LIGHT_ENVIRONMENT) {
-            env_map e;
-            memset(&e, 0, sizeof e);
-            sss_result res = env_load(r, L, &e, err);
+            const struct gl_env_cache *cache = NULL;
+            sss_result res = env_cached(r, L, &cache, err);
             /* the background shows the first map (cached first, uploaded); its rotation and scale may
              * change after the upload (sss_gl_renderer_update_lights) */
             if (res == SSS_OK && strcmp(gs->env_cache[0].file, L->file) == 0) {
                 gs->env_rotate_y = (float)L->rotate_y;
                 for (int k = 0; k < 3; k++) gs->env_scale[k] = (float)L->scale[k];
             }
+            int cut = 0;
+            gl_env_light *env = res == SSS_OK ? calloc((size_t)n_env, sizeof *env) : NULL;
+            if (res == SSS_OK && !env)
+                res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (environment lights)");
+            if (res == SSS_OK)
+                res = gl_env_median_cut(cache->rgb, cache->w, cache->h, L->scale, L->rotate_y, n_env, env, &cut, err);
             if (res != SSS_OK) {
-                env_free(&e);
+                free(env);
                 return res;
             }
-            env_region *reg = calloc((size_t)n_env, sizeof *reg), *tmp = calloc((size_t)n_env, sizeof *tmp);
-            if (!reg || !tmp) {
-                free(reg);
-                free(tmp);
-                env_free(&e);
-                return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (environment lights)");
-            }
-            int count = 1;
-            reg[0] = (env_region){0, 0, e.w, e.h};
-            while (count < n_env) {
-                int m = 0;
-                for (int k = 0; k < count; k++) {
-                    env_region a, b;
-                    if (split_region(&e, reg[k], &a, &b)) {
-                        tmp[m++] = a;
-                        tmp[m++] = b;
-                    } else {
-                        tmp[m++] = reg[k];
-                    }
-                }
-                if (m == count) break;
-                memcpy(reg, tmp, sizeof *reg * (size_t)m);
-                count = m;
-            }
-            for (int k = 0; k < count; k++) {
-                double rgb[3] = {0, 0, 0}, wsum = 0.0;
-                vec3d dir = {0, 0, 0};
-                for (int y = reg[k].y0; y < reg[k].y1; y++)
-                    for (int x = reg[k].x0; x < reg[k].x1; x++) {
-                        size_t idx = (size_t)y * e.w + x;
-                        for (int ch = 0; ch < 3; ch++) rgb[ch] += e.rgb[3 * idx + ch];
-                        double w = e.lum[idx];
-                        dir = vadd(dir, vscale(env_direction((x + 0.5) / e.w, (y + 0.5) / e.h, L->rotate_y), w));
-                        wsum += w;
-                    }
-                if (!(wsum > 0.0)) {
-                    /* a dark region: no light (its rgb integral is zero too) */
-                    continue;
-                }
-                vec3d to_light = vnorm(dir);
+            for (int k = 0; k < cut; k++) {
                 gl_light_record *g = &ls->lights[n++];
                 g->position[3] = GL_LIGHT_DIRECTIONAL;
                 g->direction[3] = GL_LIGHT_FROM_ENVIRONMENT; /* its specular comes from the map itself */
-                g->direction[0] = (float)-to_light.x;
-                g->direction[1] = (float)-to_light.y;
-                g->direction[2] = (float)-to_light.z;
-                for (int ch = 0; ch < 3; ch++) g->color[ch] = (float)rgb[ch];
+                for (int ch = 0; ch < 3; ch++) {
+                    g->direction[ch] = (float)-env[k].to_light[ch];
+                    g->color[ch] = (float)env[k].rgb[ch];
+                }
                 g->spot[2] = GL_SHADOW_2D;
                 g->spot[3] = (float)maps++;
                 maps_env++;
                 ls->vpl_count++;
             }
-            free(reg);
-            free(tmp);
-            env_free(&e);
+            free(env);
             continue;
         }
         gl_light_record *g = &ls->lights[n++];
