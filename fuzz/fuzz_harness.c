@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gl/env_cut.h"
 #include "sss/image.h"
 #include "sss/material.h"
 #include "sss/mesh.h"
@@ -451,8 +452,63 @@ const char *sss_fuzz_scene(const uint8_t *data, size_t size)
     return load_scene(data, size, 0, &ok, &triangles);
 }
 
+/* Environment-map lights (gl/env_cut.h). Input: width, height (1..64), the light count (1..128), a
+ * scale class and one byte per cell choosing its value: mostly zero, small, single spikes and extremes
+ * up to the float range (what a map can hold: the loader zeroes NaN, Inf and negatives). The cut must
+ * make at most the lights it has room for, each finite with a unit direction, together carrying the
+ * map's energy. */
+static double env_cell_value(uint8_t b)
+{
+    if (b < 128) return 0.0;
+    if (b < 248) return (b - 127) * 0.01;
+    static const double extremes[8] = {1e-30, 1e-6, 1.0, 1e3, 1e6, 1e12, 1e30, 3.4e38};
+    return extremes[b - 248];
+}
+
+const char *sss_fuzz_env_cut(const uint8_t *data, size_t size)
+{
+    if (size < 4) return NULL;
+    int w = data[0] % 64 + 1, h = data[1] % 64 + 1, max_lights = data[2] % 128 + 1;
+    static const double scales[4] = {1.0, 0.0, 1e-30, 1e30};
+    double scale[3] = {scales[data[3] % 4], scales[(data[3] >> 2) % 4], scales[(data[3] >> 4) % 4]};
+    size_t cells = (size_t)w * h;
+    double *map = calloc(cells * 3, sizeof *map), total[3] = {0, 0, 0}, sum[3] = {0, 0, 0};
+    gl_env_light *lights = calloc((size_t)max_lights, sizeof *lights);
+    const char *bad = NULL;
+    if (!map || !lights) bad = broken("env_cut: test harness out of memory");
+    for (size_t i = 0; !bad && i < cells; i++)
+        for (int k = 0; k < 3; k++) {
+            size_t at = 4 + 3 * i + (size_t)k;
+            map[3 * i + k] = at < size ? env_cell_value(data[at]) : 0.0;
+            total[k] += map[3 * i + k] * scale[k];
+        }
+    int count = -1;
+    sss_error err = {0};
+    if (!bad && gl_env_median_cut(map, w, h, scale, data[3] * 7.0, max_lights, lights, &count, &err) != SSS_OK)
+        bad = broken("env_cut: %dx%d into %d lights failed: %s", w, h, max_lights, err.message);
+    if (!bad && (count < 0 || count > max_lights))
+        bad = broken("env_cut: %dx%d map gave %d lights for room of %d", w, h, count, max_lights);
+    for (int i = 0; !bad && i < count; i++) {
+        const double *d = lights[i].to_light;
+        if (!finite_n(d, 3) || fabs(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - 1.0) > 1e-9)
+            bad = broken("env_cut: light %d has direction (%g, %g, %g)", i, d[0], d[1], d[2]);
+        for (int k = 0; !bad && k < 3; k++) {
+            if (!isfinite(lights[i].rgb[k]) || lights[i].rgb[k] < 0.0)
+                bad = broken("env_cut: light %d carries %g", i, lights[i].rgb[k]);
+            sum[k] += lights[i].rgb[k];
+        }
+    }
+    /* a region whose luminance underflows to 0 gives no light: allow that energy to go */
+    for (int k = 0; !bad && k < 3; k++)
+        if (fabs(sum[k] - total[k]) > 1e-9 * total[k] + 1e-290)
+            bad = broken("env_cut: lights carry %.17g of the map's %.17g (channel %d)", sum[k], total[k], k);
+    free(map);
+    free(lights);
+    return bad;
+}
+
 const sss_fuzz_target sss_fuzz_targets[] = {
     {"ply", sss_fuzz_ply}, {"obj", sss_fuzz_obj}, {"scene", sss_fuzz_scene}, {"hdr", sss_fuzz_hdr},
-    {"pfm", sss_fuzz_pfm}, {"exr", sss_fuzz_exr}, {"png", sss_fuzz_png}, {"sam", sss_fuzz_sam},
+    {"pfm", sss_fuzz_pfm}, {"exr", sss_fuzz_exr}, {"png", sss_fuzz_png}, {"sam", sss_fuzz_sam}, {"env_cut", sss_fuzz_env_cut},
 };
 const size_t sss_fuzz_target_count = sizeof sss_fuzz_targets / sizeof sss_fuzz_targets[0];
