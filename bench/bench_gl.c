@@ -1,7 +1,7 @@
 /* bench/bench_gl.c — per-pass timings of a real-time technique (default maisch2020) on a scene (default
  * scenes/gl_dragon.json: the 100k-triangle dragon, 11k-triangle splat mesh, two point lights) at
- * 960x540 and 1920x1080: median ms per pass over the frames after one warm-up frame, the ratio of each
- * pass and of the whole frame to the screen-space pass, and the GPU memory per pixel and per splat.
+ * 960x540 and 1920x1080: median ms per pass over the timed frames (default 5) after 2 warm-up frames
+ * (sss_gl_timing_series), the ratio of each pass and of the whole frame to the screen-space pass, and the GPU memory per pixel and per splat.
  *
  * usage: bench_gl [SCENE.json] [--technique NAME] [--frames N] [--size WxH ...] [NAME=VALUE ...]
  * Timing method: glFinish + monotonic clock per pass on software GL (llvmpipe), GL_TIME_ELAPSED
@@ -37,38 +37,37 @@ static int run(sss_gl_context *ctx, const sss_scene *scene, const char *techniqu
         return 1;
     }
     double setup = sss_time_seconds() - t0;
-    static double ms[SSS_GL_MAX_PASSES][MAX_FRAMES], total[MAX_FRAMES];
-    const char *names[SSS_GL_MAX_PASSES];
-    int npass = 0;
+    sss_gl_timing_series series;
+    if (sss_gl_timing_series_init(&series, SSS_GL_WARMUP_FRAMES, frames, &err) != SSS_OK) {
+        fprintf(stderr, "bench_gl: %s\n", err.message);
+        sss_gl_renderer_destroy(r);
+        return 1;
+    }
     sss_gl_timings t;
-    for (int f = -1; f < frames; f++) { /* frame -1 warms up (shader JIT, first touches) */
+    for (int f = 0; f < SSS_GL_WARMUP_FRAMES + frames; f++) { /* the series drops the warm-up frames */
         if (sss_gl_renderer_render(r, 0.0, &err) != SSS_OK) {
             fprintf(stderr, "bench_gl: %s\n", err.message);
+            sss_gl_timing_series_free(&series);
             sss_gl_renderer_destroy(r);
             return 1;
         }
-        if (f < 0) continue;
         sss_gl_renderer_timings(r, &t);
-        npass = t.pass_count;
-        for (int p = 0; p < npass; p++) {
-            names[p] = t.passes[p].name;
-            ms[p][f] = t.passes[p].ms;
-        }
-        total[f] = t.total_ms;
+        sss_gl_timing_series_add(&series, &t);
     }
+    sss_gl_timing_series_median(&series, &t);
+    sss_gl_timing_series_free(&series);
     sss_gl_stats st;
     sss_gl_renderer_stats(r, &st);
-    double med[SSS_GL_MAX_PASSES], screen = 0.0;
-    for (int p = 0; p < npass; p++) {
-        med[p] = sss_median(ms[p], frames);
-        if (strcmp(names[p], "screen_space") == 0) screen = med[p];
-    }
-    double tot = sss_median(total, frames);
-    printf("\n%s %dx%d, %d frames (+1 warm-up), %s; setup (upload, LUTs, programs) %.0f ms\n",
-           technique ? technique : scene->render.technique, w, h, frames, t.method, 1e3 * setup);
+    int npass = t.pass_count;
+    double screen = 0.0;
+    for (int p = 0; p < npass; p++)
+        if (strcmp(t.passes[p].name, "screen_space") == 0) screen = t.passes[p].ms;
+    double tot = t.total_ms;
+    printf("\n%s %dx%d, median of %d frames after %d warm-up, %s; setup (upload, LUTs, programs) %.0f ms\n",
+           technique ? technique : scene->render.technique, w, h, frames, SSS_GL_WARMUP_FRAMES, t.method, 1e3 * setup);
     printf("  %-16s %12s %14s\n", "pass", "median ms", "/ screen_space");
     for (int p = 0; p < npass; p++)
-        printf("  %-16s %12.1f %14.2f\n", names[p], med[p], screen > 0.0 ? med[p] / screen : 0.0);
+        printf("  %-16s %12.1f %14.2f\n", t.passes[p].name, t.passes[p].ms, screen > 0.0 ? t.passes[p].ms / screen : 0.0);
     printf("  %-16s %12.1f %14.2f\n", "total", tot, screen > 0.0 ? tot / screen : 0.0);
     printf("  memory: %zu bytes of screen-sized targets per pixel, %zu bytes per splat (%u of %u splats drawn),\n"
            "          textures %.1f MB (LUTs %.1f MB), buffers %.1f MB\n",
@@ -81,7 +80,7 @@ static int run(sss_gl_context *ctx, const sss_scene *scene, const char *techniqu
 int main(int argc, char **argv)
 {
     const char *path = "scenes/gl_dragon.json", *technique = NULL;
-    int frames = 3, nsizes = 0, sizes[MAX_SIZES][2];
+    int frames = SSS_GL_TIMED_FRAMES, nsizes = 0, sizes[MAX_SIZES][2];
     sss_gl_param_value params[MAX_PARAMS];
     char names[MAX_PARAMS][64];
     int nparams = 0;

@@ -7,13 +7,15 @@
 # committed ones in scenes/references/ (rendered only if missing or stale). Writes out/demo/:
 # report.html (self-contained: comparison sheets with DSSIM maps, plots, tables), results.json,
 # results.csv, sheets and plots; prints a summary table.
-# Usage: scripts/demo.sh [BUILD_DIR]   (DEMO_FRAMES=N: frames per technique, timings are medians; 1)
+# Usage: scripts/demo.sh [BUILD_DIR]   (DEMO_FRAMES=N timed frames per technique, DEMO_WARMUP=W untimed
+# frames before them; timings are medians; default 5 after 2, as sss eval)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${1:-build}
 SSS="$BUILD/sss"
 OUT=out/demo
-FRAMES=${DEMO_FRAMES:-1}
+FRAMES=${DEMO_FRAMES:-5}
+WARMUP=${DEMO_WARMUP:-2}
 SCENES=(scenes/default.json scenes/eval_backlit.json)
 
 # the techniques of this build among the wanted ones (the list grows with the registry)
@@ -28,10 +30,10 @@ done
 case "$techs" in *maisch2020*) techs="$techs,maisch2020:brightening=0" ;; esac
 
 echo "== sss demo: ${SCENES[*]}"
-echo "   techniques: $techs (+ the CPU reference, cached in scenes/references/), $FRAMES frame(s) each"
+echo "   techniques: $techs (+ the CPU reference, cached in scenes/references/), median of $FRAMES frame(s) after $WARMUP warm-up"
 echo "   (software OpenGL renders in seconds per frame what a GPU does in milliseconds)"
 echo
 start=$(date +%s)
-"$SSS" eval "${SCENES[@]}" --techniques "$techs" --frames "$FRAMES" --cached-reference --out "$OUT"
+"$SSS" eval "${SCENES[@]}" --techniques "$techs" --frames "$FRAMES" --warmup "$WARMUP" --cached-reference --out "$OUT"
 echo
 echo "demo: $(($(date +%s) - start)) s; open $(pwd)/$OUT/report.html"

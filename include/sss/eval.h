@@ -32,7 +32,8 @@ typedef struct sss_eval_size {
     int width, height;
 } sss_eval_size;
 
-/* Zero-initialised means: every registered technique, each scene at its camera's size, 3 frames,
+/* Zero-initialised means: every registered technique, each scene at its camera's size, 5 timed
+ * frames after 2 warm-up frames (SSS_GL_TIMED_FRAMES, SSS_GL_WARMUP_FRAMES),
  * references rendered at final quality, SAM sweep when `sam` is among the techniques.
  *
  * Technique specs are "name" or "name:param=value[:param=value...]" (technique or shared parameters
@@ -46,7 +47,8 @@ typedef struct sss_eval_desc {
     int resolution_count;
     const sss_eval_size *timing_resolutions; /* extra sizes where only frame times are measured */
     int timing_resolution_count;
-    int frames;                     /* frames per technique; timings are medians; 0 -> 3 */
+    int frames;                     /* timed frames per technique; timings are medians; 0 -> 5 */
+    int warmup_frames;              /* frames rendered first and not timed; 0 -> 2, -1 -> none */
     int cached_reference;           /* use <reference_dir>/<scene>_<w>x<h>[_t<T>].exr when present */
     const char *reference_dir;      /* NULL: "references" in each scene file's folder */
     sss_reference_quality reference_quality;
@@ -146,7 +148,8 @@ typedef struct sss_eval_results {
     int entry_count, entry_capacity;
     char **labels;                    /* the technique specs evaluated, in order */
     int label_count;
-    int frames;
+    int frames;                       /* timed frames per technique */
+    int warmup_frames;                /* untimed frames before them */
     int supersample;                  /* sss_eval_desc.supersample (1: off) */
     sss_reference_quality reference_quality;
     int cached_reference;

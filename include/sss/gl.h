@@ -187,6 +187,33 @@ typedef struct sss_gl_timings {
 /* Timings of the last frame (pass_count 0 when timing is off). */
 void sss_gl_renderer_timings(const sss_gl_renderer *r, sss_gl_timings *out);
 
+/* ---- Frame-time statistics ------------------------------------------------------------------
+ * The first frames of a renderer are slower than the rest (shader compilation and JIT, first touches of
+ * buffers; on llvmpipe the first frame of a process can cost 30x a later one), so reported timings drop
+ * warm-up frames and give the median of the timed ones. A series matches passes by name across frames:
+ * a name repeated within a frame adds up, a pass missing from a frame counts 0 ms there. */
+#define SSS_GL_WARMUP_FRAMES 2 /* default frames dropped before timing */
+#define SSS_GL_TIMED_FRAMES 5  /* default frames timed */
+
+typedef struct sss_gl_timing_series {
+    int warmup;       /* frames dropped before timing */
+    int capacity;     /* timed frames it holds; when full, a new frame replaces the oldest */
+    int added;        /* frames added so far, warm-up included */
+    int timed;        /* timed frames held */
+    int pass_count;
+    const char *pass_names[SSS_GL_MAX_PASSES];
+    double *ms;       /* (SSS_GL_MAX_PASSES + 1) x capacity: per pass, then the frame totals */
+    const char *method;
+} sss_gl_timing_series;
+
+/* warmup >= 0 frames to drop, then room for timed_frames >= 1 (about 200 bytes per frame). */
+sss_result sss_gl_timing_series_init(sss_gl_timing_series *s, int warmup, int timed_frames, sss_error *err);
+/* Adds one frame's timings (from sss_gl_renderer_timings); the first `warmup` frames are dropped. */
+void sss_gl_timing_series_add(sss_gl_timing_series *s, const sss_gl_timings *frame);
+/* Median per pass and of the totals over the timed frames (pass_count 0 before the first). */
+void sss_gl_timing_series_median(const sss_gl_timing_series *s, sss_gl_timings *out);
+void sss_gl_timing_series_free(sss_gl_timing_series *s);
+
 typedef struct sss_gl_stats {
     size_t texture_bytes;       /* all textures the renderer owns (shared passes + technique) */
     size_t buffer_bytes;        /* all buffer objects (meshes, splats, uniforms) */

@@ -18,7 +18,7 @@ static void print_usage(FILE *f)
 {
     fprintf(f,
             "usage: sss eval SCENE.json[@T]... [--out DIR] [--techniques A,B:param=value,...]\n"
-            "                [--resolutions WxH,...] [--timing-resolutions WxH,...] [--frames N]\n"
+            "                [--resolutions WxH,...] [--timing-resolutions WxH,...] [--frames N] [--warmup W]\n"
             "                [--cached-reference] [--reference-dir DIR] [--reference-quality draft|final]\n"
             "                [--reference-threads N] [--sam-sweep | --no-sam-sweep] [--sam-counts 3,10,20,50]\n"
             "                [--supersample K] [--quiet]\n"
@@ -39,7 +39,8 @@ static void print_usage(FILE *f)
             "  --resolutions LIST    sizes compared with the reference, WxH,... (default: the camera's);\n"
             "                        the first one is used for the sheets\n"
             "  --timing-resolutions LIST  extra sizes where only frame times are measured\n"
-            "  --frames N            frames per technique; timings are medians (default 3)\n"
+            "  --frames N            timed frames per technique; timings are medians (default 5)\n"
+            "  --warmup W            frames rendered first and not timed (default 2)\n"
             "  --supersample K       antialiasing of every technique (`sss render --supersample`): passes at\n"
             "                        K x the size, box-filtered down; K in 1..4 (default 1: off)\n"
             "  --cached-reference    use <scene folder>/references/<scene>_<W>x<H>[_t<T>].exr when it exists\n"
@@ -237,6 +238,13 @@ int sss_cmd_eval(int argc, char **argv)
                 cli_usage_error(CMD, "--frames must be in 1..10000");
                 goto done;
             }
+        } else if (strcmp(a, "--warmup") == 0) {
+            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &desc.warmup_frames)) goto done;
+            if (desc.warmup_frames < 0 || desc.warmup_frames > 10000) {
+                cli_usage_error(CMD, "--warmup must be in 0..10000");
+                goto done;
+            }
+            if (desc.warmup_frames == 0) desc.warmup_frames = -1; /* the library's "none" */
         } else if (strcmp(a, "--supersample") == 0) {
             if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &desc.supersample)) goto done;
             if (desc.supersample < 1 || desc.supersample > SSS_GL_MAX_SUPERSAMPLE) {

@@ -21,7 +21,7 @@ static void print_usage(FILE *f)
     fprintf(f,
             "usage: sss render SCENE.json -o OUT.png [--exr OUT.exr] [--technique NAME] [--width W --height H]\n"
             "                  [--time T] [--frames N [--animate] [--fps F]] [--param NAME=VALUE ...]\n"
-            "                  [--supersample K] [--timings] [--timings-json FILE] [--window]\n"
+            "                  [--supersample K] [--timings] [--timings-json FILE] [--warmup W] [--window]\n"
             "\n"
             "Renders SCENE.json with a real-time technique on a headless OpenGL 4.5 context (EGL; no display\n"
             "needed) and writes the image: PNG tone-mapped with the scene's exposure (SCENE.md), and with\n"
@@ -33,7 +33,8 @@ static void print_usage(FILE *f)
             "  --technique NAME    technique (default: the scene's render.technique); `sss techniques`\n"
             "  --width W, --height H  image size (default: the scene camera's)\n"
             "  --time T            animation time in seconds (default 0)\n"
-            "  --frames N          render N frames (timings are medians over them)\n"
+            "  --frames N          render N frames (timings are medians over them; default 1, or %d with\n"
+            "                      --timings/--timings-json)\n"
             "  --animate           with --frames: frame k at time T + k / fps, written as a numbered\n"
             "                      sequence OUT_0000.png, OUT_0001.png, ... (or OUT as a printf pattern\n"
             "                      with one %%d, e.g. frame_%%03d.png)\n"
@@ -44,13 +45,16 @@ static void print_usage(FILE *f)
             "                      per pixel) and box-filter the linear image down, K in 1..4 (default 1:\n"
             "                      off); costs about K^2 the time; parameters counted in pixels follow K\n"
             "  --timings           print milliseconds per pass (median over the frames) as a table\n"
+            "  --warmup W          with timings: W frames rendered first and not timed (default %d: the\n"
+            "                      first frames pay shader compilation and first touches)\n"
             "  --timings-json FILE write the timings as JSON\n"
             "  --window            show the frames in a window (needs a display; until it is closed, or\n"
             "                      for --frames N frames); with -o the last frame is also written\n"
             "\n"
             "Timings on a software rasteriser (llvmpipe) put glFinish() around every pass and read a monotonic\n"
             "clock; on GPUs they use GL_TIME_ELAPSED queries. The method is printed with the table.\n"
-            "Exit status: 0 success, 1 error (scene, GL, output), 2 usage error.\n");
+            "Exit status: 0 success, 1 error (scene, GL, output), 2 usage error.\n",
+            SSS_GL_TIMED_FRAMES, SSS_GL_WARMUP_FRAMES);
 }
 
 /* Frame file name: a printf pattern with one %d, else "_%04d" inserted before the extension. */
@@ -86,31 +90,25 @@ static int valid_pattern(const char *s)
     return conv <= 1;
 }
 
-typedef struct pass_series {
-    const char *name;
-    double *ms;     /* one value per frame (frames entries) */
-    int count;
-    int last_frame; /* frame of ms[count - 1]: a pass run twice in a frame adds to that frame's value */
-} pass_series;
-
 static sss_result write_timings_json(const char *path, const char *technique, int w, int h, int supersample,
-                                     int frames, const char *method, const char *renderer, const pass_series *ps,
-                                     int npass, double total, sss_error *err)
+                                     int warmup, int frames, const char *renderer, const sss_gl_timings *median,
+                                     sss_error *err)
 {
     char tmp[4096];
     FILE *f = sss_atomic_open(path, tmp, sizeof tmp, err);
     if (!f) return err ? err->code : SSS_ERROR_IO;
-    fprintf(f, "{\n  \"technique\": \"%s\",\n  \"width\": %d,\n  \"height\": %d,\n  \"supersample\": %d,\n  \"frames\": %d,\n",
-            technique, w, h, supersample, frames);
-    fprintf(f, "  \"method\": \"%s\",\n  \"renderer\": \"", method);
+    fprintf(f, "{\n  \"technique\": \"%s\",\n  \"width\": %d,\n  \"height\": %d,\n  \"supersample\": %d,\n",
+            technique, w, h, supersample);
+    fprintf(f, "  \"warmup_frames\": %d,\n  \"frames\": %d,\n", warmup, frames);
+    fprintf(f, "  \"method\": \"%s\",\n  \"renderer\": \"", median->method);
     for (const char *c = renderer; *c; c++)
         if (*c == '"' || *c == '\\') fprintf(f, "\\%c", *c);
         else if ((unsigned char)*c >= 0x20) fputc(*c, f);
     fprintf(f, "\",\n  \"passes\": [\n");
-    for (int i = 0; i < npass; i++)
-        fprintf(f, "    {\"name\": \"%s\", \"median_ms\": %.4f}%s\n", ps[i].name, sss_median(ps[i].ms, ps[i].count),
-                i + 1 < npass ? "," : "");
-    fprintf(f, "  ],\n  \"total_median_ms\": %.4f\n}\n", total);
+    for (int i = 0; i < median->pass_count; i++)
+        fprintf(f, "    {\"name\": \"%s\", \"median_ms\": %.4f}%s\n", median->passes[i].name, median->passes[i].ms,
+                i + 1 < median->pass_count ? "," : "");
+    fprintf(f, "  ],\n  \"total_median_ms\": %.4f\n}\n", median->total_ms);
     return sss_atomic_close(f, tmp, path, err);
 }
 
@@ -122,6 +120,7 @@ int sss_cmd_render(int argc, char **argv)
     }
     const char *scene_path = NULL, *out = NULL, *exr = NULL, *technique = NULL, *json = NULL, *data = NULL;
     int width = 0, height = 0, frames = 1, animate = 0, timings = 0, window = 0, frames_given = 0, supersample = 1;
+    int warmup = SSS_GL_WARMUP_FRAMES;
     double time0 = 0.0, fps = 30.0;
     sss_gl_param_value params[MAX_PARAMS];
     char param_names[MAX_PARAMS][64];
@@ -155,6 +154,9 @@ int sss_cmd_render(int argc, char **argv)
             animate = 1;
         } else if (strcmp(a, "--timings") == 0) {
             timings = 1;
+        } else if (strcmp(a, "--warmup") == 0) {
+            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &warmup)) return CLI_EXIT_USAGE;
+            if (warmup < 0 || warmup > MAX_FRAMES) return cli_usage_error(CMD, "--warmup must be in 0..%d", MAX_FRAMES);
         } else if (strcmp(a, "--timings-json") == 0) {
             if (!(json = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
         } else if (strcmp(a, "--supersample") == 0) {
@@ -187,6 +189,7 @@ int sss_cmd_render(int argc, char **argv)
         }
     }
     if (!scene_path) return cli_usage_error(CMD, "missing SCENE.json");
+    if ((timings || json) && !frames_given) frames = SSS_GL_TIMED_FRAMES;
     if (!out && !window) return cli_usage_error(CMD, "missing -o OUT.png (or --window)");
     if (animate && !frames_given && !window) return cli_usage_error(CMD, "--animate needs --frames N");
     if (window && !frames_given && (out || exr))
@@ -232,13 +235,10 @@ int sss_cmd_render(int argc, char **argv)
     rdesc.supersample = supersample;
     sss_gl_renderer *r = NULL;
     int status = CLI_EXIT_OK;
-    pass_series ps[SSS_GL_MAX_PASSES];
-    int npass = 0;
-    double *totals = calloc((size_t)frames, sizeof *totals);
-    memset(ps, 0, sizeof ps);
+    sss_gl_timing_series series = {0};
     sss_image img = {0};
-    if (!totals) {
-        status = cli_failf(CMD, "out of memory");
+    if (rdesc.timings && sss_gl_timing_series_init(&series, warmup, frames, &err) != SSS_OK) {
+        status = cli_fail(CMD, &err);
         goto done;
     }
     if (sss_gl_renderer_create(ctx, &scene, &rdesc, &r, &err) != SSS_OK) {
@@ -252,6 +252,14 @@ int sss_cmd_render(int argc, char **argv)
         goto done;
     }
     sss_gl_timings last = {0};
+    for (int k = 0; rdesc.timings && k < warmup; k++) {
+        if (sss_gl_renderer_render(r, time0, &err) != SSS_OK) {
+            status = cli_fail(CMD, &err);
+            goto done;
+        }
+        sss_gl_renderer_timings(r, &last);
+        sss_gl_timing_series_add(&series, &last);
+    }
     for (int k = 0; k < frames || (window && !frames_given); k++) {
         double t = animate ? time0 + k / fps : time0;
         if (window && sss_gl_window_should_close(ctx)) break;
@@ -268,29 +276,7 @@ int sss_cmd_render(int argc, char **argv)
         }
         if (rdesc.timings && k < frames) {
             sss_gl_renderer_timings(r, &last);
-            totals[k] = last.total_ms;
-            for (int p = 0; p < last.pass_count; p++) {
-                int j = 0;
-                while (j < npass && strcmp(ps[j].name, last.passes[p].name) != 0) j++;
-                if (j == npass) {
-                    if (npass >= SSS_GL_MAX_PASSES) continue;
-                    ps[npass].name = last.passes[p].name;
-                    ps[npass].count = 0;
-                    ps[npass].last_frame = -1;
-                    ps[npass].ms = calloc((size_t)frames, sizeof(double));
-                    if (!ps[npass].ms) {
-                        status = cli_failf(CMD, "out of memory");
-                        goto done;
-                    }
-                    npass++;
-                }
-                if (ps[j].last_frame == k) {
-                    ps[j].ms[ps[j].count - 1] += last.passes[p].ms;
-                } else {
-                    ps[j].ms[ps[j].count++] = last.passes[p].ms;
-                    ps[j].last_frame = k;
-                }
-            }
+            sss_gl_timing_series_add(&series, &last);
         }
         if (!out && !exr) continue;
         int write_now = k < frames && (animate || k == frames - 1);
@@ -318,36 +304,31 @@ int sss_cmd_render(int argc, char **argv)
             }
         }
     }
-    if (rdesc.timings && npass > 0) {
+    sss_gl_timings median;
+    sss_gl_timing_series_median(&series, &median);
+    if (rdesc.timings && median.pass_count > 0) {
         sss_gl_context_info info;
         sss_gl_context_get_info(ctx, &info);
-        double total = sss_median(totals, frames);
         if (timings) {
             const char *tname = technique ? technique : scene.render.technique;
             char ssaa[48] = "";
             if (supersample > 1) snprintf(ssaa, sizeof ssaa, " (supersample %d: %dx%d)", supersample, w * supersample,
                                           h * supersample);
-            printf("technique %s, %dx%d%s, %d frame%s, %s on %s\n", sss_gl_technique_find(tname) ? tname : "?", w, h,
-                   ssaa, frames, frames == 1 ? "" : "s", last.method, info.renderer);
+            printf("technique %s, %dx%d%s, median of %d frame%s after %d warm-up, %s on %s\n",
+                   sss_gl_technique_find(tname) ? tname : "?", w, h, ssaa, series.timed, series.timed == 1 ? "" : "s",
+                   warmup, median.method, info.renderer);
             printf("%-20s %12s\n", "pass", "median ms");
-            for (int j = 0; j < npass; j++) {
-                double *copy = malloc(sizeof(double) * (size_t)ps[j].count);
-                if (!copy) continue;
-                memcpy(copy, ps[j].ms, sizeof(double) * (size_t)ps[j].count);
-                printf("%-20s %12.3f\n", ps[j].name, sss_median(copy, ps[j].count));
-                free(copy);
-            }
-            printf("%-20s %12.3f\n", "total", total);
+            for (int j = 0; j < median.pass_count; j++) printf("%-20s %12.3f\n", median.passes[j].name, median.passes[j].ms);
+            printf("%-20s %12.3f\n", "total", median.total_ms);
         }
-        if (json && write_timings_json(json, technique ? technique : scene.render.technique, w, h, supersample, frames,
-                                       last.method, info.renderer, ps, npass, total, &err) != SSS_OK) {
+        if (json && write_timings_json(json, technique ? technique : scene.render.technique, w, h, supersample, warmup,
+                                       series.timed, info.renderer, &median, &err) != SSS_OK) {
             status = cli_fail(CMD, &err);
             goto done;
         }
     }
 done:
-    for (int j = 0; j < npass; j++) free(ps[j].ms);
-    free(totals);
+    sss_gl_timing_series_free(&series);
     sss_image_free(&img);
     sss_gl_renderer_destroy(r);
     sss_gl_context_destroy(ctx);

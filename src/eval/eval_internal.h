@@ -58,7 +58,7 @@ typedef struct eval_gl {
     sss_gl_context *gl;   /* NULL: every technique fails with gl_error */
     const char *gl_error;
     const char *method;   /* timing method the renderer reported */
-    int frames;
+    int frames, warmup_frames;
     int supersample;      /* SSAA factor of specs that do not set "supersample" */
     eval_progress *prog;
 } eval_gl;

@@ -106,6 +106,7 @@ static cJSON *results_json(const sss_eval_results *res)
     cJSON *set = cJSON_AddObjectToObject(root, "settings");
     if (set) {
         cJSON_AddNumberToObject(set, "frames", res->frames);
+        cJSON_AddNumberToObject(set, "warmup_frames", res->warmup_frames);
         cJSON_AddNumberToObject(set, "supersample", res->supersample > 0 ? res->supersample : 1);
         cJSON_AddStringToObject(set, "reference_quality", res->reference_quality == SSS_REFERENCE_DRAFT ? "draft" : "final");
         cJSON_AddBoolToObject(set, "cached_reference", res->cached_reference);

@@ -190,7 +190,8 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
         sb_puts(b, "</span>");
     }
     sb_puts(b, "</td></tr><tr><th class=\"l\">timing</th><td>");
-    sb_printf(b, "median of %d frame%s per technique; ", res->frames, res->frames == 1 ? "" : "s");
+    sb_printf(b, "median of %d frame%s per technique after %d warm-up frame%s (not timed); ", res->frames,
+              res->frames == 1 ? "" : "s", res->warmup_frames, res->warmup_frames == 1 ? "" : "s");
     if (res->supersample > 1)
         sb_printf(b, "supersampled %d&times;%d (SSAA, every pass at %d&times; the size); ", res->supersample,
                   res->supersample, res->supersample);

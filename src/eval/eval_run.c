@@ -20,6 +20,9 @@ static sss_result validate(const sss_eval_desc *d, int scene_count, sss_error *e
     if (scene_count < 1) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "eval: no scenes");
     if (d->frames < 0 || d->frames > 10000)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "eval: frames must be in 1..10000, got %d", d->frames);
+    if (d->warmup_frames < -1 || d->warmup_frames > 10000)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "eval: warmup_frames must be in -1..10000, got %d",
+                             d->warmup_frames);
     if (d->resolution_count < 0 || d->resolution_count > EVAL_MAX_QUALITY_SIZES)
         return sss_error_set(err, SSS_ERROR_LIMIT, "eval: at most %d quality resolutions", EVAL_MAX_QUALITY_SIZES);
     if (d->supersample < 0 || d->supersample > SSS_GL_MAX_SUPERSAMPLE)
@@ -132,7 +135,7 @@ static sss_result run_entry(run_state *st, const sss_scene *view, int si, int i,
     char stage[256];
     snprintf(stage, sizeof stage, "%.100s %dx%d%s: %.120s", es->name, size.width, size.height,
              kind == SSS_EVAL_TIMING ? " (timing)" : "", e->label);
-    st->prog.step = (st->rc.frames + 1.0) * size.width * size.height;
+    st->prog.step = (st->rc.frames + st->rc.warmup_frames + 1.0) * size.width * size.height;
     sss_result r = eval_run_technique(&st->rc, view, es->time, &st->specs[i], st->specs[i].param_count, st->rc.frames, e,
                                       stage);
     eval_progress_finish_step(&st->prog);
@@ -272,11 +275,11 @@ static double plan_units(run_state *st)
             int h = d->resolution_count ? d->resolutions[k].height : es->height;
             double px = (double)w * h;
             units += reference_units(st, es, w, h);
-            units += st->res->label_count * (st->rc.frames + 1.0) * px;
+            units += st->res->label_count * (st->rc.frames + st->rc.warmup_frames + 1.0) * px;
             if (k == 0 && st->res->sam_swept) units += st->sam_count_n * 2.0 * px;
         }
         for (int k = 0; k < d->timing_resolution_count; k++)
-            units += st->res->label_count * (st->rc.frames + 1.0) * d->timing_resolutions[k].width *
+            units += st->res->label_count * (st->rc.frames + st->rc.warmup_frames + 1.0) * d->timing_resolutions[k].width *
                      (double)d->timing_resolutions[k].height;
     }
     return units;
@@ -300,8 +303,10 @@ sss_result sss_eval_run(const char *const *scene_args, int scene_count, const ss
     st.res = out;
     st.prog.cb = cb;
     st.rc.prog = &st.prog;
-    st.rc.frames = desc.frames ? desc.frames : 3;
+    st.rc.frames = desc.frames ? desc.frames : SSS_GL_TIMED_FRAMES;
+    st.rc.warmup_frames = desc.warmup_frames == 0 ? SSS_GL_WARMUP_FRAMES : desc.warmup_frames < 0 ? 0 : desc.warmup_frames;
     out->frames = st.rc.frames;
+    out->warmup_frames = st.rc.warmup_frames;
     st.rc.supersample = desc.supersample ? desc.supersample : 1;
     out->supersample = st.rc.supersample;
     out->reference_quality = desc.reference_quality;

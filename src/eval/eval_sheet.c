@@ -85,7 +85,8 @@ sss_result sss_eval_write_sheet(const sss_eval_results *res, int scene, const ch
              MAP_GAIN, 1.0 / MAP_GAIN);
     fit_text(cr, 11, 0, buf, rw, fit, sizeof fit);
     eval_text(cr, MARGIN, y0 + rh + 40, 11, 0, 0, fit);
-    snprintf(buf, sizeof buf, "ms: median total frame time of %d frame%s; %s", res->frames, res->frames == 1 ? "" : "s",
+    snprintf(buf, sizeof buf, "ms: median total frame time of %d frame%s after %d warm-up; %s", res->frames,
+             res->frames == 1 ? "" : "s", res->warmup_frames,
              res->timing_method[0] ? res->timing_method : "");
     fit_text(cr, 11, 0, buf, rw, fit, sizeof fit);
     eval_text(cr, MARGIN, y0 + rh + 56, 11, 0, 0, fit);

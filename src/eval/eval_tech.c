@@ -94,20 +94,18 @@ sss_result eval_run_technique(eval_gl *rc, const sss_scene *view, double t, cons
         return SSS_OK;
     }
     e->precompute_ms = 1000.0 * (sss_time_seconds() - t0);
-    double *series = calloc((size_t)(SSS_GL_MAX_PASSES + 1) * (size_t)frames, sizeof *series);
-    const char *names[SSS_GL_MAX_PASSES];
-    int counts[SSS_GL_MAX_PASSES] = {0};
-    int npass = 0;
-    if (!series) {
+    sss_gl_timing_series series;
+    if (sss_gl_timing_series_init(&series, rc->warmup_frames, frames, &err) != SSS_OK) {
         sss_gl_renderer_destroy(r);
-        return sss_error_set(NULL, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+        return sss_error_set(NULL, err.code, "%s", err.message);
     }
-    double *totals = series + (size_t)SSS_GL_MAX_PASSES * (size_t)frames;
     sss_image img = {0};
     int ok = sss_image_create(&img, rd.width, rd.height, &err) == SSS_OK;
-    for (int f = 0; ok && f < frames; f++) {
-        snprintf(st, sizeof st, "%s: frame %d/%d", stage, f + 1, frames);
-        eval_progress_update(rc->prog, (1.0 + f) / (frames + 1.0), st);
+    int rendered = rc->warmup_frames + frames;
+    for (int f = 0; ok && f < rendered; f++) {
+        if (f < rc->warmup_frames) snprintf(st, sizeof st, "%s: warm-up frame %d/%d", stage, f + 1, rc->warmup_frames);
+        else snprintf(st, sizeof st, "%s: frame %d/%d", stage, f - rc->warmup_frames + 1, frames);
+        eval_progress_update(rc->prog, (1.0 + f) / (rendered + 1.0), st);
         if (sss_gl_renderer_render(r, t, &err) != SSS_OK) {
             ok = 0;
             break;
@@ -115,32 +113,19 @@ sss_result eval_run_technique(eval_gl *rc, const sss_scene *view, double t, cons
         sss_gl_timings tm;
         sss_gl_renderer_timings(r, &tm);
         if (tm.method) rc->method = tm.method;
-        totals[f] = tm.total_ms;
-        for (int p = 0; p < tm.pass_count; p++) {
-            int j = 0;
-            while (j < npass && strcmp(names[j], tm.passes[p].name) != 0) j++;
-            if (j == npass) {
-                if (npass >= SSS_GL_MAX_PASSES) continue;
-                names[npass++] = tm.passes[p].name;
-            }
-            /* a pass name repeated within a frame adds up */
-            if (counts[j] == f + 1) series[(size_t)j * (size_t)frames + (size_t)f] += tm.passes[p].ms;
-            else {
-                series[(size_t)j * (size_t)frames + (size_t)f] = tm.passes[p].ms;
-                counts[j] = f + 1;
-            }
-        }
-        e->frames = f + 1;
+        sss_gl_timing_series_add(&series, &tm);
+        e->frames = series.timed;
     }
     if (ok) ok = sss_gl_renderer_read(r, &img, &err) == SSS_OK;
     if (ok) {
+        sss_gl_timings median;
+        sss_gl_timing_series_median(&series, &median);
         e->ok = 1;
-        e->total_ms = sss_median(totals, frames);
-        e->pass_count = npass;
-        for (int j = 0; j < npass; j++) {
-            snprintf(e->passes[j].name, sizeof e->passes[j].name, "%s", names[j]);
-            /* frames in which the pass did not run count as 0 ms */
-            e->passes[j].ms = sss_median(series + (size_t)j * (size_t)frames, frames);
+        e->total_ms = median.total_ms;
+        e->pass_count = median.pass_count;
+        for (int j = 0; j < median.pass_count; j++) {
+            snprintf(e->passes[j].name, sizeof e->passes[j].name, "%s", median.passes[j].name);
+            e->passes[j].ms = median.passes[j].ms;
         }
         sss_gl_renderer_stats(r, &e->stats);
         e->has_stats = 1;
@@ -150,7 +135,7 @@ sss_result eval_run_technique(eval_gl *rc, const sss_scene *view, double t, cons
         eval_fail_entry(e, err.message);
     }
     sss_image_free(&img);
-    free(series);
+    sss_gl_timing_series_free(&series);
     sss_gl_renderer_destroy(r);
     return SSS_OK;
 }

@@ -70,6 +70,11 @@ sss_result view_make_renderer(viewer *v, int tech, sss_error *err)
     sss_gl_renderer *r = NULL;
     sss_result res = sss_gl_renderer_create(v->ctx, v->scene, &d, &r, err);
     free(params);
+    if (res == SSS_OK) {
+        sss_gl_timing_series_free(&v->timing_series);
+        res = sss_gl_timing_series_init(&v->timing_series, SSS_GL_WARMUP_FRAMES, SSS_GL_TIMED_FRAMES, err);
+        if (res != SSS_OK) sss_gl_renderer_destroy(r);
+    }
     if (res != SSS_OK) return res;
     sss_gl_renderer_destroy(v->r);
     v->r = r;

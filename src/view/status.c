@@ -43,7 +43,11 @@ void view_overlay_text(viewer *v, char *buf, size_t cap)
     put(&b, "%s (%d/%d)   part: %s   buffer: %s   %dx%d\n", info ? info->name : "?", v->tech + 1,
         sss_gl_technique_count(), part_name(v->part), shown, v->width, v->height);
     put(&b, "frame %.1f ms (%.1f fps)", v->frame_ms, v->frame_ms > 0.0 ? 1000.0 / v->frame_ms : 0.0);
-    if (v->timings.pass_count > 0) put(&b, "   passes %.1f ms [%s]", v->timings.total_ms, v->timings.method);
+    if (v->timings.pass_count > 0)
+        put(&b, "   passes %.1f ms (median of %d frames after %d warm-up) [%s]", v->timings.total_ms,
+            v->timing_series.timed, v->timing_series.warmup, v->timings.method);
+    else if (v->timing_series.added > 0)
+        put(&b, "   passes: warming up (%d of %d frames)", v->timing_series.added, v->timing_series.warmup);
     put(&b, "\n");
     for (int i = 0; i < v->timings.pass_count; i++)
         put(&b, "  %-14s %8.2f ms\n", v->timings.passes[i].name, v->timings.passes[i].ms);

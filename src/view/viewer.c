@@ -102,7 +102,10 @@ static sss_result frame(viewer *v, int fixed, const char *screenshot, sss_error 
             }
             view_message(v, "render: %s", rerr.message);
         } else {
-            sss_gl_renderer_timings(v->r, &v->timings);
+            sss_gl_timings frame;
+            sss_gl_renderer_timings(v->r, &frame);
+            sss_gl_timing_series_add(&v->timing_series, &frame);
+            sss_gl_timing_series_median(&v->timing_series, &v->timings);
             v->image_gen++;
             v->need_render = 0;
             rendered = 1;
@@ -280,6 +283,7 @@ sss_result sss_view_run(const sss_view_desc *desc, sss_error *err)
         view_gl_free(&v.gl);
     }
     sss_gl_renderer_destroy(v.r);
+    sss_gl_timing_series_free(&v.timing_series);
     sss_gl_context_destroy(v.ctx);
     sss_scene_free(v.scene);
     free(v.scene);

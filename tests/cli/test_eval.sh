@@ -48,7 +48,7 @@ EOF
 
 OUT=$T/out
 TECHS="maisch2020,local,nosuch,maisch2020:layers=999"
-"$SSS" eval "$T/scenes/ball.json" "$T/scenes/knot.json@0.5" --techniques "$TECHS" --frames 1 \
+"$SSS" eval "$T/scenes/ball.json" "$T/scenes/knot.json@0.5" --techniques "$TECHS" --frames 1 --warmup 0 \
     --timing-resolutions 96x64 --out "$OUT" >"$T/stdout" 2>"$T/stderr"
 rc=$?
 [ "$rc" -eq 0 ] || fail "sss eval exited $rc: $(head -c 600 "$T/stderr")"
@@ -127,6 +127,7 @@ assert not errors, "schema violations:\n" + "\n".join(errors[:20])
 
 techs = ["maisch2020", "local", "nosuch", "maisch2020:layers=999"]
 assert doc["settings"]["techniques"] == techs, doc["settings"]["techniques"]
+assert doc["settings"]["frames"] == 1 and doc["settings"]["warmup_frames"] == 0, doc["settings"]
 assert [s["name"] for s in doc["scenes"]] == ["ball", "knot@0.5"], [s["name"] for s in doc["scenes"]]
 assert doc["scenes"][1]["time"] == 0.5
 quality = [r for r in doc["results"] if r["kind"] == "quality"]
@@ -199,7 +200,7 @@ if grep -Eq '(src|href)="(https?:|file:|//)' "$OUT/report.html"; then fail "repo
 grep -q "maisch2020:layers=999" "$OUT/report.html" || fail "report lacks the failing technique"
 
 # Cached references: the second run reads them (no rendering) and gets the same numbers.
-"$SSS" eval "$T/scenes/ball.json" "$T/scenes/knot.json@0.5" --techniques maisch2020,local --frames 1 \
+"$SSS" eval "$T/scenes/ball.json" "$T/scenes/knot.json@0.5" --techniques maisch2020,local --frames 1 --warmup 0 \
     --cached-reference --reference-dir "$OUT/references" --out "$T/out2" >"$T/stdout2" 2>"$T/stderr2" ||
     fail "cached run failed: $(head -c 400 "$T/stderr2")"
 if [ -n "$PY" ]; then
@@ -216,12 +217,12 @@ fi
 [ ! -d "$T/out2/references" ] || [ -z "$(ls "$T/out2/references")" ] || fail "cached run rendered references"
 # a scene that changed since its reference was rendered is re-rendered, and the user is told
 echo " " >>"$T/scenes/ball.json"
-"$SSS" eval "$T/scenes/ball.json" --techniques local --frames 1 --cached-reference \
+"$SSS" eval "$T/scenes/ball.json" --techniques local --frames 1 --warmup 0 --cached-reference \
     --reference-dir "$OUT/references" --out "$T/out3" >/dev/null 2>"$T/stderr3" || fail "stale run failed"
 grep -qi "stale" "$T/stderr3" || fail "no note about the stale reference: $(cat "$T/stderr3")"
 [ -s "$T/out3/references/ball_64x64.exr" ] || fail "stale reference was not re-rendered"
 # a missing cached reference is rendered, with a note
-"$SSS" eval "$T/scenes/ball.json" --techniques local --frames 1 --cached-reference \
+"$SSS" eval "$T/scenes/ball.json" --techniques local --frames 1 --warmup 0 --cached-reference \
     --reference-dir "$T/nowhere" --out "$T/out4" >/dev/null 2>"$T/stderr4" || fail "uncached run failed"
 grep -qi "no cached reference" "$T/stderr4" || fail "no note about the missing reference: $(cat "$T/stderr4")"
 

@@ -35,7 +35,7 @@ cat >"$T/ball.json" <<'EOF'
   "lights": [{"type": "point", "position": [1.5, 3, -1.5], "intensity": [6, 6, 6]}]
 }
 EOF
-"$SSS" eval "$T/ball.json" --techniques local,nosuch --frames 1 --reference-quality draft --out "$T/out" \
+"$SSS" eval "$T/ball.json" --techniques local,nosuch --frames 1 --warmup 0 --reference-quality draft --out "$T/out" \
     >/dev/null 2>"$T/err" || { echo "FAIL: sss eval: $(head -c 400 "$T/err")"; exit 1; }
 [ -s "$T/out/report.html" ] || { echo "FAIL: no report.html"; exit 1; }
 

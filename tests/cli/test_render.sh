@@ -43,11 +43,17 @@ for pass in gbuffer shadows illumination mipmaps splat_cull translucency upsampl
     grep -q "^$pass " "$T/timings.txt" || fail "timings table lacks $pass"
 done
 grep -Eq "glFinish|GL_TIME_ELAPSED" "$T/timings.txt" || fail "timings do not name the method"
+grep -q "median of 5 frames after 2 warm-up" "$T/timings.txt" || fail "timings do not say what they are: $(head -1 "$T/timings.txt")"
+"$SSS" render "$SC/gl_area.json" -o "$T/o/b.png" --width 16 --height 16 --timings --frames 1 --warmup 0 >"$T/t1.txt" ||
+    fail "render --frames 1 --warmup 0 failed"
+grep -q "median of 1 frame after 0 warm-up" "$T/t1.txt" || fail "--frames/--warmup not honoured: $(head -1 "$T/t1.txt")"
 if command -v python3 >/dev/null; then
     python3 - "$T/o/t.json" <<'EOF' || fail "timings JSON malformed"
 import json, sys
 d = json.load(open(sys.argv[1]))
-assert d["technique"] == "maisch2020" and d["width"] == 48 and d["height"] == 40 and d["frames"] == 1
+# timed by default: 5 frames after 2 warm-up frames (sss_gl_timing_series)
+assert d["technique"] == "maisch2020" and d["width"] == 48 and d["height"] == 40
+assert d["frames"] == 5 and d["warmup_frames"] == 2, (d["frames"], d["warmup_frames"])
 names = [p["name"] for p in d["passes"]]
 assert "screen_space" in names and "translucency" in names, names
 assert all(p["median_ms"] >= 0 for p in d["passes"]) and d["total_median_ms"] > 0

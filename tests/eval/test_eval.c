@@ -431,6 +431,7 @@ static void test_run(void)
     if (res.scene_count != 1) return;
     CHECK(res.scenes[0].has_time && res.scenes[0].time == 0.25 && strcmp(res.scenes[0].name, "ball@0.25") == 0);
     CHECK(res.entry_count == 6); /* 3 quality + 3 timing: nothing dropped */
+    CHECK(res.frames == 2 && res.warmup_frames == SSS_GL_WARMUP_FRAMES); /* warm-up on by default */
     CHECK(log.progress_calls > 3 && log.bad_fraction == 0 && fabs(log.last - 1.0) < 1e-12);
     CHECK(log.notes >= 1); /* "no cached reference ..." */
     CHECK(res.scenes[0].references[0].source == SSS_EVAL_REF_RENDERED);
