@@ -33,6 +33,7 @@ uniform int u_brightening;
 uniform int u_preintegrated;
 uniform int u_filtered;
 uniform int u_screen_bound;
+uniform int u_support_cutoff; // skip layers past r_max (exact; needs u_screen_bound)
 uniform int u_supersample;
 uniform int u_split; // footprint_split: most pieces per oblique full-resolution sample (<= 1: one disc)
 
@@ -157,8 +158,19 @@ void main()
     float d_prev = 2.0 * h;
     float grow = float(u_nl) / float(u_nl - 2);
     int max_level = u_counts.w - 1;
+    float z_o = dot(xo - u_camera_pos.xyz, u_camera_fwd.xyz);
     for (int i = 1; i <= u_layers; i++) {
         float w = d_prev / float(u_nl - 2);
+        if (u_support_cutoff != 0 && u_screen_bound != 0) {
+            // Layers beyond the kernel's support add exactly nothing (lut_eval is 0 past r_max): with
+            // the distance bound a cell at depth z is at least k z from x_o (k: d_prev / 2 pixels at
+            // unit depth) and at least |z - z_o| - c z (its oblique pieces reach c z along the view
+            // ray), so every r >= k z_o / (1 + k + c), which grows with the layer: the first layer
+            // past r_max ends the pattern. A far object's pixels skip most layers.
+            float k = 0.5 * d_prev * u_camera_fwd.w;
+            float c = u_split > 1 ? 0.5 * float(u_split) * w * u_camera_fwd.w : 0.0;
+            if (k * z_o / (1.0 + k + c) > L.rmax) break;
+        }
         int level = clamp(int(floor(log2(w) + 0.5)), 0, max_level);
         float texel = exp2(float(level));
         float area_scale = (w * w) / (texel * texel);

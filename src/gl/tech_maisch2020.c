@@ -31,6 +31,7 @@ enum {
     P_OCCLUDED,
     P_SPLIT,
     P_GRAZING_SOURCES,
+    P_SUPPORT_CUTOFF,
     P_COUNT
 };
 
@@ -75,6 +76,9 @@ static const sss_gl_param_info params[P_COUNT] = {
     [P_GRAZING_SOURCES] = {"grazing_sources", SSS_GL_PARAM_FLOAT, 0.05, 0, 1,
                            "visible pixels with this <= |n.v| < grazing_cutoff stay in the screen-space sum (area "
                            "w^2/|n.v|, mips rebuilt) and splats need n.v below this instead; 0: off (the paper, Eq. 8)"},
+    [P_SUPPORT_CUTOFF] = {"support_cutoff", SSS_GL_PARAM_BOOL, 1, 0, 1,
+                          "skip outer layers wholly beyond the kernel's support r_max at the pixel's depth (exact: "
+                          "their samples add 0; needs layer_distance_bound); 0: read every layer"},
 };
 
 #define SPLAT_BYTES 48 /* three vec4: centre + area, normal + object, F_t E + disc radius */
@@ -296,6 +300,7 @@ static sss_result maisch_render(sss_gl_renderer *r, void *state, sss_error *err)
         set_i(prog, "u_preintegrated", (int)gl_param(r, P_PREINTEGRATED));
         set_i(prog, "u_filtered", filtered);
         set_i(prog, "u_screen_bound", (int)gl_param(r, P_SCREEN_BOUND));
+        set_i(prog, "u_support_cutoff", (int)gl_param(r, P_SUPPORT_CUTOFF));
         /* the pattern's sizes count output pixels (docs/supersampling.md) */
         set_i(prog, "u_supersample", gl_supersample(r));
         gl_draw_fullscreen(r);

@@ -34,6 +34,9 @@ static const sss_gl_param_info params[] = {
     {"grazing_sources", SSS_GL_PARAM_FLOAT, 0.05, 0, 1,
      "visible pixels with this <= |n.v| < grazing_cutoff stay in the screen-space sum (area w^2/|n.v|, mips "
      "rebuilt); 0: off (the paper, Eq. 8)"},
+    {"support_cutoff", SSS_GL_PARAM_BOOL, 1, 0, 1,
+     "skip outer layers wholly beyond the kernel's support r_max at the pixel's depth (exact: "
+     "their samples add 0; needs layer_distance_bound); 0: read every layer"},
 };
 #define PARAM_COUNT ((int)(sizeof params / sizeof params[0]))
 
