@@ -1,5 +1,5 @@
 /* gl/lights.c — light records, virtual point lights for area and environment lights, and shadow maps
- * (seed 000, pass 2): cube maps for point lights and area-light VPLs, 2D maps for spot, directional and
+ * (Maisch & Ropinski 2020, pass 2): cube maps for point lights and area-light VPLs, 2D maps for spot, directional and
  * environment lights.
  *
  * Documented approximations (the CPU reference integrates these lights with many samples per point):
@@ -86,7 +86,7 @@ static void mul_cm(const float a[16], const float b[16], float out[16])
     memcpy(out, t, sizeof t);
 }
 
-/* Environment direction of SCENE.md / sss/reference.h: m = (sin t sin p, cos t, -sin t cos p),
+/* Environment direction of docs/scene-format.md / sss/reference.h: m = (sin t sin p, cos t, -sin t cos p),
  * p = 2 pi (u - 0.5) - rad(rotate_y), t = pi v (v = 0 the top row). */
 static vec3d env_direction(double u, double v, double rotate_y)
 {
