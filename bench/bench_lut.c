@@ -1,7 +1,7 @@
-/* bench_lut — median build time of the disc-integrated LUT (seed 000, section 7.2): 512 x 512 x 3
+/* bench_lut — median build time of the disc-integrated LUT (Maisch & Ropinski 2020, section 7.2): 512 x 512 x 3
  * for Marble at scale 1 (PBD, as the paper) and for the dipole; plus the accuracy of bilinear lookups
  * in the linear and the sqrt axes against sss_lut_exact (relative errors, max and mean); and the
- * SVD kernel's build (seed 002, section 3) at grids 24, 25 and 128.
+ * SVD kernel's build (Jimenez et al. 2019, section 3) at grids 24, 25 and 128.
  * Usage: bench_lut [runs] [medium] [size]   (defaults 15 Marble 512) */
 #include <math.h>
 #include <stdio.h>
@@ -28,7 +28,7 @@ static void build_once(void *p)
     sss_lut_free(&lut);
 }
 
-/* The SVD kernel (seed 002, section 3; its cost is mostly the cell integrals of R_d at small grids). */
+/* The SVD kernel (Jimenez et al. 2019, section 3; its cost is mostly the cell integrals of R_d at small grids). */
 typedef struct svd_ctx {
     const sss_profile *profile;
     int grid;

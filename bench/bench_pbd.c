@@ -1,4 +1,4 @@
-/* bench_pbd — PBD table build (FACTS.md 2.2: 100 albedos x 64 radii x 200 quadrature samples) and the
+/* bench_pbd — PBD table build (docs/physics.md §2.2: 100 albedos x 64 radii x 200 quadrature samples) and the
  * per-call cost of S_r evaluation and sampling. Target for the build: median < 50 ms. */
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,9 +1,9 @@
-/* bench_sam — Spatial Adjacency Maps (seed 001): build time of `sss sam build` for the bunny and the
+/* bench_sam — Spatial Adjacency Maps (Maisch & Ropinski 2017): build time of `sss sam build` for the bunny and the
  * dragon with Marble at a scattering distance comparable to the model's size (1 / sigma_tr of the red
  * channel, 8.5 mm, against a 10 mm bunny at scale 1 and a 10 mm dragon at scale 50), n = 3 and 50,
  * all cores; then milliseconds per pass of the technique `sam` at 960x540 on the back-lit dragon
  * (scenes/gl_backlit.json), medians over frames, timed with glFinish on software GL.
- * Usage: bench_sam [frames [repo-root]] (default 5 frames, the current folder). Seed 001 reports 20.16 min (Happy Buddha) and 23.83 h
+ * Usage: bench_sam [frames [repo-root]] (default 5 frames, the current folder). Maisch & Ropinski 2017 report 20.16 min (Happy Buddha) and 23.83 h
  * (Chinese Dragon) of precomputation. */
 #include <stdio.h>
 #include <stdlib.h>

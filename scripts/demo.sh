@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# make demo: evaluates the main technique (maisch2020, seed 000) and its strongest competitors of seed
-# 000 section 8 (chen2012, dss) plus the fast screen-space baseline (screen), and maisch2020 without
+# make demo: evaluates the main technique (maisch2020, Maisch & Ropinski 2020) and its strongest competitors in
+# Maisch & Ropinski 2020, section 8 (chen2012, dss) plus the fast screen-space baseline (screen), and maisch2020 without
 # its brightening term, against the CPU ground
 # truth on the default scene set: scenes/default.json (a Marble bunny lit from the side and behind)
-# and scenes/eval_backlit.json (the dragon lit from behind, seed 000 Fig. 6a). References are the
+# and scenes/eval_backlit.json (the dragon lit from behind, Maisch & Ropinski 2020, Fig. 6a). References are the
 # committed ones in scenes/references/ (rendered only if missing or stale). Writes out/demo/:
 # report.html (self-contained: comparison sheets with DSSIM maps, plots, tables), results.json,
 # results.csv, sheets and plots; prints a summary table.

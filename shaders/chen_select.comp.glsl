@@ -1,5 +1,5 @@
 #version 450 core
-// Splat selection from the irradiance buffer of one light (Chen et al. 2012, as seed 000 section 8
+// Splat selection from the irradiance buffer of one light (Chen et al. 2012, as Maisch & Ropinski 2020, section 8
 // configures it: 2048^2 texels, 3 mip levels): one splat per texel of the level chosen for its region,
 // the coarsest level whose texel is (a) at most u_texel_fraction of the splat's required radius (the
 // kernel's reach, the radius holding splat_energy of R_d) wide and (b) homogeneous: all four children

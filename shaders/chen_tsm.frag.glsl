@@ -1,6 +1,6 @@
 #version 450 core
 // Light-view G-buffer of one light (Dachsbacher & Stamminger 2003; the irradiance buffer of Chen et
-// al. 2012 and the light-view irradiance image of seed 004, section 7.1): world position and the
+// al. 2012 and the light-view irradiance image of Mertens et al. 2003, section 7.1): world position and the
 // surface area the texel covers, transmitted irradiance F_t E of this light with sqrt(albedo) at entry
 // (as the camera's illumination pass), and the normal. Texels of opaque objects occlude (depth test)
 // but carry no area, so the reductions and the splat selection skip them.

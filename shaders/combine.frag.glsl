@@ -1,7 +1,7 @@
 #version 450 core
-// Seed 000, pass 7: reflected light + c_o sqrt(albedo) (screen-space sum + upsampled translucency),
-// c_o = F_t(x_o, w_o) / (pi c) (FACTS.md 1). Linear output; tone mapping happens on display/writing
-// (SCENE.md exposure rule, common.glsl tone_map).
+// Maisch & Ropinski 2020, pass 7: reflected light + c_o sqrt(albedo) (screen-space sum + upsampled translucency),
+// c_o = F_t(x_o, w_o) / (pi c) (docs/physics.md §1). Linear output; tone mapping happens on display/writing
+// (docs/scene-format.md exposure rule, common.glsl tone_map).
 #include "common.glsl"
 
 layout(binding = 0) uniform sampler2D g_pos;

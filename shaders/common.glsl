@@ -1,6 +1,6 @@
 // common.glsl — declarations shared by every shader of the renderer: the frame uniform block, the
 // object / material / light records (mirrors gl_internal.h), Fresnel, the animation deformation of
-// sss/scene.h, the disc-integrated kernel LUT (seed 000, Eq. 5) and light evaluation with shadows.
+// sss/scene.h, the disc-integrated kernel LUT (Maisch & Ropinski 2020, Eq. 5) and light evaluation with shadows.
 
 const float PI = 3.14159265358979;
 
@@ -125,7 +125,7 @@ void object_to_world(Object o, vec3 p, vec3 n, float t, out vec3 wp, out vec3 wn
     wn = len > 0.0 ? m / len : vec3(0.0, 1.0, 0.0);
 }
 
-// ---- Kernel LUT: R'_d(r, A), the mean of R_d over a disc of area A at distance r (seed 000, Eq. 5) -
+// ---- Kernel LUT: R'_d(r, A), the mean of R_d over a disc of area A at distance r (Maisch & Ropinski 2020, Eq. 5) -
 
 layout(std430, binding = 9) readonly buffer LutScaleBlock { float lut_scales[]; };
 
@@ -158,7 +158,7 @@ vec3 lut_fetch(float layer, float tr, float ta, float size)
 
 vec3 lut_eval(LutInfo L, float r, float area)
 {
-    if (r > L.rmax) return vec3(0.0); // beyond the kernel's cut-off radius (seed 000, section 7.1)
+    if (r > L.rmax) return vec3(0.0); // beyond the kernel's cut-off radius (Maisch & Ropinski 2020, section 7.1)
     // A disc larger than the table's largest: all of R_d's energy lies inside it, so the mean falls as
     // 1/A (exact when r + r_A exceeds r_max everywhere the kernel is non-zero).
     float scale = 1.0;
@@ -268,7 +268,7 @@ vec3 srgb_encode(vec3 c)
     return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
 }
 
-// SCENE.md render.exposure: out = srgb(clamp(linear * 2^exposure, 0, 1)).
+// docs/scene-format.md render.exposure: out = srgb(clamp(linear * 2^exposure, 0, 1)).
 vec3 tone_map(vec3 linear_rgb)
 {
     return srgb_encode(linear_rgb * exp2(u_misc.x));
@@ -276,7 +276,7 @@ vec3 tone_map(vec3 linear_rgb)
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
-// ---- The subsurface integral's constant at the exit point (FACTS.md 1, seed 000 section 3.1) ---
+// ---- The subsurface integral's constant at the exit point (docs/physics.md §1, Maisch & Ropinski 2020, section 3.1) ---
 
 // c_o = F_t(x_o, w_o) / (pi c), c = 1 - 2 FM1(1/eta), F_t = 1 - FrDielectric(cos theta_o, 1, eta): the
 // same factor as the CPU reference, so both images are comparable in absolute terms.
@@ -291,7 +291,7 @@ float exit_factor(Material m, vec3 n, vec3 v)
 }
 
 // The exit side of one G-buffer pixel for the techniques' final passes: true on a subsurface object,
-// with its material and weight = c_o sqrt(albedo) (the albedo's exit half; seed 000 pass 7), so that
+// with its material and weight = c_o sqrt(albedo) (the albedo's exit half; Maisch & Ropinski 2020, pass 7), so that
 // the pixel shows reflected + weight * (scattered irradiance); false on diffuse objects and background.
 bool subsurface_exit(sampler2D g_pos, sampler2D g_nrm, sampler2D g_albedo, ivec2 px, out Material m,
                      out vec3 weight)

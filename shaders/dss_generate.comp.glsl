@@ -1,12 +1,12 @@
 #version 450 core
-// Deep Screen Space surfels (Nalbach et al. 2014, as seed 000 section 5 describes it): every triangle
+// Deep Screen Space surfels (Nalbach et al. 2014, as Maisch & Ropinski 2020, section 5 describes it): every triangle
 // of the (low-resolution) splat mesh, deformed by the animation like the render mesh, is subdivided
 // into nt^2 similar sub-triangles, nt chosen from the camera distance and the triangle's size so that
 // a surfel spans about u_surfel_pixels pixels (DSS tessellates by projected size, independently of the
 // orientation and of occlusion), capped at u_max_tess (the hardware tessellation limit is 64). This
 // compute pass replaces the tessellation shader. Each surfel carries its centre, normal, area and the
 // transmitted irradiance F_t E at the centre (shadow maps; sqrt(albedo) at entry). Only irradiance
-// culling: no view-based culling (seed 000, section 8).
+// culling: no view-based culling (Maisch & Ropinski 2020, section 8).
 //
 // Each surfel also carries the lattice's spacing h = the sub-triangles' longest edge, from which the
 // splatting sizes its footprint (footprint, dss_splat.frag.glsl): its own area is small against h on

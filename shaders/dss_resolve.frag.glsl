@@ -2,7 +2,7 @@
 // Resolve of the shell splatting (dss, chen2012; tech_dss_shells.h): every level of the receiver
 // pyramid upsampled bilinearly (normalised by the filtered validity in alpha, so silhouettes do not
 // darken) and summed, then reflected light + c_o sqrt(albedo) * sum, c_o = F_t(x_o, w_o) / (pi c)
-// (FACTS.md 1). Level l's texels are u_base 2^l render pixels wide (u_base: the SSAA factor k).
+// (docs/physics.md §1). Level l's texels are u_base 2^l render pixels wide (u_base: the SSAA factor k).
 // Level 0 holds the near field, the sharpest part of the transport, and is not interpolated: at k = 1
 // it is read per pixel; at k > 1 a render pixel takes the level-0 value of one receiver on its surface
 // (dss_level0.glsl). With u_fine the render-resolution level adds, per render pixel, its own transport

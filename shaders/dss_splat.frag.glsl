@@ -1,6 +1,6 @@
 #version 450 core
 // Shell splatting, one level: light transport from a splat to the receiver of this texel,
-// F_t E A R_d(|x_i - x_o|) (or the disc-integrated R'_d(r, A) of seed 000 Eq. 5 with
+// F_t E A R_d(|x_i - x_o|) (or the disc-integrated R'_d(r, A) of Maisch & Ropinski 2020, Eq. 5 with
 // u_preintegrated), for receivers on the splat's object whose distance lies in this level's shell.
 // Additive blending accumulates all splats (no depth test).
 // FINE, the render-resolution level (k > 1; tech_dss_shells.h): level 0 already holds every splat

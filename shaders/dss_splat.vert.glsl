@@ -1,5 +1,5 @@
 #version 450 core
-// Shell splatting (Nalbach et al. 2014, "Deep Screen Space"; seed 000, sections 5 and 8), one level of
+// Shell splatting (Nalbach et al. 2014, "Deep Screen Space"; Maisch & Ropinski 2020, sections 5 and 8), one level of
 // the camera's receiver pyramid: one screen-aligned quad per splat bounding the sphere of the shell's
 // outer radius around the splat centre. Shell l covers world distances [D_l, D_(l+1)) with D_0 = 0,
 // D_l = 2^l p / epsilon (p: the world size of an output pixel, u_base = k render pixels, at the

@@ -1,5 +1,5 @@
 #version 450 core
-// Pass 1 of seed 000 (section 3.3): G-buffer with positions, normals, eta, albedo, the object mask
+// Pass 1 of Maisch & Ropinski 2020 (section 3.3): G-buffer with positions, normals, eta, albedo, the object mask
 // (object id) and the projected pixel area.
 #include "common.glsl"
 
@@ -25,7 +25,7 @@ void main()
     if (diffuse && !gl_FrontFacing) n = -n;
     // The surface area one pixel covers: |dp/dx x dp/dy| on the triangle's plane.
     float area = length(cross(dFdx(v_pos), dFdy(v_pos)));
-    // Seed 000, section 6.2: at grazing angles (n . v < 0.2) the projected area diverges; such pixels
+    // Maisch & Ropinski 2020, section 6.2: at grazing angles (n . v < 0.2) the projected area diverges; such pixels
     // leave the screen-space sum (area 0) and are covered by the splats instead (Eq. 8).
     if (!subsurface || dot(n, v) < u_misc.y || isinf(area) || isnan(area)) area = 0.0;
     vec3 albedo = vec3(1.0);

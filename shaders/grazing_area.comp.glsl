@@ -1,6 +1,6 @@
 #version 450 core
 // maisch2020, grazing_sources (a departure, docs/maisch2020.md): gives the visible pixels that Eq. 8
-// (seed 000, section 6.2) takes out of the screen-space sum, n.v below grazing_cutoff, their projected
+// (Maisch & Ropinski 2020, section 6.2) takes out of the screen-space sum, n.v below grazing_cutoff, their projected
 // area back in level 0 of the position chain, before the mip chain is rebuilt from it. They are
 // surface the camera sees; the splats are for what it does not see (section 5), and with this their
 // Eq. 8 cut-off is grazing_sources instead (splat_generate.comp.glsl), so no surface is in both parts.

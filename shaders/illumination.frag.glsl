@@ -1,7 +1,7 @@
 #version 450 core
-// Pass 3 of seed 000: directly reflected radiance and transmitted irradiance F_t E of every visible
+// Pass 3 of Maisch & Ropinski 2020: directly reflected radiance and transmitted irradiance F_t E of every visible
 // pixel (shadows from pass 2). The albedo texture enters here as sqrt(albedo) (the other half is
-// applied at the exit point, seed 000 supplement: texture colour before and after scattering).
+// applied at the exit point, Maisch & Ropinski 2020 supplement: texture colour before and after scattering).
 #include "common.glsl"
 
 layout(binding = 0) uniform sampler2D g_pos;
@@ -33,7 +33,7 @@ uniform int u_has_env;
 uniform float u_env_rotate; // degrees
 uniform vec3 u_env_scale;
 
-// Environment radiance seen along world direction d (SCENE.md: +y up, u = 0.5 at -z; the inverse of
+// Environment radiance seen along world direction d (docs/scene-format.md: +y up, u = 0.5 at -z; the inverse of
 // m = (sin t sin p, cos t, -sin t cos p), p = 2 pi (u - 0.5) - rad(rotate_y), t = pi v).
 vec3 environment_lod(vec3 d, float lod)
 {

@@ -1,5 +1,5 @@
 #version 450 core
-// Seed 004: B(x_o) = integral of E(x_i) R_d(|x_i - x_o|) dA (Eq. 4) in image space. Samples p' lie in
+// Mertens et al. 2003: B(x_o) = integral of E(x_i) R_d(|x_i - x_o|) dA (Eq. 4) in image space. Samples p' lie in
 // the tangent plane of x_o (section 5); their radii come from four techniques combined by the balance
 // heuristic (section 6.1): importance sampling of R_d(r) 2 pi r / rho for each colour channel (section
 // 4; tabulated exact quantiles, tech_mertens2003.h) and uniform samples over a disc of radius R'. Each
@@ -70,7 +70,7 @@ float table_pdf(int base, int c, float r)
     return 1.0 / (float(T) * (tables[rb + s + 1] - tables[rb + s]));
 }
 
-// |dA_p / dA_p'| for a projection from centre e (seed 004, section 5): equal solid angles give
+// |dA_p / dA_p'| for a projection from centre e (Mertens et al. 2003, section 5): equal solid angles give
 // dA_p cos(a) / d^2 = dA_p' cos(a') / d'^2. (The paper prints the inverse ratio in its integral.)
 float jacobian_point(vec3 e, vec3 p, vec3 np, vec3 pp, vec3 no)
 {

@@ -1,8 +1,8 @@
 #version 450 core
-// Seed 004, sections 6.1 and 3: the interleaved pattern x pattern block is recombined by a box blur
+// Mertens et al. 2003, sections 6.1 and 3: the interleaved pattern x pattern block is recombined by a box blur
 // over the pixels of the same object whose normals agree (a discontinuity-aware blur: the block's
 // pixels used disjoint strata of the sample sets), then L = reflected + c_o sqrt(albedo) B(x_o),
-// c_o = F_t(x_o, w_o) / (pi c) (Eq. 3 with FACTS.md 1's normalisation).
+// c_o = F_t(x_o, w_o) / (pi c) (Eq. 3 with docs/physics.md §1's normalisation).
 #include "common.glsl"
 
 layout(binding = 0) uniform sampler2D g_pos;

@@ -1,5 +1,5 @@
 #version 450 core
-// Mip chains of pass 3 (seed 000, section 3.3): one level from the previous one. Each texel keeps the
+// Mip chains of pass 3 (Maisch & Ropinski 2020, section 3.3): one level from the previous one. Each texel keeps the
 // object that covers most of its footprint (by projected area) and, over that object's children,
 // sums of area-weighted quantities: pos = (sum a p, sum a), irr = (sum a F_tE, sum a id)
 // (nrm = (sum a n, sum a id)). Levels >= 1 are stored PREMULTIPLIED like this, so bilinear filtering

@@ -1,5 +1,5 @@
 #version 450 core
-// Tone maps the linear result for a window (SCENE.md exposure rule).
+// Tone maps the linear result for a window (docs/scene-format.md exposure rule).
 #include "common.glsl"
 
 layout(binding = 0) uniform sampler2D u_image;

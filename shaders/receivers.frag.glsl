@@ -1,5 +1,5 @@
 #version 450 core
-// Low-resolution receivers of the translucency pass (seed 000, section 5: a quarter of the
+// Low-resolution receivers of the translucency pass (Maisch & Ropinski 2020, section 5: a quarter of the
 // resolution). Each low-resolution pixel takes the full-resolution G-buffer pixel at the centre of its
 // block, or the first subsurface pixel in the block when the centre is not one, and marks itself valid
 // in the accumulation target's alpha (the upsampling divides by it, so silhouettes do not darken).

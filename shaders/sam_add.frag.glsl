@@ -1,7 +1,7 @@
 #version 450 core
-// Technique "sam": adds c_o sqrt(albedo) L~_o- (seed 001, Eq. 12 interpolated per pixel) to the frame of
+// Technique "sam": adds c_o sqrt(albedo) L~_o- (Maisch & Ropinski 2017, Eq. 12 interpolated per pixel) to the frame of
 // the surface technique (blended additively into frame.final), c_o = F_t(x_o, w_o) / (pi c) as in
-// combine.frag.glsl, so the translucency is in the same absolute units as the reference (FACTS.md 1).
+// combine.frag.glsl, so the translucency is in the same absolute units as the reference (docs/physics.md §1).
 #include "common.glsl"
 
 layout(binding = 0) uniform sampler2D g_pos;

@@ -1,5 +1,5 @@
 #version 450 core
-// Technique "sam" (seed 001): the per-vertex compute passes of one subsurface object, selected by PASS:
+// Technique "sam" (Maisch & Ropinski 2017): the per-vertex compute passes of one subsurface object, selected by PASS:
 //   0 deform     world position and normal of every vertex at time t (animation + transform)
 //   1 fan area   F'_i of Eq. 16 from the incident triangles at the deformed positions
 //   2 update     section 3.4: each back-side link moves to the one-ring neighbour (or stays) with the

@@ -1,5 +1,5 @@
 #version 450 core
-// Seed 000, pass 6: screen-space subsurface scattering with the layered pattern of section 4.2.
+// Maisch & Ropinski 2020, pass 6: screen-space subsurface scattering with the layered pattern of section 4.2.
 //  - inner kernel: (2n + 1)^2 samples at full resolution, one per pixel;
 //  - layer i = 1..L: a grid of n_l x n_l cells of width w_i = d_(i-1) / (n_l - 2) pixels whose outer
 //    ring of 4 (n_l - 1) cells are the samples, at p_i(s) = (s - (n_l - 1) / 2) w_i (Eq. 7),

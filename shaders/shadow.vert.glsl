@@ -1,5 +1,5 @@
 #version 450 core
-// Shadow maps (pass 2 of seed 000): the same deformation as the G-buffer.
+// Shadow maps (pass 2 of Maisch & Ropinski 2020): the same deformation as the G-buffer.
 #include "common.glsl"
 
 layout(location = 0) in vec3 a_pos;

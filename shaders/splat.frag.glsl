@@ -1,5 +1,5 @@
 #version 450 core
-// Seed 000, pass 4: light transport from a splat to the receiver of this low-resolution pixel,
+// Maisch & Ropinski 2020, pass 4: light transport from a splat to the receiver of this low-resolution pixel,
 // F_t E A R'_d(|x'_i - x_o|, A) (Eq. 6), accumulated by additive blending. x'_i is the point of the
 // splat's disc (radius sqrt(A / pi), oriented along n_i) nearest to the receiver (Eq. 9, section 6.3).
 // Note: Eq. 9 prints x_bar = x_o + n_i ((x_o - x_i) . n_i); the point of the splat's plane nearest

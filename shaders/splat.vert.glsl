@@ -1,5 +1,5 @@
 #version 450 core
-// Seed 000, pass 4: one screen-aligned quad per surviving splat, the exact screen bounds of the sphere
+// Maisch & Ropinski 2020, pass 4: one screen-aligned quad per surviving splat, the exact screen bounds of the sphere
 // around the splat centre whose radius is the kernel's reach (the radius holding splat_energy of R_d's
 // integral, at most the LUT's r_max) plus the disc radius.
 #include "common.glsl"

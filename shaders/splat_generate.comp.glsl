@@ -1,5 +1,5 @@
 #version 450 core
-// Seed 000, section 5: one splat per triangle of the low-resolution splat mesh, deformed by the
+// Maisch & Ropinski 2020, section 5: one splat per triangle of the low-resolution splat mesh, deformed by the
 // animation like the render mesh (no precomputation), carrying its centre, normal, area and the
 // transmitted irradiance F_t E at the centre. Splats are culled here (the paper's geometry shader):
 //  - by irradiance (unlit splats add nothing),

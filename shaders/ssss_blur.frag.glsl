@@ -1,5 +1,5 @@
 #version 450 core
-// Separable SSS (seed 002): one 1D pass of one separable term (horizontal, then vertical). The taps'
+// Separable SSS (Jimenez et al. 2019): one 1D pass of one separable term (horizontal, then vertical). The taps'
 // offsets are world-space distances projected to the screen at the pixel's depth (the SSSS reference
 // code's distanceToProjectionWindow / depth, here exactly: pixels per scene unit = 1 / (pixel size on
 // the image plane at distance 1 x depth along the view axis)); weights per channel from the kernel

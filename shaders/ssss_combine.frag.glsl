@@ -1,6 +1,6 @@
 #version 450 core
-// Separable SSS (seed 002), last pass: reflected light + c_o sqrt(albedo) x multiplier x the sum of
-// the separable terms, c_o = F_t(x_o, w_o) / (pi c) (FACTS.md 1); the multiplier is the profile's total
+// Separable SSS (Jimenez et al. 2019), last pass: reflected light + c_o sqrt(albedo) x multiplier x the sum of
+// the separable terms, c_o = F_t(x_o, w_o) / (pi c) (docs/physics.md §1); the multiplier is the profile's total
 // reflectance for kernels whose weights sum to 1 (Eq. 5: A_p = a_p a_p / ||R_d||_1). Pixels outside
 // every subsurface object (mask 0) keep the reflected light unchanged.
 #include "common.glsl"

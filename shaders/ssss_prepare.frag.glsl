@@ -1,5 +1,5 @@
 #version 450 core
-// Separable SSS (seed 002), first pass: the signal the 1D passes convolve. Subsurface pixels get the
+// Separable SSS (Jimenez et al. 2019), first pass: the signal the 1D passes convolve. Subsurface pixels get the
 // transmitted irradiance F_t E sqrt(albedo) of the shared illumination pass plus, with u_transmittance,
 // the light crossing thin parts from behind (Jimenez et al. 2010, as the SSSS reference code:
 // thickness s = distance from the first surface the light's shadow map sees to the point shrunk along

@@ -1,5 +1,5 @@
 #version 450 core
-// Seed 000, pass 5: bicubic upsampling of the low-resolution translucency with the fast third-order
+// Maisch & Ropinski 2020, pass 5: bicubic upsampling of the low-resolution translucency with the fast third-order
 // filter of Sigg & Hadwiger 2005 (cubic B-spline from 4 bilinear taps). The alpha channel holds the
 // receivers' validity, so the result is normalised by it and silhouettes do not darken.
 layout(binding = 0) uniform sampler2D u_low; // bilinear filtering enabled

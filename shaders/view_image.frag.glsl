@@ -1,6 +1,6 @@
 #version 450 core
 // Viewer: an intermediate buffer of the technique (linear RGB, any size), stretched over the window and
-// tone mapped as SCENE.md's exposure rule: srgb(clamp(linear * 2^exposure, 0, 1)).
+// tone mapped as the scene format's exposure rule: srgb(clamp(linear * 2^exposure, 0, 1)).
 layout(binding = 0) uniform sampler2D u_image;
 uniform float u_exposure;
 in vec2 v_uv;

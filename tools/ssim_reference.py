@@ -5,7 +5,7 @@ numbers, independently of the C code under test.
   * PNG, PFM and OpenEXR files are written byte by byte here (zlib + struct), not with the project's
     writers nor with stb/OpenEXR, so the C readers are checked against an outside encoder.
   * SSIM, PSNR and RMSE come from scikit-image (Debian python3-skimage 0.19), with the settings of
-    FACTS.md 5: structural_similarity(a, b, gaussian_weights=True, sigma=1.5,
+    docs/physics.md §5: structural_similarity(a, b, gaussian_weights=True, sigma=1.5,
     use_sample_covariance=False, data_range=255, channel_axis=2).
 
 Run once from the repository root with Debian's python (skimage is not in CI):

@@ -1,6 +1,6 @@
 /* sss/eval.h — evaluation of the real-time techniques against the CPU ground truth, as the papers
- * measure them: image quality (DSSIM, PSNR, RMSE; seed 000 section 8.1, Figs. 7 and 10; seed 001
- * Figs. 10 and 11), frame time per pass (seed 000 section 8.2, Fig. 11), precomputation and memory.
+ * measure them: image quality (DSSIM, PSNR, RMSE; Maisch & Ropinski 2020, section 8.1, Figs. 7 and 10; Maisch & Ropinski 2017
+ * Figs. 10 and 11), frame time per pass (Maisch & Ropinski 2020, section 8.2, Fig. 11), precomputation and memory.
  *
  * Does: loads scenes, renders every requested technique (the GL registry's, so new techniques appear
  * without changes here) at each requested resolution and the reference (sss/reference.h; a cached
@@ -54,7 +54,7 @@ typedef struct sss_eval_desc {
     sss_reference_quality reference_quality;
     int reference_threads;          /* 0: all cores */
     int sam_sweep;                  /* 0: auto (sam among the techniques), 1: always, -1: never */
-    const int *sam_counts;          /* back-side sample counts; NULL: 3, 10, 20, 50 (seed 001 Fig. 10) */
+    const int *sam_counts;          /* back-side sample counts; NULL: 3, 10, 20, 50 (Maisch & Ropinski 2017, Fig. 10) */
     int sam_count_count;
     const char *save_references_dir; /* if set, rendered (not cached) references are written here as
                                         half-float EXR with their .json sidecar, ready to commit */
@@ -77,7 +77,7 @@ typedef struct sss_eval_callbacks {
 typedef enum sss_eval_kind {
     SSS_EVAL_QUALITY = 0, /* rendered at a quality resolution and compared with the reference */
     SSS_EVAL_TIMING,      /* frame time only (timing_resolutions) */
-    SSS_EVAL_SAM_SWEEP    /* the sam technique at one back-side sample count (seed 001 Fig. 10) */
+    SSS_EVAL_SAM_SWEEP    /* the sam technique at one back-side sample count (Maisch & Ropinski 2017, Fig. 10) */
 } sss_eval_kind;
 
 const char *sss_eval_kind_name(sss_eval_kind kind); /* "quality", "timing", "sam_sweep" */
@@ -191,11 +191,11 @@ sss_result sss_eval_write_all(const sss_eval_results *res, const char *out_dir, 
 
 sss_result sss_eval_write_json(const sss_eval_results *res, const char *path, sss_error *err);
 sss_result sss_eval_write_csv(const sss_eval_results *res, const char *path, sss_error *err);
-/* The comparison sheet of one scene (seed 000 Fig. 7): the reference large, each technique with its
+/* The comparison sheet of one scene (Maisch & Ropinski 2020, Fig. 7): the reference large, each technique with its
  * label, DSSIM and milliseconds, and its per-pixel DSSIM map (R, G, B = the channels' DSSIM). */
 sss_result sss_eval_write_sheet(const sss_eval_results *res, int scene, const char *path, sss_error *err);
-/* Plots (PNG): DSSIM per technique per scene (grouped bars, seed 000 Fig. 10); stacked milliseconds
- * per pass (seed 000 Fig. 11); SAM RMSE against back-side samples (seed 001 Fig. 10; says "sam not
+/* Plots (PNG): DSSIM per technique per scene (grouped bars, Maisch & Ropinski 2020, Fig. 10); stacked milliseconds
+ * per pass (Maisch & Ropinski 2020, Fig. 11); SAM RMSE against back-side samples (Maisch & Ropinski 2017, Fig. 10; says "sam not
  * available" when it is not); total frame time against resolution (mean over scenes). */
 sss_result sss_eval_plot_dssim(const sss_eval_results *res, const char *path, sss_error *err);
 sss_result sss_eval_plot_passes(const sss_eval_results *res, const char *path, sss_error *err);

@@ -4,10 +4,10 @@
  * `Scale -1 1 1` before `LookAt` because PBRT's camera space is left-handed), `subsurface` /
  * `kdsubsurface` / `matte` materials, world-space `plymesh` shapes written next to the .pbrt file
  * (posed at the given time, so animated objects match `sss reference --time`), and the lights of
- * SCENE.md with their PBRT equivalents (area lights as a two-triangle `trianglemesh`, since PBRT-v3
+ * docs/scene-format.md with their PBRT equivalents (area lights as a two-triangle `trianglemesh`, since PBRT-v3
  * has no bilinear patch). The integrator is `path` with maxdepth 1: the camera ray refracts, the
  * BSSRDF probe finds the entry point and direct light is gathered there, which is exactly the
- * single-bounce subsurface integral of FACTS.md 1 that `sss reference` evaluates. Film scale carries
+ * single-bounce subsurface integral of docs/physics.md §1 that `sss reference` evaluates. Film scale carries
  * render.exposure (2^exposure).
  * Does not: textures (PBRT would need its own texture statements; a scene with a texture exports
  * without it and says so in a comment), the specular interface of `specular` (PBRT's subsurface
@@ -37,7 +37,7 @@ sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *d
 
 /* The PBRT-v3 light-to-world matrix (row-major 4x4) of an environment light with the given rotate_y,
  * so that PBRT's infinite-light lookup (u = phi/2pi about +z, v = theta/pi from +z) shows the
- * equirectangular map where SCENE.md puts it (+y up, u = 0.5 at -z, u growing towards +x...
+ * equirectangular map where docs/scene-format.md puts it (+y up, u = 0.5 at -z, u growing towards +x...
  * exactly as sss_reference's environment lookup). Exposed for tests. */
 void sss_export_pbrt_env_light_to_world(double rotate_y_degrees, double m[16]);
 

@@ -1,7 +1,7 @@
 /* sss/image.h — linear float RGB images, their file formats, tone mapping and image metrics.
  *
  * Does: read/write PNG (8-bit sRGB), Radiance HDR, PFM and OpenEXR (half or float RGB); tone map
- * exactly as SCENE.md render.exposure; SSIM/DSSIM (Wang et al. 2004, FACTS.md 5), PSNR, RMSE, max abs
+ * exactly as docs/scene-format.md render.exposure; SSIM/DSSIM (Wang et al. 2004, docs/physics.md §5), PSNR, RMSE, max abs
  * error; find NaN/Inf. Does not: resample, colour-manage beyond sRGB, GL.
  * Pixels are linear RGB floats, row-major, top row first. PNG files are decoded with the exact inverse
  * of the sRGB curve, so writing a decoded PNG again at exposure 0 gives back the same bytes.
@@ -70,7 +70,7 @@ typedef struct sss_image_metrics {
     double max_abs;  /* largest absolute 8-bit difference */
 } sss_image_metrics;
 
-/* Compares a and b after tone mapping both with exposure (FACTS.md 5: 11x11 Gaussian window,
+/* Compares a and b after tone mapping both with exposure (docs/physics.md §5: 11x11 Gaussian window,
  * sigma 1.5, K1 0.01, K2 0.03, per channel, averaged; borders as scikit-image, which crops 5 pixels).
  * dssim_map (optional, may be NULL) receives a width x height image whose three channels hold the
  * per-pixel DSSIM of R, G and B. Images of different sizes are an error. */

@@ -1,9 +1,9 @@
-/* sss/kernel.h — kernels the real-time techniques sample: the disc-integrated 2D LUT of seed 000 and
- * the separable 1D kernels of seed 002.
+/* sss/kernel.h — kernels the real-time techniques sample: the disc-integrated 2D LUT of Maisch & Ropinski 2020 and
+ * the separable 1D kernels of Jimenez et al. 2019.
  *
  * Does: tabulate R'_d(r, A) = (1/A) * integral of R_d over a disc of area A centred at distance r
- * (seed 000, Eq. 5, sections 7.1-7.2) as a float RGB texture; build separable kernels by
- * pre-integration (seed 002, Eq. 4-5), from the artist model (Eq. 6) and by SVD (rank N, LAPACKE).
+ * (Maisch & Ropinski 2020, Eq. 5, sections 7.1-7.2) as a float RGB texture; build separable kernels by
+ * pre-integration (Jimenez et al. 2019, Eq. 4-5), from the artist model (Eq. 6) and by SVD (rank N, LAPACKE).
  * Does not: upload to GL (the arrays are texture-ready), know about scenes.
  * Memory: every _build/_create allocates inside its output struct; pair it with the matching _free.
  */
@@ -17,7 +17,7 @@
 extern "C" {
 #endif
 
-/* ---- Disc-integrated LUT (seed 000) ---------------------------------------------------------- */
+/* ---- Disc-integrated LUT (Maisch & Ropinski 2020) ---------------------------------------------------------- */
 
 /* Accuracy of bilinear sss_lut_lookup against sss_lut_exact, 512 x 512, Marble at scale 1, eta 1.33
  * (bench/bench_lut.c; relative error per channel over 2000 points):
@@ -30,7 +30,7 @@ extern "C" {
  * the first texel spans r_max / 511: prefer SSS_LUT_AXES_SQRT. The build itself agrees with a
  * brute-force 2D quadrature to ~1e-4 (PBD) and ~2e-5 (dipole) per texel. */
 typedef enum sss_lut_axes {
-    SSS_LUT_AXES_LINEAR = 0, /* texel i at r = r_max i/(N-1), texel j at A = A_max j/(N-1) (seed 000) */
+    SSS_LUT_AXES_LINEAR = 0, /* texel i at r = r_max i/(N-1), texel j at A = A_max j/(N-1) (Maisch & Ropinski 2020) */
     SSS_LUT_AXES_SQRT        /* r = r_max (i/(N-1))^2, A = A_max (j/(N-1))^2: denser near 0; a lookup
                                 takes u = sqrt(r / r_max), v = sqrt(A / A_max) = r_A / r_max */
 } sss_lut_axes;
@@ -40,7 +40,7 @@ typedef struct sss_lut_desc {
     int size;              /* texels per axis; 0 -> 512 */
     sss_lut_axes axes;     /* 0 -> linear, as the paper */
     double source_cutoff;  /* r_max solves Q(r_max) = alpha' sigma_t' e^(-sigma_t' r_max) = cutoff,
-                              largest over the channels; 0 -> 1e-7 (seed 000, section 7.1). Q is in
+                              largest over the channels; 0 -> 1e-7 (Maisch & Ropinski 2020, section 7.1). Q is in
                               scene units, so r_max depends on the scale; for weakly absorbing media it
                               leaves energy outside (Marble at scale 1: 6.7% of red, 1.9% of blue).
                               For SSS_PROFILE_GAUSS6: where the widest Gaussian falls to cutoff of
@@ -59,7 +59,7 @@ typedef struct sss_lut {
 sss_result sss_lut_build(const sss_profile *profile, const sss_lut_desc *desc, sss_lut *out,
                          sss_error *err);
 void sss_lut_free(sss_lut *lut);
-/* r_max of the source-function cut-off for a material (seed 000, section 7.1). */
+/* r_max of the source-function cut-off for a material (Maisch & Ropinski 2020, section 7.1). */
 double sss_lut_r_max(const sss_material *m, double source_cutoff);
 /* (r, A) that texel (i, j) stands for. */
 double sss_lut_texel_r(const sss_lut *lut, int i);
@@ -71,7 +71,7 @@ void sss_lut_lookup(const sss_lut *lut, double r, double area, double out[3]);
  * tests. out = R_d(r) for A = 0; zeros for negative or non-finite input. */
 void sss_lut_exact(const sss_profile *profile, double r, double area, double out[3]);
 
-/* ---- Separable kernels (seed 002) ------------------------------------------------------------ */
+/* ---- Separable kernels (Jimenez et al. 2019) ------------------------------------------------------------ */
 
 /* A 1D kernel of `taps` samples, applied horizontally then vertically. Offsets are in the profile's
  * length unit, ascending and symmetric around 0; weights per tap and channel. For the pre-integrated
@@ -85,7 +85,7 @@ typedef struct sss_separable_kernel {
     double range;      /* half-width covered by the taps */
 } sss_separable_kernel;
 
-/* The pre-integrated 1D kernel a_p(x) = integral of R_d(sqrt(x^2 + y^2)) dy (seed 002, Eq. 4).
+/* The pre-integrated 1D kernel a_p(x) = integral of R_d(sqrt(x^2 + y^2)) dy (Jimenez et al. 2019, Eq. 4).
  * Its integral over x is ||R_d||_1. An adaptive quadrature per call (~1e3 profile evaluations). */
 double sss_kernel_preintegrated_eval(const sss_profile *profile, int channel, double x);
 /* The same for the three channels at once (one quadrature). */
@@ -131,7 +131,7 @@ sss_result sss_kernel_svd(const sss_profile *profile, int grid, double extent, i
                           sss_svd_kernel *out, sss_error *err);
 void sss_svd_kernel_free(sss_svd_kernel *k);
 
-/* Guided rank-1 approximation (seed 002, Appendix A, Eq. 8-9): the a_s minimising
+/* Guided rank-1 approximation (Jimenez et al. 2019, Appendix A, Eq. 8-9): the a_s minimising
  *   int Gamma(x, y) (R_d(x, y) - a(x) a(y))^2 dx dy  subject to  ||a||_1^2 = ||R_d||_1,
  *   Gamma(x, y; k) = (x^2 + y^2)^(k/2) (1 - e^(-b x^2)) (1 - e^(-b y^2)),
  * on grid cells of half-width extent (cell centres x_i = -extent + (i + 1/2) 2 extent / grid; the

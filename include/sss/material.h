@@ -2,7 +2,7 @@
  *
  * Units: coefficients are per scene unit. Measured media are tabulated in mm^-1 (Jensen et al. 2001)
  * and multiplied by the material's `scale`, the number of millimetres in one scene unit, exactly as
- * PBRT-v3's `subsurface` material does (FACTS.md 2.2, 2.3). RGB arrays are indexed 0 = R, 1 = G, 2 = B.
+ * PBRT-v3's `subsurface` material does (docs/physics.md §2.2, 2.3). RGB arrays are indexed 0 = R, 1 = G, 2 = B.
  * Nothing here touches GL; nothing allocates.
  */
 #ifndef SSS_MATERIAL_H
@@ -34,18 +34,18 @@ extern "C" {
  * the eta_t side, and the indices are swapped). Total internal reflection returns 1. */
 double sss_fresnel_dielectric(double cos_theta_i, double eta_i, double eta_t);
 
-/* First and second Fresnel moments, PBRT-v3's polynomial fits (FACTS.md 1). */
+/* First and second Fresnel moments, PBRT-v3's polynomial fits (docs/physics.md §1). */
 double sss_fresnel_moment1(double eta);
 double sss_fresnel_moment2(double eta);
 
-/* Diffuse Fresnel reflectance F_dr of the classical dipole (seed 004, Table 1). */
+/* Diffuse Fresnel reflectance F_dr of the classical dipole (Mertens et al. 2003, Table 1). */
 double sss_fresnel_diffuse_reflectance(double eta);
 
-/* PBRT-v3's normalisation c = 1 - 2 FM1(1/eta) of S_w (FACTS.md 1); 4 C_phi(1/eta) = c, so the
+/* PBRT-v3's normalisation c = 1 - 2 FM1(1/eta) of S_w (docs/physics.md §1); 4 C_phi(1/eta) = c, so the
  * exit constant of the subsurface integral is c_o = F_t(x_o) / (pi c). */
 double sss_bssrdf_normalization(double eta);
 
-/* ---- Measured media (FACTS.md 2.3; mm^-1) -------------------------------------------------- */
+/* ---- Measured media (docs/physics.md §2.3; mm^-1) -------------------------------------------------- */
 
 typedef struct sss_measured_medium {
     const char *name;        /* as PBRT names it, e.g. "Skin1" */

@@ -1,5 +1,5 @@
 /* sss/mesh.h — triangle meshes: PLY/OBJ readers, a binary PLY writer, normals, adjacency, areas,
- * the procedural shapes of SCENE.md and simplification (meshoptimizer).
+ * the procedural shapes of docs/scene-format.md and simplification (meshoptimizer).
  *
  * Does: indexed triangles with per-vertex positions, normals (always present after loading: area-
  * weighted when the file has none) and optional UVs; faces with more than three vertices are
@@ -91,7 +91,7 @@ typedef struct sss_mesh_adjacency {
 sss_result sss_mesh_adjacency_build(const sss_mesh *mesh, sss_mesh_adjacency *out, sss_error *err);
 void sss_mesh_adjacency_free(sss_mesh_adjacency *adj);
 
-/* Procedural shapes of SCENE.md, centred at the origin, with exact normals, CCW outward winding.
+/* Procedural shapes of docs/scene-format.md, centred at the origin, with exact normals, CCW outward winding.
  * sphere: icosahedron subdivided `subdivisions` (0..8) times, 20 * 4^s triangles, closed, no UVs.
  * torus: in the xz-plane around +y, `segments` (3..2048) around both circles, closed, no UVs
  *   (UVs would need duplicated seam vertices, which would open the index mesh); minor < major.

@@ -1,10 +1,10 @@
 /* sss/profile.h — radial diffusion profiles R_d(r) and the Gaussian kernels of the real-time models.
  *
- * Does: the classical dipole (Jensen et al. 2001; seed 004, Table 1) with its closed-form total
- * reflectance and exact importance sampling (seed 004, section 4); the Photon Beam Diffusion table
- * exactly as PBRT-v3 builds and evaluates it (FACTS.md 2.2), except that rows whose rho_eff PBRT lets
+ * Does: the classical dipole (Jensen et al. 2001; Mertens et al. 2003, Table 1) with its closed-form total
+ * reflectance and exact importance sampling (Mertens et al. 2003, section 4); the Photon Beam Diffusion table
+ * exactly as PBRT-v3 builds and evaluates it (docs/physics.md §2.2), except that rows whose rho_eff PBRT lets
  * exceed 1 (albedo near 1 with eta near 1 or g < 0) are scaled to conserve energy; the six-Gaussian skin fit (d'Eon 2007)
- * and the artist-friendly two-Gaussian model (seed 002, Eq. 6, Table 2).
+ * and the artist-friendly two-Gaussian model (Jimenez et al. 2019, Eq. 6, Table 2).
  * Does not: directional terms (Fresnel factors and 1/pi live with the caller), GL, allocation
  * (sss_pbd_table is a plain struct the caller owns).
  *
@@ -32,7 +32,7 @@ void sss_dipole_init(sss_dipole *d, double sigma_a, double sigma_s_prime, double
 double sss_dipole_rd(const sss_dipole *d, double r);
 /* Closed form of the plane integral: alpha'/2 (e^(-sigma_tr z_r) + e^(-sigma_tr z_v)). */
 double sss_dipole_total_reflectance(const sss_dipole *d);
-/* Exact importance sampling of R_d(r) 2 pi r (seed 004, section 4): u_source picks the real or the
+/* Exact importance sampling of R_d(r) 2 pi r (Mertens et al. 2003, section 4): u_source picks the real or the
  * virtual source, u_radius inverts that source's radial CDF by Newton iteration on u. */
 double sss_dipole_sample_radius(const sss_dipole *d, double u_source, double u_radius);
 /* Density of r (per unit length, integrates to 1 over [0, inf)) of sss_dipole_sample_radius. */
@@ -82,12 +82,12 @@ sss_result sss_material_from_reflectance(const sss_pbd_table *table, const doubl
 /* Normalised 2D Gaussian of variance v: e^(-r^2 / 2v) / (2 pi v). */
 double sss_gaussian_2d(double variance, double r);
 
-/* d'Eon et al. 2007 six-Gaussian skin fit (FACTS.md 2.4), variances in mm^2. */
+/* d'Eon et al. 2007 six-Gaussian skin fit (docs/physics.md §2.4), variances in mm^2. */
 #define SSS_GAUSS6_TERMS 6
 extern const double sss_gauss6_variance_mm2[SSS_GAUSS6_TERMS];
 extern const double sss_gauss6_weight[3][SSS_GAUSS6_TERMS];
 
-/* Artist-friendly separable model (seed 002, Eq. 6): a_m(x) = w G(x, sigma_n) + (1 - w) G(x, sigma_f),
+/* Artist-friendly separable model (Jimenez et al. 2019, Eq. 6): a_m(x) = w G(x, sigma_n) + (1 - w) G(x, sigma_f),
  * sigma_n = near * s, sigma_f = far * s, G(x, sigma) = e^(-x^2 / 2 sigma^2) / (sqrt(2 pi) sigma)
  * We use the normalised 1D Gaussian so that A_m(x, y) = a_m(x) a_m(y) integrates to 1 over the plane;
  * the paper prints the factor as 1/(2 pi sigma), which integrates to neither 1 in 1D nor in 2D. */
@@ -98,7 +98,7 @@ typedef struct sss_artist_params {
     double w;        /* weight of the near Gaussian, [0, 1] */
 } sss_artist_params;
 
-/* Presets of seed 002 Table 2 (s in mm): "single-layer", "multi-layer", "production".
+/* Presets of Jimenez et al. 2019, Table 2 (s in mm): "single-layer", "multi-layer", "production".
  * Returns SSS_ERROR_INVALID_ARGUMENT for an unknown name. */
 sss_result sss_artist_preset(const char *name, sss_artist_params *out, sss_error *err);
 double sss_artist_eval_1d(const sss_artist_params *p, int channel, double x); /* a_m(x) */

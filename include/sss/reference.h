@@ -1,7 +1,7 @@
-/* sss/reference.h — the CPU ground truth: the subsurface integral of FACTS.md 1, ray traced with
+/* sss/reference.h — the CPU ground truth: the subsurface integral of docs/physics.md §1, ray traced with
  * Embree 3, as PBRT-v3's `subsurface` material converges to it under direct lighting.
  *
- * What an image shows (per camera sample; rays, shadows and lights as SCENE.md):
+ * What an image shows (per camera sample; rays, shadows and lights as docs/scene-format.md):
  *  - subsurface object hit at x_o, seen from w_o:
  *        L = F_t(x_o, w_o) / (pi c) * sum over surface samples x_i of the SAME object of
  *            T(x_i) A_i S_r(|x_i - x_o|),
@@ -10,7 +10,7 @@
  *    (shadow rays against every object; area and environment lights integrate F_t over their samples).
  *    S_r is the material's profile: the PBD table (PBRT-v3, default), the classical dipole, or for
  *    an artist profile its radially symmetric counterpart albedo * (w G2(r, near s) + (1 - w)
- *    G2(r, far s)) with normalised 2D Gaussians G2 (the separable product a(x) a(y) of seed 002 is not
+ *    G2(r, far s)) with normalised 2D Gaussians G2 (the separable product a(x) a(y) of Jimenez et al. 2019 is not
  *    radial, so it has no meaning on a curved surface).
  *  - diffuse object: reflectance / pi * E (Lambertian, two-sided, direct light only).
  *  - area-light rectangles are visible (radiance on their emitting side, black behind) and cast
@@ -58,7 +58,7 @@ typedef enum sss_reference_quality {
     SSS_REFERENCE_DRAFT
 } sss_reference_quality;
 
-/* Zero-initialised = defaults (final quality, all cores, t = 0, seed 0).
+/* Zero-initialised = defaults (final quality, all cores, t = 0, random seed = 0).
  *
  * Density rule. For each visible subsurface object, fp = the world-space size of one pixel at the
  * object's nearest visible points (the 1st percentile of the pixel footprints depth * 2 tan(fov/2) /
@@ -176,7 +176,7 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
 
 /* ---- Conventions shared with the other renderers ---------------------------------------------- */
 
-/* Equirectangular environment maps (SCENE.md: +y up, u = 0.5 at -z), not mirrored: standing inside
+/* Equirectangular environment maps (docs/scene-format.md: +y up, u = 0.5 at -z), not mirrored: standing inside
  * and facing -z, image right is world right (+x). The map's own direction of (u, v), v = 0 the top
  * row, is  m = (sin theta sin phi, cos theta, -sin theta cos phi),  phi = 2 pi (u - 0.5), theta = pi v;
  * the world direction is R_y(rotate_y) m, a right-handed rotation about +y (positive angles move the

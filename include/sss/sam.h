@@ -1,4 +1,4 @@
-/* sss/sam.h — Spatial Adjacency Maps (seed 001, Maisch & Ropinski 2017): per-vertex links to the n
+/* sss/sam.h — Spatial Adjacency Maps (Maisch & Ropinski 2017): per-vertex links to the n
  * back-side vertices that contribute most to a vertex's translucency, with their form factors.
  *
  * Does: reduced fan areas F'_i (Eq. 16: a third of each incident triangle, the part of it closer in
@@ -16,7 +16,7 @@
  *
  * Units: positions in scene units; form factors K are dimensionless (an area times R_d): the
  * translucency of Eq. 12 is sum_k L_d(v_k) K_k with L_d = F_t E, so the exit radiance is
- * c_o (screen part + sum_k F_t E K_k) exactly as the subsurface integral of FACTS.md 1.
+ * c_o (screen part + sum_k F_t E K_k) exactly as the subsurface integral of docs/physics.md §1.
  * Threads: sss_sam_build uses OpenMP (all cores unless desc->threads > 0); results do not depend on
  * the number of threads.
  */
@@ -38,7 +38,7 @@ extern "C" {
 #define SSS_SAM_MAX_SAMPLES 4096 /* Monte Carlo pairs per form factor */
 #define SSS_SAM_NONE UINT32_MAX  /* an unused link slot (fewer than n back-side vertices contribute) */
 /* The newest .sam version this build reads and writes. Version 1: links index the mesh's own vertices;
- * version 2 adds a separate back-side mesh (seed 001, section 4.4 and its appendix). A map without a
+ * version 2 adds a separate back-side mesh (Maisch & Ropinski 2017, section 4.4 and its appendix). A map without a
  * back-side mesh is still written as version 1, byte for byte as before. */
 #define SSS_SAM_FORMAT_VERSION 2u
 
@@ -98,7 +98,7 @@ typedef struct sss_sam_desc {
     int brute_force;    /* 1: test every vertex pair (no tree), for tests of the search */
     const double *transform; /* row-major 4x4 recorded in the file (the mesh given is already in scene
                                 units); NULL: identity */
-    /* A lower-tessellation mesh for the back side (seed 001, section 4.4: "a proof of concept that works
+    /* A lower-tessellation mesh for the back side (Maisch & Ropinski 2017, section 4.4: "a proof of concept that works
      * on a lower triangulation for back side information", described in its appendix): every vertex of
      * the mesh links to n vertices of this mesh, chosen by Eq. 13-14 against its vertices and normals,
      * with its reduced fans (Eq. 16) as the sources of Eq. 11 and in K' (Eq. 15). Its fans are larger,

@@ -1,8 +1,8 @@
-/* sss/scene.h — the JSON scene format of SCENE.md: loading, validation, resolved data for renderers,
+/* sss/scene.h — the JSON scene format of docs/scene-format.md: loading, validation, resolved data for renderers,
  * camera rays, object transforms and the shared animation definition.
  *
  * Does: parses a scene file (cJSON), validates every field with messages that name the file and the
- * JSON path ("scene.json: objects[1].material.sigmaa: unknown field"), applies SCENE.md's defaults,
+ * JSON path ("scene.json: objects[1].material.sigmaa: unknown field"), applies the scene format's defaults,
  * resolves paths relative to the scene file's folder, loads meshes (sss_mesh_read or the procedural
  * shapes), resolves materials to per-scene-unit coefficients (sss_material) and builds one PBD table
  * per distinct (eta, g) of the subsurface materials (shared; PBRT needs it for kdsubsurface).
@@ -14,22 +14,22 @@
  * Conventions: right-handed world, y up. Matrices are double[16], ROW-major (m[4 * row + col]) and
  * act on column vectors: p' = M p (upload to GL with transpose = GL_TRUE). Times are in seconds.
  *
- * Field rules beyond SCENE.md (how its silences are resolved):
- *  - A field for which SCENE.md gives no default is required, except the tessellation counts of the
+ * Field rules beyond docs/scene-format.md (how its silences are resolved):
+ *  - A field for which docs/scene-format.md gives no default is required, except the tessellation counts of the
  *    procedural shapes (sphere subdivisions 4, torus segments 64, trefoil segments 256).
  *  - Required: camera, camera.position, camera.look_at, objects (at least one), each object's
  *    material and material.type. Optional: lights (default none), render (defaults).
  *  - A subsurface material needs exactly one parameterisation: `medium` | `sigma_a` + `sigma_s` |
  *    `reflectance` + `mfp` (also with an artist profile: every renderer, the CPU reference included,
- *    must be able to render it). `g` is accepted only with the explicit coefficients, as SCENE.md
- *    lists it (measured media are reduced coefficients, g = 0; SCENE.md's reflectance + mfp form has
+ *    must be able to render it). `g` is accepted only with the explicit coefficients, as docs/scene-format.md
+ *    lists it (measured media are reduced coefficients, g = 0; the scene format's reflectance + mfp form has
  *    no g); `scale` is rejected with reflectance + mfp (mfp is in scene units).
  *  - Profile "artist": `s` (> 0, scene units) required; `near`, `far` ((0, 1] each) and `w` ([0, 1])
- *    default to seed 002's "production" preset (FACTS.md 2.4).
+ *    default to Jimenez et al. 2019's "production" preset (docs/physics.md §2.4).
  *  - Spot lights: `cone_angle` is the half-angle of the cone in (0, 90] degrees and `cone_delta` the
  *    width of the falloff in [0, cone_angle] (PBRT-v3's coneangle / conedelta).
  *  - `splat_mesh` and `splat_triangles` are mutually exclusive; splat_triangles >= 1.
- *  - `texture` needs UVs (SCENE.md): when meshes are loaded, a mesh without UVs is an error naming
+ *  - `texture` needs UVs (docs/scene-format.md): when meshes are loaded, a mesh without UVs is an error naming
  *    objects[i].material.texture (of the procedural shapes only plane and box have UVs).
  *  - Duplicate keys in one JSON object are an error. Trailing text after the JSON value is an error.
  *  - A negative scale (mirror) is allowed; sss_scene_object_world_mesh then flips the triangle winding
@@ -56,6 +56,9 @@
 extern "C" {
 #endif
 
+/* The scene format version this library reads and writes (docs/scene-format.md): a file's optional
+ * top-level "version" (absent = 1) greater than this is refused with SSS_ERROR_UNSUPPORTED. */
+#define SSS_SCENE_FORMAT_VERSION 1
 #define SSS_SCENE_MAX_FILE_SIZE (64u << 20)
 #define SSS_SCENE_MAX_IMAGE_SIZE 16384
 #define SSS_SCENE_FOV_MIN 1e-6 /* degrees: below, 1 / tan(fov / 2) leaves the float range of GL matrices */

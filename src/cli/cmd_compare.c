@@ -1,4 +1,4 @@
-/* sss compare — DSSIM, PSNR and RMSE of two images (FACTS.md 5), optionally a DSSIM map. */
+/* sss compare — DSSIM, PSNR and RMSE of two images (docs/physics.md §5), optionally a DSSIM map. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -16,7 +16,7 @@ static void print_help(void)
     printf("usage: sss compare A B [--exposure E] [--map OUT] [--map-scale S]\n"
            "\n"
            "Compares two images (.png, .hdr, .pfm, .exr) after tone-mapping both to 8-bit sRGB with\n"
-           "exposure E stops (default 0): round(255 srgb(clamp(linear 2^E, 0, 1))), SCENE.md render.exposure.\n"
+           "exposure E stops (default 0): round(255 srgb(clamp(linear 2^E, 0, 1))), docs/scene-format.md render.exposure.\n"
            "Prints one line:  dssim=D psnr=P rmse=R max=M\n"
            "  dssim  (1 - SSIM) / 2, SSIM of Wang et al. 2004 per colour channel (11x11 Gaussian window,\n"
            "         sigma 1.5, K1 0.01, K2 0.03, range 255) averaged over R, G, B; the mean leaves out a\n"

@@ -48,7 +48,7 @@ static void print_usage(FILE *f)
             "  --reference-dir DIR   where cached references are looked up instead\n"
             "  --reference-quality Q final (default) or draft, for references that are rendered\n"
             "  --reference-threads N threads of the reference renderer (default: all cores)\n"
-            "  --sam-sweep           RMSE of `sam` against back-side samples n (seed 001 Fig. 10) even when\n"
+            "  --sam-sweep           RMSE of `sam` against back-side samples n (Maisch & Ropinski 2017, Fig. 10) even when\n"
             "                        sam is not among the techniques; --no-sam-sweep never\n"
             "  --sam-counts LIST     the sample counts of the sweep (default 3,10,20,50)\n"
             "  --quiet               no progress or notes on stderr\n"

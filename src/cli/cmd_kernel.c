@@ -1,4 +1,4 @@
-/* cli/cmd_kernel.c — `sss kernel`: the separable kernels of seed 002 as text: the importance-sampled
+/* cli/cmd_kernel.c — `sss kernel`: the separable kernels of Jimenez et al. 2019 as text: the importance-sampled
  * taps of the pre-integrated kernel (Eq. 4-5) or of the artist model (Eq. 6), or the rank-N SVD
  * approximation's singular values and vectors. */
 #include <math.h>
@@ -28,7 +28,7 @@ static void print_usage(FILE *f)
             "                 sum_k sign_k a_k(x) a_k(y) (signs in the comments)\n"
             "\n"
             "options:\n"
-            "  --artist P      artist preset: single-layer, multi-layer or production (seed 002, Table 2)\n"
+            "  --artist P      artist preset: single-layer, multi-layer or production (Jimenez et al. 2019, Table 2)\n"
             "  --scale S       millimetres per scene unit (default 1: offsets in mm)\n"
             "  --eta E         relative index of refraction in [%g, %g] (default 1.33)\n"
             "  --model M       profile: pbd (default) or dipole\n"

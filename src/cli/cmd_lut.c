@@ -1,5 +1,5 @@
 /* cli/cmd_lut.c — `sss lut MEDIUM -o FILE.exr`: builds the disc-integrated kernel LUT R'_d(r, A) of
- * seed 000 (Eq. 5, sections 7.1-7.2) for a measured medium and writes it as a float RGB image. */
+ * Maisch & Ropinski 2020 (Eq. 5, sections 7.1-7.2) for a measured medium and writes it as a float RGB image. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

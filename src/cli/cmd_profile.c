@@ -1,5 +1,5 @@
 /* cli/cmd_profile.c — `sss profile MEDIUM`: prints S_r(r) of a measured medium as TSV
- * (per scene unit^2, before the 1/pi and Fresnel factors; FACTS.md 2.2), for comparison with PBRT-v3. */
+ * (per scene unit^2, before the 1/pi and Fresnel factors; docs/physics.md §2.2), for comparison with PBRT-v3. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -20,7 +20,7 @@ static void print_help(void)
            "                     [--quality draft|final] [--threads N] [--time T] [--seed S] [--exact]\n"
            "                     [--specular] [--spp N] [--density D] [--stats] [--quiet]\n"
            "\n"
-           "Renders the ground truth of a scene: the subsurface integral of FACTS.md 1 as PBRT-v3's\n"
+           "Renders the ground truth of a scene: the subsurface integral of docs/physics.md §1 as PBRT-v3's\n"
            "`subsurface` material converges to it under direct lighting (Embree 3 rays, surface samples\n"
            "with their irradiance, summed hierarchically). Diffuse objects are Lambertian; area lights are\n"
            "visible; rays that miss see the environment map (black without one).\n"

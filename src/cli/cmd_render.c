@@ -24,7 +24,7 @@ static void print_usage(FILE *f)
             "                  [--supersample K] [--timings] [--timings-json FILE] [--warmup W] [--window]\n"
             "\n"
             "Renders SCENE.json with a real-time technique on a headless OpenGL 4.5 context (EGL; no display\n"
-            "needed) and writes the image: PNG tone-mapped with the scene's exposure (SCENE.md), and with\n"
+            "needed) and writes the image: PNG tone-mapped with the scene's exposure (docs/scene-format.md), and with\n"
             "--exr the linear values. Files are written completely or not at all.\n"
             "\n"
             "options:\n"

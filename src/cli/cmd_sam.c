@@ -1,4 +1,4 @@
-/* cli/cmd_sam.c — `sss sam build` writes the Spatial Adjacency Map of a mesh (seed 001) for a medium,
+/* cli/cmd_sam.c — `sss sam build` writes the Spatial Adjacency Map of a mesh (Maisch & Ropinski 2017) for a medium,
  * or of a scene object for its material and transform; `sss sam info` prints a .sam file's header and
  * checks it against a mesh or scene object. */
 #include <stdio.h>
@@ -39,7 +39,7 @@ static void print_usage(FILE *f)
             "  --threads T      OpenMP threads (default: all cores)\n"
             "  --brute-force    test every vertex pair instead of the tree (for checks; O(V^2))\n"
             "\n"
-            "back side on a lower-tessellation mesh (seed 001, section 4.4 and its appendix): every vertex links\n"
+            "back side on a lower-tessellation mesh (Maisch & Ropinski 2017, section 4.4 and its appendix): every vertex links\n"
             "to n vertices of a coarser mesh of the same surface, whose larger reduced fans (Eq. 16) are the\n"
             "sources of Eq. 11; n links then cover more of the back side of a finely tessellated mesh, and the\n"
             "search is faster. The file (version 2) holds the coarse mesh; the renderer lights its vertices.\n"
@@ -239,7 +239,7 @@ static int cmd_build(int argc, char **argv)
         }
         const sss_scene_object *o = (size_t)k < scene.object_count ? &scene.objects[k] : NULL;
         if (back_splat && o) {
-            /* the scene's own low-resolution mesh of the object (SCENE.md: splat_mesh, splat_triangles) */
+            /* the scene's own low-resolution mesh of the object (docs/scene-format.md: splat_mesh, splat_triangles) */
             if (o->splat_mesh.vertex_count) desc.backside = &o->splat_mesh;
             else if (o->splat_triangles) desc.backside_triangles = o->splat_triangles;
             else {

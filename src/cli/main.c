@@ -12,8 +12,8 @@ typedef struct command {
 
 static const command commands[] = {
     {"profile", sss_cmd_profile, "print the diffusion profile S_r(r) of a medium as TSV"},
-    {"lut", sss_cmd_lut, "build the disc-integrated kernel LUT of seed 000 and write it as EXR"},
-    {"kernel", sss_cmd_kernel, "print the taps of a separable kernel (seed 002)"},
+    {"lut", sss_cmd_lut, "build the disc-integrated kernel LUT of Maisch & Ropinski 2020 and write it as EXR"},
+    {"kernel", sss_cmd_kernel, "print the taps of a separable kernel (Jimenez et al. 2019)"},
     {"compare", sss_cmd_compare, "compare two images: DSSIM, PSNR, RMSE, and a DSSIM map"},
     {"mesh", sss_cmd_mesh, "inspect or simplify a mesh (mesh info, mesh simplify)"},
     {"reference", sss_cmd_reference, "render a scene's CPU ground truth (the subsurface integral)"},
@@ -22,7 +22,7 @@ static const command commands[] = {
     {"eval", sss_cmd_eval, "evaluate techniques against the reference: metrics, timings, sheets, plots, report"},
     {"view", sss_cmd_view, "show a scene in a window: orbit camera, techniques, DSSIM vs reference"},
     {"export", sss_cmd_export, "write a scene for another renderer (export pbrt)"},
-    {"sam", sss_cmd_sam, "build or inspect a Spatial Adjacency Map (seed 001) of a mesh"},
+    {"sam", sss_cmd_sam, "build or inspect a Spatial Adjacency Map (Maisch & Ropinski 2017) of a mesh"},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 

@@ -71,7 +71,7 @@ sss_result eval_run_technique(eval_gl *rc, const sss_scene *view, double t, cons
                               int frames, sss_eval_entry *e, const char *stage);
 
 #define EVAL_DEFAULT_SAM_COUNTS 4
-extern const int eval_default_sam_counts[EVAL_DEFAULT_SAM_COUNTS]; /* 3, 10, 20, 50 (seed 001 Fig. 10) */
+extern const int eval_default_sam_counts[EVAL_DEFAULT_SAM_COUNTS]; /* 3, 10, 20, 50 (Maisch & Ropinski 2017, Fig. 10) */
 /* sam's back-side sample count parameter, or NULL. */
 const sss_gl_param_info *eval_find_sam_param(const sss_gl_technique_info *t);
 

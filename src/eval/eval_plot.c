@@ -1,6 +1,6 @@
 /* eval/eval_plot.c — the plots of the report, drawn with cairo: DSSIM per technique per scene as
- * grouped bars (seed 000 Fig. 10), stacked milliseconds per pass (seed 000 Fig. 11), SAM RMSE against
- * the number of back-side samples (seed 001 Fig. 10) and frame time against resolution. */
+ * grouped bars (Maisch & Ropinski 2020, Fig. 10), stacked milliseconds per pass (Maisch & Ropinski 2020, Fig. 11), SAM RMSE against
+ * the number of back-side samples (Maisch & Ropinski 2017, Fig. 10) and frame time against resolution. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -169,7 +169,7 @@ static sss_result finish(cairo_surface_t *s, cairo_t *cr, const char *path, sss_
     return r;
 }
 
-/* ---- DSSIM bars (seed 000 Fig. 10) ---------------------------------------------------------- */
+/* ---- DSSIM bars (Maisch & Ropinski 2020, Fig. 10) ---------------------------------------------------------- */
 
 sss_result sss_eval_plot_dssim(const sss_eval_results *res, const char *path, sss_error *err)
 {
@@ -226,7 +226,7 @@ sss_result sss_eval_plot_dssim(const sss_eval_results *res, const char *path, ss
     return finish(s, cr, path, err);
 }
 
-/* ---- Stacked milliseconds per pass (seed 000 Fig. 11) ----------------------------------------- */
+/* ---- Stacked milliseconds per pass (Maisch & Ropinski 2020, Fig. 11) ----------------------------------------- */
 
 static int cmp_dbl(const void *a, const void *b)
 {
@@ -461,7 +461,7 @@ sss_result sss_eval_plot_sam(const sss_eval_results *res, const char *path, sss_
         msg = "SAM sweep not run";
         detail = "evaluate the sam technique (or pass --sam-sweep) to plot it";
     }
-    sss_result r = line_plot(path, "SAM: RMSE against back-side samples (seed 001 Fig. 10)", xlabel,
+    sss_result r = line_plot(path, "SAM: RMSE against back-side samples (Maisch & Ropinski 2017, Fig. 10)", xlabel,
                              "RMSE (8-bit sRGB)", "scenes", labels, sv, ng, msg, detail, err);
     free(sv);
     free(labels);

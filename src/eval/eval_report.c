@@ -200,7 +200,7 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
               res->reference_quality == SSS_REFERENCE_DRAFT ? "draft" : "final",
               res->cached_reference ? ", cached images used where present" : "");
     sb_puts(b, "<tr><th class=\"l\">metrics</th><td>DSSIM = (1 &minus; SSIM)/2 (11&times;11 Gaussian window, "
-               "&sigma; 1.5), PSNR and RMSE on the tone-mapped 8-bit sRGB images (FACTS.md 5)</td></tr></table>\n");
+               "&sigma; 1.5), PSNR and RMSE on the tone-mapped 8-bit sRGB images (docs/physics.md §5)</td></tr></table>\n");
 
     /* summary: DSSIM per scene and technique, the best of each scene highlighted */
     sb_puts(b, "<h2>Summary: DSSIM (lower is better)</h2>\n<table><tr><th class=\"l\">scene</th>");
@@ -285,7 +285,7 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
         sb_puts(b, "</table>\n");
     }
 
-    sb_puts(b, "<h2>SAM: RMSE against back-side samples (seed 001 Fig. 10)</h2>\n");
+    sb_puts(b, "<h2>SAM: RMSE against back-side samples (Maisch & Ropinski 2017, Fig. 10)</h2>\n");
     if (!res->sam_swept) {
         sb_puts(b, res->sam_available ? "<p class=\"note\">" : "<p class=\"note\">sam not available: ");
         sb_esc(b, res->sam_note[0] ? res->sam_note : "not run");

@@ -1,5 +1,5 @@
 /* eval/eval_run.c — the evaluation loop: scenes x quality sizes x techniques (+ reference, + the SAM
- * sweep of seed 001 Fig. 10), then timing-only sizes. Failures of a technique become entries. */
+ * sweep of Maisch & Ropinski 2017, Fig. 10), then timing-only sizes. Failures of a technique become entries. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -178,7 +178,7 @@ static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size s
             return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
         }
     }
-    /* the SAM sweep at the first quality size (seed 001 Fig. 10: RMSE against back-side samples) */
+    /* the SAM sweep at the first quality size (Maisch & Ropinski 2017, Fig. 10: RMSE against back-side samples) */
     if (k == 0 && res->sam_swept) {
         eval_spec spec;
         if (st->sam_spec >= 0) spec = st->specs[st->sam_spec];

@@ -1,4 +1,4 @@
-/* eval/eval_sheet.c — the comparison sheet of one scene, after seed 000 Fig. 7: the reference large
+/* eval/eval_sheet.c — the comparison sheet of one scene, after Maisch & Ropinski 2020, Fig. 7: the reference large
  * on the left; for every technique its image, its per-pixel DSSIM map (R, G, B = the DSSIM of each
  * channel, black = no perceptible difference) and a caption with label, DSSIM and milliseconds. */
 #include <math.h>

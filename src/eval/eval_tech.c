@@ -144,7 +144,7 @@ sss_result eval_run_technique(eval_gl *rc, const sss_scene *view, double t, cons
 
 const int eval_default_sam_counts[EVAL_DEFAULT_SAM_COUNTS] = {3, 10, 20, 50};
 
-/* The sam technique's back-side sample count (seed 001, 4.1: n = 3): a parameter named like one of
+/* The sam technique's back-side sample count (Maisch & Ropinski 2017, 4.1: n = 3): a parameter named like one of
  * these, else an integer parameter whose name or doc mentions the back side. */
 const sss_gl_param_info *eval_find_sam_param(const sss_gl_technique_info *t)
 {

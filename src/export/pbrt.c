@@ -1,4 +1,4 @@
-/* export/pbrt.c — a scene of SCENE.md as PBRT-v3 input (see sss/export.h for the mapping). */
+/* export/pbrt.c — a scene of docs/scene-format.md as PBRT-v3 input (see sss/export.h for the mapping). */
 #include "sss/export.h"
 
 #include <math.h>
@@ -23,9 +23,9 @@ static void point(FILE *f, const char *name, const double v[3])
 void sss_export_pbrt_env_light_to_world(double rotate_y_degrees, double m[16])
 {
     /* World-to-light W = Rz(rot) M with M d = (d.z, -d.x, d.y): PBRT's phi = atan2(L.y, L.x) then
-     * equals 2 pi u of SCENE.md's map (u = 0.5 + (atan2(d.x, -d.z) + rot) / 2 pi) and its theta,
+     * equals 2 pi u of the scene format's map (u = 0.5 + (atan2(d.x, -d.z) + rot) / 2 pi) and its theta,
      * measured from +z, equals the angle from +y. M is a reflection (det -1): PBRT's spherical
-     * parameterisation runs the other way round than SCENE.md's. Light-to-world = W^T. */
+     * parameterisation runs the other way round than the scene format's. Light-to-world = W^T. */
     double c = cos(rotate_y_degrees * M_PI / 180.0), s = sin(rotate_y_degrees * M_PI / 180.0);
     const double M[3][3] = {{0, 0, 1}, {-1, 0, 0}, {0, 1, 0}};
     const double Rz[3][3] = {{c, -s, 0}, {s, c, 0}, {0, 0, 1}};
@@ -51,7 +51,7 @@ static void write_camera(FILE *f, const sss_scene *scene, const char *image_name
 {
     const sss_camera *c = &scene->camera;
     double exposure_scale = pow(2.0, scene->render.exposure);
-    fprintf(f, "# PBRT-v3's camera space is left-handed; the mirror keeps the image as SCENE.md has it.\n");
+    fprintf(f, "# PBRT-v3's camera space is left-handed; the mirror keeps the image as docs/scene-format.md has it.\n");
     fprintf(f, "Scale -1 1 1\n");
     fprintf(f, "LookAt %.9g %.9g %.9g  %.9g %.9g %.9g  %.9g %.9g %.9g\n", c->position[0], c->position[1],
             c->position[2], c->look_at[0], c->look_at[1], c->look_at[2], c->up[0], c->up[1], c->up[2]);
@@ -127,7 +127,7 @@ static void write_light(FILE *f, const sss_light *l)
     }
     case SSS_LIGHT_AREA: {
         /* Corners counter-clockwise about u x v: PBRT's triangle normal (p0 - p2) x (p1 - p2) is then
-         * u x v, the side SCENE.md's area light emits towards. */
+         * u x v, the side the scene format's area light emits towards. */
         double p[4][3];
         const double su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
         for (int k = 0; k < 4; k++)

@@ -1,5 +1,5 @@
 /* gl/frame.c — screen-sized shared targets and the shared passes every technique can request:
- * G-buffer (seed 000 pass 1), illumination (pass 3) and the area-weighted mip chains (end of pass 3).
+ * G-buffer (Maisch & Ropinski 2020, pass 1), illumination (pass 3) and the area-weighted mip chains (end of pass 3).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -238,7 +238,7 @@ void gl_update_frame_ubo(sss_gl_renderer *r)
     u.counts[2] = r->gs.material_count;
     u.counts[3] = r->frame.levels;
     u.misc[0] = (float)r->scene->render.exposure;
-    /* Eq. 8 cut-off: the technique's grazing_cutoff parameter when it has one, else seed 000's 0.2 */
+    /* Eq. 8 cut-off: the technique's grazing_cutoff parameter when it has one, else Maisch & Ropinski 2020's 0.2 */
     double cutoff = sss_gl_renderer_get_param(r, "grazing_cutoff");
     u.misc[1] = (float)(isnan(cutoff) ? 0.2 : cutoff);
     u.misc[2] = (float)r->shared[GL_P_SHADOW_BIAS];

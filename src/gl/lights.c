@@ -1,5 +1,5 @@
 /* gl/lights.c — light records, virtual point lights for area and environment lights, and shadow maps
- * (seed 000, pass 2): cube maps for point lights and area-light VPLs, 2D maps for spot, directional and
+ * (Maisch & Ropinski 2020, pass 2): cube maps for point lights and area-light VPLs, 2D maps for spot, directional and
  * environment lights.
  *
  * Documented approximations (the CPU reference integrates these lights with many samples per point):

@@ -1,5 +1,5 @@
 /* gl/scene_gpu.c — uploads a scene: meshes (rest pose; animation runs in the shaders), one material
- * record per distinct material with its kernel LUT (one layer of a 2D array texture each, seed 000
+ * record per distinct material with its kernel LUT (one layer of a 2D array texture each, Maisch & Ropinski 2020
  * section 7.1), albedo textures, and the low-resolution splat meshes (on demand).
  */
 #include <math.h>
@@ -116,7 +116,7 @@ static sss_result build_lut(sss_gl_renderer *r, const sss_scene_material *m, sss
     double rm = sss_lut_r_max(&m->optical, d.source_cutoff);
     double energy = r->shared[GL_P_LUT_ENERGY];
     if (energy > 0.0) {
-        /* The source-function rule of seed 000 (section 7.1) uses sigma_t' alone and cuts weakly
+        /* The source-function rule of Maisch & Ropinski 2020 (section 7.1) uses sigma_t' alone and cuts weakly
          * absorbing channels far inside their diffusion tail (Skimmilk red: r_max = 32 mm against an
          * e-folding length of 18 mm; the back-lit dragon lost 25% of its red). r_max is therefore the
          * larger of that rule and the radius holding `energy` of every channel's plane integral. */

@@ -1,5 +1,5 @@
 /* gl/tech_chen2012.c — multiresolution splatting from a translucent shadow map (Chen, Peers, Zhang &
- * Tong 2012) as seed 000 configures it for its comparisons (section 8): per light an irradiance buffer
+ * Tong 2012) as Maisch & Ropinski 2020 configure it for its comparisons (section 8): per light an irradiance buffer
  * of 2048 x 2048 texels rendered from the light's view (positions, normals, transmitted irradiance;
  * tech_chen2012_tsm.h) with 3 mip levels; splats are selected from it, one per texel of the level
  * chosen by the splat's required radius (chen_select.comp.glsl), and splatted additively into the
@@ -13,7 +13,7 @@
  * dropped the splats of the last lights, whole lights at a time (under an environment map's 32
  * directions the point light after them and half the directions vanished).
  *
- * Environment maps: seed 000 does not say how Chen et al. handle them. Their directional lights each
+ * Environment maps: Maisch & Ropinski 2020 do not say how Chen et al. handle them. Their directional lights each
  * carry a small share of the map and their buffers' splats overlap from many directions, so they get
  * their own, smaller irradiance buffer (env_buffer_size, 256 by default: measured on eval_skin_env,
  * see the parameter); point, spot, area and scene directional lights keep buffer_size. Merging the
@@ -35,15 +35,15 @@ enum { P_SIZE = 0, P_BUFFER_LEVELS, P_TEXEL_FRACTION, P_MAX_LIGHTS, P_PREINTEGRA
 
 static const sss_gl_param_info params[P_COUNT] = {
     [P_SIZE] = {"buffer_size", SSS_GL_PARAM_INT, 2048, 16, 8192,
-                "texels per side of each light's irradiance buffer (seed 000, section 8: 2048)"},
+                "texels per side of each light's irradiance buffer (Maisch & Ropinski 2020, section 8: 2048)"},
     [P_BUFFER_LEVELS] = {"buffer_levels", SSS_GL_PARAM_INT, 3, 1, 4,
-                         "mip levels of the irradiance buffer splats are chosen from (seed 000, section 8: 3)"},
+                         "mip levels of the irradiance buffer splats are chosen from (Maisch & Ropinski 2020, section 8: 3)"},
     [P_TEXEL_FRACTION] = {"texel_fraction", SSS_GL_PARAM_FLOAT, 0.125, 1e-4, 1,
                           "a splat's texel is at most this fraction of its required radius (the kernel's reach)"},
     [P_MAX_LIGHTS] = {"max_lights", SSS_GL_PARAM_INT, 64, 1, 4096,
                       "irradiance buffers for the first N lights (virtual lights included); the rest are skipped"},
     [P_PREINTEGRATED] = {"preintegrated", SSS_GL_PARAM_BOOL, 1, 0, 1,
-                         "1: the disc-integrated R'_d(r, A) of seed 000; 0: R_d at the splat centre (Chen et al.)"},
+                         "1: the disc-integrated R'_d(r, A) of Maisch & Ropinski 2020; 0: R_d at the splat centre (Chen et al.)"},
     [P_IRRADIANCE_CULL] = {"irradiance_cull", SSS_GL_PARAM_FLOAT, 0, 0, 1e30,
                            "texels whose largest F_t E channel is at most this make no splat"},
     [P_VIEW_LEVELS] = {"view_levels", SSS_GL_PARAM_INT, 4, 1, SHELL_MAX_LEVELS,
@@ -338,7 +338,7 @@ static void chen_stats(sss_gl_renderer *r, void *state, sss_gl_stats *out)
 
 const gl_technique gl_technique_chen2012 = {
     .info = {"chen2012",
-             "Chen et al. 2012 as seed 000 compares it: splats from a 2048^2 light-view irradiance buffer "
+             "Chen et al. 2012 as Maisch & Ropinski 2020 compare it: splats from a 2048^2 light-view irradiance buffer "
              "(3 mip levels) per light, multiresolution additive splatting",
              params, P_COUNT},
     .needs = GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION,

@@ -1,6 +1,6 @@
 /* gl/tech_chen2012_tsm.h — light-view G-buffers ("translucent shadow maps", Dachsbacher & Stamminger
- * 2003) shared by chen2012 (its irradiance buffer, seed 000 section 8) and mertens2003 (the light-view
- * irradiance image of seed 004, section 7.1).
+ * 2003) shared by chen2012 (its irradiance buffer, Maisch & Ropinski 2020, section 8) and mertens2003 (the light-view
+ * irradiance image of Mertens et al. 2003, section 7.1).
  *
  * One view per light: an orthographic box for directional lights, a perspective frustum from the
  * light's position aimed at the bounding sphere of the subsurface objects for point, spot and virtual

@@ -1,4 +1,4 @@
-/* gl/tech_dss.c — Deep Screen Space subsurface scattering (Nalbach, Ritschel & Seidel 2014) as seed 000
+/* gl/tech_dss.c — Deep Screen Space subsurface scattering (Nalbach, Ritschel & Seidel 2014) as Maisch & Ropinski 2020
  * configures it for its comparisons (sections 5 and 8): splats from every triangle of the
  * low-resolution splat mesh, tessellated by camera distance and area (a compute pass subdivides large
  * triangles into sub-surfels instead of the hardware tessellator), splatted additively into a
@@ -20,9 +20,9 @@ enum { P_LEVELS = 0, P_EPSILON, P_SURFEL_PIXELS, P_MAX_TESS, P_PREINTEGRATED, P_
 
 static const sss_gl_param_info params[P_COUNT] = {
     [P_LEVELS] = {"levels", SSS_GL_PARAM_INT, 3, 1, SHELL_MAX_LEVELS,
-                  "levels of the multi-resolution G-buffer, l_max (seed 000, section 8: 3)"},
+                  "levels of the multi-resolution G-buffer, l_max (Maisch & Ropinski 2020, section 8: 3)"},
     [P_EPSILON] = {"epsilon", SSS_GL_PARAM_FLOAT, 0.1, 1e-3, 1,
-                   "level l (2^l output pixels) serves receivers at least 2^l pixels / epsilon away (seed 000, "
+                   "level l (2^l output pixels) serves receivers at least 2^l pixels / epsilon away (Maisch & Ropinski 2020, "
                    "section 8: 0.1)"},
     [P_SURFEL_PIXELS] = {"surfel_pixels", SSS_GL_PARAM_FLOAT, 4, 0.5, 1024,
                          "tessellation target: projected edge length of a surfel in (output) pixels (DSS: by "
@@ -30,7 +30,7 @@ static const sss_gl_param_info params[P_COUNT] = {
     [P_MAX_TESS] = {"max_tessellation", SSS_GL_PARAM_INT, 64, 1, 64,
                     "largest subdivision of a triangle edge (the hardware tessellation limit, 64)"},
     [P_PREINTEGRATED] = {"preintegrated", SSS_GL_PARAM_BOOL, 1, 0, 1,
-                         "1: the disc-integrated R'_d(r, A) of seed 000; 0: R_d at the surfel centre (DSS)"},
+                         "1: the disc-integrated R'_d(r, A) of Maisch & Ropinski 2020; 0: R_d at the surfel centre (DSS)"},
     [P_IRRADIANCE_CULL] = {"irradiance_cull", SSS_GL_PARAM_FLOAT, 0, 0, 1e30,
                            "surfels whose largest F_t E channel is at most this are culled (DSS)"},
     [P_SHADOW_OFFSET] = {"splat_shadow_offset", SSS_GL_PARAM_FLOAT, 0.5, 0, 10,
@@ -170,7 +170,7 @@ static void dss_stats(sss_gl_renderer *r, void *state, sss_gl_stats *out)
 
 const gl_technique gl_technique_dss = {
     .info = {"dss",
-             "Nalbach et al. 2014 Deep Screen Space as seed 000 compares it: tessellated surfels of every "
+             "Nalbach et al. 2014 Deep Screen Space as Maisch & Ropinski 2020 compare it: tessellated surfels of every "
              "triangle, shell splatting into a 3-level G-buffer",
              params, P_COUNT},
     .needs = GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION | GL_NEED_SPLAT_MESHES,

@@ -8,7 +8,7 @@
  * shell [D_l, D_(l+1)), with D_0 = 0, D_l = 2^l p / epsilon and the last shell reaching the kernel's
  * reach (the radius holding splat_energy of R_d). p is the world size of one output pixel (k render
  * pixels) at the splat's depth, so a level-l receiver is never larger than epsilon times its distance
- * to the splat: pixels near a splat get detailed transport, far ones a coarse one (seed 000, section
+ * to the splat: pixels near a splat get detailed transport, far ones a coarse one (Maisch & Ropinski 2020, section
  * 5). Counting the pyramid in output pixels makes `levels` and `epsilon` mean the same at every k:
  * supersampling gives the k = 1 image antialiased at the k = 1 splatting work (a pyramid starting at
  * the render pixel gave every shell texels 1/k as wide, another image and more work;

@@ -1,4 +1,4 @@
-/* gl/tech_maisch2020.c — Maisch & Ropinski 2020 (seed 000): screen-space subsurface scattering with
+/* gl/tech_maisch2020.c — Maisch & Ropinski 2020: screen-space subsurface scattering with
  * the layered pattern (section 4) plus quarter-resolution splatting translucency (section 5), both
  * with the disc-integrated kernel R'_d(r, A) (section 3.2).
  *
@@ -36,7 +36,7 @@ enum {
 };
 
 static const sss_gl_param_info params[P_COUNT] = {
-    [P_N] = {"n", SSS_GL_PARAM_INT, 2, 0, 32, "inner kernel of (2n+1)^2 full-resolution samples (seed 000, 4.2)"},
+    [P_N] = {"n", SSS_GL_PARAM_INT, 2, 0, 32, "inner kernel of (2n+1)^2 full-resolution samples (Maisch & Ropinski 2020, 4.2)"},
     [P_NL] = {"n_l", SSS_GL_PARAM_INT, 5, 3, 33, "layer width in samples: 4(n_l - 1) samples per layer (Eq. 7)"},
     [P_LAYERS] = {"layers", SSS_GL_PARAM_INT, 10, 0, 64, "outer layers of the screen-space pattern (4.2: 10)"},
     [P_BRIGHTENING] = {"brightening", SSS_GL_PARAM_BOOL, 1, 0, 1, "multiply layer i by sqrt(i) (section 6.1)"},
@@ -63,7 +63,7 @@ static const sss_gl_param_info params[P_COUNT] = {
                     "outer samples: 1 bilinear within their mip level; 2 the same, but texels whose mean positions "
                     "disagree (two surfaces) each at their own position; 0 texelFetch (blocky copies)"},
     [P_SPLAT_PREINTEGRATED] = {"splat_preintegrated", SSS_GL_PARAM_BOOL, 1, 0, 1,
-                               "splats read R'_d(r', A) (1, seed 000) or R_d(r') at the disc-adjusted distance"},
+                               "splats read R'_d(r', A) (1, Maisch & Ropinski 2020) or R_d(r') at the disc-adjusted distance"},
     [P_SCREEN_BOUND] = {"layer_distance_bound", SSS_GL_PARAM_BOOL, 1, 0, 1,
                         "outer samples at least d_(i-1)/2 pixels (at their depth) from x_o, where their cell lies"},
     [P_OCCLUDED] = {"occluded_margin", SSS_GL_PARAM_FLOAT, 3, 0, 100,

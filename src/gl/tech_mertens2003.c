@@ -1,4 +1,4 @@
-/* gl/tech_mertens2003.c — Mertens, Kautz, Bekaert, Van Reeth & Seidel 2003 (seed 004): image-space
+/* gl/tech_mertens2003.c — Mertens, Kautz, Bekaert, Van Reeth & Seidel 2003: image-space
  * integration of the subsurface integral with exact importance sampling of the profile.
  *
  * Per pixel x_o: samples in its tangent plane, radii importance-sampled per colour channel from
@@ -27,7 +27,7 @@ enum { P_SAMPLES = 0, P_UNIFORM, P_UNIFORM_RADIUS, P_PATTERN, P_BLUR, P_BLUR_NOR
 
 static const sss_gl_param_info params[P_COUNT] = {
     [P_SAMPLES] = {"samples", SSS_GL_PARAM_INT, 24, 0, 768,
-                   "importance samples per pixel, spread over the colour channels (seed 004, section 4)"},
+                   "importance samples per pixel, spread over the colour channels (Mertens et al. 2003, section 4)"},
     [P_UNIFORM] = {"uniform_samples", SSS_GL_PARAM_INT, 8, 0, 256,
                    "uniform samples per pixel over the disc A' (section 6.1, balance heuristic)"},
     [P_UNIFORM_RADIUS] = {"uniform_radius", SSS_GL_PARAM_FLOAT, 1, 0.01, 100,

@@ -1,4 +1,4 @@
-/* gl/tech_mertens2003.h — the CPU side of mertens2003's importance sampling (seed 004, section 4):
+/* gl/tech_mertens2003.h — the CPU side of mertens2003's importance sampling (Mertens et al. 2003, section 4):
  * per material and colour channel, a table of radii at T + 1 quantiles of R_d(r) 2 pi r / rho from
  * the physics module's exact sampler, and a guide grid that finds the table segment holding any r.
  *

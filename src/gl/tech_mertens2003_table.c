@@ -4,7 +4,7 @@
 
 #include "gl/tech_mertens2003.h"
 
-/* The exact sampler of seed 004 section 4 as a quantile function: for PBD the table's own inverse CDF
+/* The exact sampler of Mertens et al. 2003, section 4 as a quantile function: for PBD the table's own inverse CDF
  * (sss_pbd_sample_radius, PBRT Sample_Sr); for the dipole (and the Gaussian fit) the inverse of the
  * closed-form CDF, the same distribution sss_dipole_sample_radius draws from with two uniforms. */
 static double quantile(const sss_profile *p, int c, double u)

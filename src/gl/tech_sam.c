@@ -1,4 +1,4 @@
-/* gl/tech_sam.c — technique "sam": Spatial Adjacency Maps (Maisch & Ropinski 2017, seed 001).
+/* gl/tech_sam.c — technique "sam": Spatial Adjacency Maps (Maisch & Ropinski 2017).
  *
  * Translucency per vertex from n precomputed back-side links (Eq. 12) plus a surface-diffusion
  * technique for the front side (section 3.2: L_o = c_o (L_o+ + L_o-)). Passes after the shared
@@ -13,7 +13,7 @@
  *   sam_combine    frame.final += c_o sqrt(albedo) L~_o-
  * The maps come from a .sam file (sss sam build) when the renderer is given one, else they are built
  * at creation with the parameters n and samples (and backside_triangles / backside_splat). A map with
- * a lower-tessellation back-side mesh (seed 001, section 4.4) runs sam_deform on both meshes, and
+ * a lower-tessellation back-side mesh (Maisch & Ropinski 2017, section 4.4) runs sam_deform on both meshes, and
  * sam_update's fan areas and sam_light on the back-side mesh, whose vertices are the sources of Eq. 12.
  *
  * Time (Eq. 17-18): alpha = 1 - base^dt with dt the animation time since the previous frame of this
@@ -43,13 +43,13 @@ enum {
 
 static const sss_gl_param_info params[P_COUNT] = {
     [P_N] = {"n", SSS_GL_PARAM_INT, 3, 1, SSS_SAM_MAX_N,
-             "back-side vertices per vertex when the map is built at creation (seed 001, 4.1: 3)"},
+             "back-side vertices per vertex when the map is built at creation (Maisch & Ropinski 2017, 4.1: 3)"},
     [P_SAMPLES] = {"samples", SSS_GL_PARAM_INT, 64, 1, SSS_SAM_MAX_SAMPLES,
                    "Monte Carlo pairs per form factor of Eq. 11 when the map is built at creation"},
     [P_SEED] = {"seed", SSS_GL_PARAM_INT, 0, 0, 1e9, "seed of the Monte Carlo shifts when the map is built"},
     [P_SURFACE] = {"surface", SSS_GL_PARAM_INT, 1, 0, 2,
-                   "front side (L_o+, section 3.2): 0 none, 1 ssss (seed 002, transmittance off; the paper's "
-                   "pairing), 2 screen-space pattern of maisch2020 (seed 000, section 4)"},
+                   "front side (L_o+, section 3.2): 0 none, 1 ssss (Jimenez et al. 2019, transmittance off; the paper's "
+                   "pairing), 2 screen-space pattern of maisch2020 (Maisch & Ropinski 2020, section 4)"},
     [P_TRANSLUCENCY] = {"translucency", SSS_GL_PARAM_BOOL, 1, 0, 1, "include the SAM translucency L_o- (Eq. 12)"},
     [P_TEMPORAL] = {"temporal", SSS_GL_PARAM_BOOL, 1, 0, 1,
                     "blend with the previous frame (Eq. 17); the first frame is never blended"},
@@ -58,7 +58,7 @@ static const sss_gl_param_info params[P_COUNT] = {
     [P_UPDATE] = {"update_steps", SSS_GL_PARAM_INT, 1, 0, 64,
                   "link updates per frame of deforming objects through adjacency (section 3.4: 1)"},
     [P_BACK_TRIS] = {"backside_triangles", SSS_GL_PARAM_INT, 0, 0, 1e9,
-                     "maps built at creation: back side on the mesh simplified to this many triangles (seed 001, "
+                     "maps built at creation: back side on the mesh simplified to this many triangles (Maisch & Ropinski 2017, "
                      "4.4 and appendix); 0: the mesh itself. A .sam file carries its own"},
     [P_BACK_SPLAT] = {"backside_splat", SSS_GL_PARAM_BOOL, 0, 0, 1,
                       "maps built at creation: back side on the object's splat_mesh (or its mesh simplified to "
@@ -98,7 +98,7 @@ static sss_result surface_create(sss_gl_renderer *r, sam_state *s, sss_error *er
         /* SAM replaces the translucency of the surface techniques */
         if (strcmp(in->params[i].name, "transmittance") == 0 || strcmp(in->params[i].name, "translucency") == 0)
             v = 0.0;
-        /* seed 000's brightening term compensates for light its translucency pass misses; the front side
+        /* Maisch & Ropinski 2020's brightening term compensates for light its translucency pass misses; the front side
          * alone is what SAM needs */
         if (strcmp(in->params[i].name, "brightening") == 0) v = 0.0;
         s->surface_params[i] = v;

@@ -1,4 +1,4 @@
-/* gl/tech_sam.h — internals of the technique "sam" (seed 001): the GPU data of one subsurface object
+/* gl/tech_sam.h — internals of the technique "sam" (Maisch & Ropinski 2017): the GPU data of one subsurface object
  * (tech_sam_data.c) and the technique's passes (tech_sam.c). */
 #ifndef SSS_GL_TECH_SAM_H
 #define SSS_GL_TECH_SAM_H
@@ -34,7 +34,7 @@ typedef struct sam_object {
     int deforming;             /* animated: K' path (Eq. 15) + link updates (section 3.4) */
     uint32_t adj_list, inc_off, inc_list, idx; /* section offsets of the topology buffer */
     GLuint topo, geom, links, coef, ld, trans, rd;
-    /* The back-side mesh (seed 001, section 4.4) when the map has one: the links index its vertices,
+    /* The back-side mesh (Maisch & Ropinski 2017, section 4.4) when the map has one: the links index its vertices,
      * L_d (ld, back_vertices entries) is evaluated at them. Object-space positions, normals, UVs (0:
      * none) for the deformation pass; back_geom and back_topo as geom and topo. Without one,
      * back_vertices == vertices and the sources are the mesh's own (ld has `vertices` entries). */

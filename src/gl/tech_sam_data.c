@@ -1,4 +1,4 @@
-/* gl/tech_sam_data.c — the GPU side of a Spatial Adjacency Map (seed 001, section 4.1 and Fig. 4): per
+/* gl/tech_sam_data.c — the GPU side of a Spatial Adjacency Map (Maisch & Ropinski 2017, section 4.1 and Fig. 4): per
  * vertex the n back-side links and their coefficients, the one-ring adjacency and the incident
  * triangles (for Eq. 16 and the updates of section 3.4), the radial profile table, and the buffers of
  * the per-frame passes. The map comes from a .sam file when one is given and matches the object
@@ -154,7 +154,7 @@ sss_result sam_object_create(sss_gl_renderer *r, int index, const sam_data_desc 
         bd.seed = d->seed;
         bd.backside_triangles = d->backside_triangles;
         if (d->backside_splat) {
-            /* the scene's low-resolution mesh of the object (SCENE.md: splat_mesh, splat_triangles) */
+            /* the scene's low-resolution mesh of the object (docs/scene-format.md: splat_mesh, splat_triangles) */
             if (so->splat_mesh.vertex_count) bd.backside = &so->splat_mesh;
             else if (so->splat_triangles) bd.backside_triangles = so->splat_triangles;
             else

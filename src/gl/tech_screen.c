@@ -1,5 +1,5 @@
-/* gl/tech_screen.c — technique "screen": the screen-space part of Maisch & Ropinski 2020 alone (seed
- * 000, section 4; the 'Screen' competitor of its section 8), i.e. maisch2020 without the translucency
+/* gl/tech_screen.c — technique "screen": the screen-space part of Maisch & Ropinski 2020 alone
+ * (section 4; the 'Screen' competitor of its section 8), i.e. maisch2020 without the translucency
  * pass. It runs maisch2020's own code (tech_maisch2020.c, through gl_technique_maisch2020's callbacks)
  * so both stay the same algorithm: around each call the renderer's parameter array is laid out as
  * maisch2020's table expects it (by name: this technique's values where it has the parameter, maisch's
@@ -14,7 +14,7 @@ extern const gl_technique gl_technique_maisch2020;
 
 /* The screen-space parameters of maisch2020 (same names, defaults, ranges; test_screen checks it). */
 static const sss_gl_param_info params[] = {
-    {"n", SSS_GL_PARAM_INT, 2, 0, 32, "inner kernel of (2n+1)^2 full-resolution samples (seed 000, 4.2)"},
+    {"n", SSS_GL_PARAM_INT, 2, 0, 32, "inner kernel of (2n+1)^2 full-resolution samples (Maisch & Ropinski 2020, 4.2)"},
     {"n_l", SSS_GL_PARAM_INT, 5, 3, 33, "layer width in samples: 4(n_l - 1) samples per layer (Eq. 7)"},
     {"layers", SSS_GL_PARAM_INT, 10, 0, 64, "outer layers of the screen-space pattern (4.2: 10)"},
     {"brightening", SSS_GL_PARAM_BOOL, 1, 0, 1, "multiply layer i by sqrt(i) (section 6.1)"},
@@ -124,7 +124,7 @@ static void screen_stats(sss_gl_renderer *r, void *state, sss_gl_stats *out)
 
 const gl_technique gl_technique_screen = {
     .info = {"screen",
-             "seed 000's screen-space part alone (maisch2020 without translucency): layered pattern, "
+             "Maisch & Ropinski 2020's screen-space part alone (maisch2020 without translucency): layered pattern, "
              "disc-integrated kernel",
              params, PARAM_COUNT},
     .needs = GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION | GL_NEED_MIPS,

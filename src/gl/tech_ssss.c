@@ -1,8 +1,8 @@
-/* gl/tech_ssss.c — Separable Subsurface Scattering (Jimenez et al., seed 002) and its two baselines:
+/* gl/tech_ssss.c — Separable Subsurface Scattering (Jimenez et al. 2019) and its two baselines:
  *   ssss         two 1D passes (horizontal, vertical) of one separable kernel: pre-integrated (Eq. 4-5),
  *                artist-friendly (Eq. 6, Table 2) or guided rank-1 (Appendix A, Eq. 8-9);
  *   ssss-gauss6  the six-Gaussian sum of d'Eon et al. 2007: 12 1D passes;
- *   ssss-svd     the rank-N SVD of the discretised profile (seed 002, section 3): 2N 1D passes.
+ *   ssss-svd     the rank-N SVD of the discretised profile (Jimenez et al. 2019, section 3): 2N 1D passes.
  * Passes after the shared G-buffer, shadows and illumination: (1) prepare: the transmitted irradiance
  * plus the transmittance through thin parts (Jimenez et al. 2010 from the shadow maps) and the object
  * mask; (2) per separable term a horizontal and a vertical pass (shaders/ssss_blur.frag.glsl: screen
@@ -18,7 +18,7 @@
 
 /* ---- Parameters ------------------------------------------------------------------------------ */
 
-#define P_TAPS {"taps", SSS_GL_PARAM_INT, 7, 1, 63, "importance-sampled taps per 1D pass, odd (seed 002, section 7: 7)"}
+#define P_TAPS {"taps", SSS_GL_PARAM_INT, 7, 1, 63, "importance-sampled taps per 1D pass, odd (Jimenez et al. 2019, section 7: 7)"}
 #define P_FOLLOW                                                                                                  \
     {"follow_surface", SSS_GL_PARAM_BOOL, 1, 0, 1,                                                               \
      "depth correction of Eq. 7: taps lerp to the centre colour by 1 - e^(-dz^2/2 sigma^2) (SSSS follow surface)"}
@@ -47,7 +47,7 @@ static const sss_gl_param_info ssss_params[] = {
 static const sss_gl_param_info gauss6_params[] = {P_TAPS, P_FOLLOW, P_ROTATE, P_TRANS};
 
 static const sss_gl_param_info svd_params[] = {
-    {"rank", SSS_GL_PARAM_INT, 3, 1, 8, "rank N of the SVD approximation: 2N 1D passes (seed 002, section 3: 3)"},
+    {"rank", SSS_GL_PARAM_INT, 3, 1, 8, "rank N of the SVD approximation: 2N 1D passes (Jimenez et al. 2019, section 3: 3)"},
     {"svd_grid", SSS_GL_PARAM_INT, 24, 2, 255,
      "cells per axis of the discretised profile = uniform taps per pass (even: no cell sampled at the profile's "
      "r = 0 peak)"},
@@ -325,7 +325,7 @@ static void ssss_stats(sss_gl_renderer *r, void *state, sss_gl_stats *out)
 
 const gl_technique gl_technique_ssss = {
     .info = {"ssss",
-             "Jimenez et al. (seed 002): separable SSS, two 1D passes of a pre-integrated, artist or guided kernel, "
+             "Jimenez et al. 2019: separable SSS, two 1D passes of a pre-integrated, artist or guided kernel, "
              "transmittance from shadow maps",
              ssss_params, (int)(sizeof ssss_params / sizeof ssss_params[0])},
     .needs = SSSS_NEEDS,
@@ -339,7 +339,7 @@ const gl_technique gl_technique_ssss = {
 };
 
 const gl_technique gl_technique_ssss_gauss6 = {
-    .info = {"ssss-gauss6", "d'Eon et al. 2007 six-Gaussian sum as 12 1D passes (the baseline of seed 002)",
+    .info = {"ssss-gauss6", "d'Eon et al. 2007 six-Gaussian sum as 12 1D passes (the baseline of Jimenez et al. 2019)",
              gauss6_params, (int)(sizeof gauss6_params / sizeof gauss6_params[0])},
     .needs = SSSS_NEEDS,
     .state_size = sizeof(ssss_state),
@@ -352,7 +352,7 @@ const gl_technique gl_technique_ssss_gauss6 = {
 };
 
 const gl_technique gl_technique_ssss_svd = {
-    .info = {"ssss-svd", "rank-N SVD of the discretised profile as 2N 1D passes (seed 002, section 3)", svd_params,
+    .info = {"ssss-svd", "rank-N SVD of the discretised profile as 2N 1D passes (Jimenez et al. 2019, section 3)", svd_params,
              (int)(sizeof svd_params / sizeof svd_params[0])},
     .needs = SSSS_NEEDS,
     .state_size = sizeof(ssss_state),

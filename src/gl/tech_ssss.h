@@ -1,4 +1,4 @@
-/* gl/tech_ssss.h — internals shared by the separable subsurface scattering techniques (seed 002):
+/* gl/tech_ssss.h — internals shared by the separable subsurface scattering techniques (Jimenez et al. 2019):
  * tech_ssss.c (GL passes, technique entries ssss, ssss-gauss6, ssss-svd) and tech_ssss_kernel.c (the
  * per-material kernel data: 1D taps of every separable term, transmittance profiles T(s)).
  *
@@ -27,9 +27,9 @@
 #define SSSS_TRANS_SIZE 256
 
 typedef enum ssss_variant {
-    SSSS_VARIANT_SEPARABLE = 0, /* one separable term: pre-integrated, artist or guided (seed 002) */
+    SSSS_VARIANT_SEPARABLE = 0, /* one separable term: pre-integrated, artist or guided (Jimenez et al. 2019) */
     SSSS_VARIANT_GAUSS6,        /* six Gaussians, one term each (d'Eon et al. 2007) */
-    SSSS_VARIANT_SVD            /* rank-N SVD of the discretised profile (seed 002, section 3) */
+    SSSS_VARIANT_SVD            /* rank-N SVD of the discretised profile (Jimenez et al. 2019, section 3) */
 } ssss_variant;
 
 /* Kernel choice of the separable variant (parameter `kernel`). */

@@ -2,7 +2,7 @@
  * subsurface material, the 1D taps of each separable term and the transmittance profile T(s), packed
  * as described in tech_ssss.h.
  *
- *  - ssss: one term. Pre-integrated a_p / ||R_d||_1 (seed 002, Eq. 4-5) or the artist model a_m
+ *  - ssss: one term. Pre-integrated a_p / ||R_d||_1 (Jimenez et al. 2019, Eq. 4-5) or the artist model a_m
  *    (Eq. 6), both importance-sampled at the dominant channel's quantiles (section 7) by the kernel
  *    module, or the guided rank-1 a_s (Appendix A, Eq. 8-9) discretised here the same way. The taps'
  *    weights sum to 1 per channel; the multiplier is the total reflectance ||R_d||_1.
@@ -10,7 +10,7 @@
  *    converted with the material's scale, mm per scene unit); the vertical pass carries the term's
  *    weight, and the multiplier is the material's total diffuse reflectance (the weights sum to 1).
  *  - ssss-svd: rank N, the SVD factors of the discretised profile as uniform taps on its grid; term k
- *    is sign_k a_k(x) a_k(y). The sum is normalised to the profile's total (seed 002, section 3: the
+ *    is sign_k a_k(x) a_k(y). The sum is normalised to the profile's total (Jimenez et al. 2019, section 3: the
  *    truncated SVD loses energy, "even if energy conservation is enforced by normalizing").
  * T(s) = integral of R_d(sqrt(r^2 + s^2)) over the plane = 2 pi int_s^inf R_d(rho) rho d rho: the light
  * leaving the front of a slab of thickness s lit uniformly at its back (Jimenez et al. 2010, whose

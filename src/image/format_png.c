@@ -4,7 +4,7 @@
  * Reading: 8- or 16-bit grey, grey+alpha, RGB, RGBA and palette PNGs; grey is replicated to RGB and
  * alpha is dropped (not composited). Samples are sRGB-encoded and decoded with the exact inverse curve
  * (gAMA/iCCP chunks are ignored), so sss_image_to_srgb8 at exposure 0 returns the file's 8-bit codes.
- * Writing: 8-bit RGB, tone-mapped per SCENE.md render.exposure, via a temporary file and rename. */
+ * Writing: 8-bit RGB, tone-mapped per docs/scene-format.md render.exposure, via a temporary file and rename. */
 #include <errno.h>
 #include <limits.h>
 #include <math.h>

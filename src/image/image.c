@@ -1,4 +1,4 @@
-/* image/image.c — float RGB images, the sRGB curve, tone mapping (SCENE.md render.exposure) and
+/* image/image.c — float RGB images, the sRGB curve, tone mapping (docs/scene-format.md render.exposure) and
  * format dispatch by file extension. */
 #include "image/image_internal.h"
 
@@ -72,7 +72,7 @@ double sss_srgb_decode(double encoded)
     return encoded <= 0.04045 ? encoded / 12.92 : pow((encoded + 0.055) / 1.055, 2.4);
 }
 
-/* SCENE.md render.exposure: round(255 * srgb(clamp(linear * 2^exposure, 0, 1))). Evaluated in float
+/* docs/scene-format.md render.exposure: round(255 * srgb(clamp(linear * 2^exposure, 0, 1))). Evaluated in float
  * exactly as PBRT-v3's WriteImage does (GammaCorrect in float, then (uint8_t)(255 g + 0.5)), so that
  * at exposure 0 the bytes equal PBRT's PNG for the same linear image. */
 uint8_t sss_srgb8_from_linear_(float linear, float scale)

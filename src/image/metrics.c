@@ -1,4 +1,4 @@
-/* image/metrics.c — SSIM / DSSIM, PSNR, RMSE and max abs error on tone-mapped 8-bit images (FACTS.md 5).
+/* image/metrics.c — SSIM / DSSIM, PSNR, RMSE and max abs error on tone-mapped 8-bit images (docs/physics.md §5).
  *
  * SSIM after Wang et al. 2004 as scikit-image 0.19 computes it with gaussian_weights=True, sigma=1.5,
  * use_sample_covariance=False, data_range=255, per channel (channel_axis) and averaged:

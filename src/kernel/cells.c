@@ -1,5 +1,5 @@
 /* kernel/cells.c — integrals of R_d(sqrt(x^2 + y^2)) over the cells of a square grid: the discretised
- * profile of the SVD (seed 002, section 3) and guided (Appendix A) kernels.
+ * profile of the SVD (Jimenez et al. 2019, section 3) and guided (Appendix A) kernels.
  *
  * Each cell holds the integral of R_d over it, so every grid parity keeps each cell's true energy and
  * the cells sum to the integral over the square. A cell's centre value times its area is not that:

@@ -1,4 +1,4 @@
-/* kernel/guided.c — the guided rank-1 approximation of seed 002, Appendix A (Eq. 8-9):
+/* kernel/guided.c — the guided rank-1 approximation of Jimenez et al. 2019, Appendix A (Eq. 8-9):
  *   a_s = argmin_a  int Gamma(x, y) (R_d(x, y) - a(x) a(y))^2 dx dy   subject to  ||a||_1^2 = ||R_d||_1,
  *   Gamma(x, y; k) = (x^2 + y^2)^(k/2) (1 - e^(-b x^2)) (1 - e^(-b y^2)),
  * discretised on grid cells of width h: R_d by its cell averages (the cell integrals of kernel/cells.c
@@ -78,7 +78,7 @@ sss_result sss_kernel_guided(const sss_profile *profile, int grid, double extent
     for (size_t i = 0; i < n; i++)
         for (size_t j = 0; j < n; j++) {
             double x = -extent + (i + 0.5) * h, y = -extent + (j + 0.5) * h;
-            /* Seed 002, Eq. 9. */
+            /* Jimenez et al. 2019, Eq. 9. */
             g[i * n + j] = pow(x * x + y * y, 0.5 * k) * -expm1(-b * x * x) * -expm1(-b * y * y);
             gmax = fmax(gmax, g[i * n + j]);
         }

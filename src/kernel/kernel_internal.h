@@ -31,7 +31,7 @@ void kq_integrate3_graded(kq_fn3 f, void *ctx, double a, double b, double s, dou
 double kq_profile_length_scale(const sss_profile *p);
 
 /* Decay length of the profile far from the origin: 1 / sigma_tr of the fastest-decaying channel
- * (sigma_tr = sqrt(3 sigma_a sigma_t'), FACTS.md 2.1); INFINITY without absorption. */
+ * (sigma_tr = sqrt(3 sigma_a sigma_t'), docs/physics.md §2.1); INFINITY without absorption. */
 double kq_profile_decay_length(const sss_profile *p);
 
 /* The discretised profile of the SVD and guided kernels (kernel/cells.c): out[c * grid^2 + i * grid + j]

@@ -1,12 +1,12 @@
-/* kernel/lut.c — the disc-integrated kernel LUT R'_d(r, A) of seed 000 (Eq. 5, sections 7.1-7.2).
+/* kernel/lut.c — the disc-integrated kernel LUT R'_d(r, A) of Maisch & Ropinski 2020 (Eq. 5, sections 7.1-7.2).
  *
  * R'_d(r, A) A = integral of R_d over a disc of radius r_A = sqrt(A / pi) whose centre lies at distance
  * r from the origin. Like the paper we integrate over rings centred at the origin: the ring of radius
- * x contributes R_d(x) b(x) dx, b(x) the length of its arc inside the disc (seed 000, Eq. 11):
+ * x contributes R_d(x) b(x) dx, b(x) the length of its arc inside the disc (Maisch & Ropinski 2020, Eq. 11):
  *   b(x) = 2 pi x                                     for x <= r_A - r   (ring wholly inside),
  *   b(x) = 2 x acos((x^2 - r_A^2 + r^2) / (2 r x))    for |r - r_A| < x < r + r_A,
  *   b(x) = 0                                          otherwise.
- * Seed 000's Eq. 10 sums (b_i R_d(x_i) + b_(i+1) R_d(x_(i+1))) (x_(i+1) - x_i) over the rings: that is
+ * Maisch & Ropinski 2020's Eq. 10 sums (b_i R_d(x_i) + b_(i+1) R_d(x_(i+1))) (x_(i+1) - x_i) over the rings: that is
  * the trapezoid rule without its factor 1/2 (the area of a trapezoid of heights u, v and width h is
  * (u + v) h / 2), so taken literally it doubles R'_d. It is also only O(h^1.5) accurate here because
  * b(x) has square-root endpoints (b ~ sqrt(x - x0) at the disc's near edge, sqrt(x1 - x) at its far
@@ -42,7 +42,7 @@ double sss_lut_r_max(const sss_material *m, double source_cutoff)
     if (!(source_cutoff > 0.0)) source_cutoff = LUT_DEFAULT_CUTOFF;
     double r_max = 0.0;
     for (int c = 0; c < 3; c++) {
-        /* Seed 000, section 7.1: Q(r) = alpha' sigma_t' e^(-sigma_t' r) <= cutoff, and alpha' sigma_t'
+        /* Maisch & Ropinski 2020, section 7.1: Q(r) = alpha' sigma_t' e^(-sigma_t' r) <= cutoff, and alpha' sigma_t'
          * = sigma_s'; so r = ln(sigma_s' / cutoff) / sigma_t'. */
         double ssp = m->sigma_s[c] * (1.0 - m->g), stp = m->sigma_a[c] + ssp;
         if (!(stp > 0.0) || !(ssp > source_cutoff) || !isfinite(stp)) continue;
@@ -175,7 +175,7 @@ static int band_nodes(const panel_rule *pr, double r, double ra, const band_scal
             double xm = h * om[g], xp = h * op[g], xx = x0 + xm;
             /* Half-angle phi of the arc: sin^2(phi/2) = (r_A^2 - (x - r)^2) / (4 r x) and
              * cos^2(phi/2) = ((x + r)^2 - r_A^2) / (4 r x), factored so that no difference of
-             * nearly equal numbers is formed; f = phi / pi (seed 000, Eq. 11: b = 2 x phi). */
+             * nearly equal numbers is formed; f = phi / pi (Maisch & Ropinski 2020, Eq. 11: b = 2 x phi). */
             double ns = xp * (xm + in2), nc = (xx + x1) * (xm + out2);
             x[n + g] = xx;
             w[n + g] = h * ws[g] * kq_acos_ratio(nc, ns) * (1.0 / KQ_PI);
@@ -188,7 +188,7 @@ static int band_nodes(const panel_rule *pr, double r, double ra, const band_scal
 /* ---- Tabulated P(x) = 2 pi x R_d(x) and C(x) = int_0^x P ----------------------------------- */
 
 /* Nodes x_k = x_end (k / (n - 1))^2: spacing grows from x_end / (n - 1)^2 at the origin, where the
- * PBD profile turns on a scale of 0.0025 mean free paths (its first tabulated radius, FACTS.md 2.2),
+ * PBD profile turns on a scale of 0.0025 mean free paths (its first tabulated radius, docs/physics.md §2.2),
  * to 2 x_end / (n - 1) at the far end, where every profile is smooth. */
 typedef struct lut_table {
     int n;

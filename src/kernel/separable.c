@@ -1,9 +1,9 @@
-/* kernel/separable.c — the separable 1D kernels of seed 002: the pre-integrated kernel a_p (Eq. 4-5)
+/* kernel/separable.c — the separable 1D kernels of Jimenez et al. 2019: the pre-integrated kernel a_p (Eq. 4-5)
  * and the artist-friendly two-Gaussian a_m (Eq. 6), each discretised into importance-sampled taps
  * (section 7, "Importance sampling").
  *
  * Discretisation (both kernels): the taps sit at the quantiles (k + 1/2) / N of the dominant channel's
- * kernel (the widest one: seed 002 samples every channel at the positions of the dominant one)
+ * kernel (the widest one: Jimenez et al. 2019 sample every channel at the positions of the dominant one)
  * restricted to [-range, range]; each tap's weight is the integral of each channel's kernel over the
  * tap's interval, bounded by the midpoints to its neighbours and by -inf / +inf at the ends (the tails
  * beyond the outer taps land on them, so no energy is lost), divided by the kernel's integral. Both
@@ -31,7 +31,7 @@ void sss_separable_kernel_free(sss_separable_kernel *k)
     memset(k, 0, sizeof *k);
 }
 
-/* ---- The pre-integrated kernel a_p (seed 002, Eq. 4) ---------------------------------------- */
+/* ---- The pre-integrated kernel a_p (Jimenez et al. 2019, Eq. 4) ---------------------------------------- */
 
 typedef struct ap_ctx {
     const sss_profile *p;
@@ -227,7 +227,7 @@ static sss_result check_taps(const char *what, int *taps, sss_error *err)
     return SSS_OK;
 }
 
-/* ---- Pre-integrated kernel: discretised a_p / ||R_d||_1 (seed 002, Eq. 5) -------------------- */
+/* ---- Pre-integrated kernel: discretised a_p / ||R_d||_1 (Jimenez et al. 2019, Eq. 5) -------------------- */
 
 typedef struct ap_cdf_ctx {
     ap_ctx a;
@@ -294,7 +294,7 @@ sss_result sss_kernel_preintegrated(const sss_profile *profile, int taps, double
     return SSS_OK;
 }
 
-/* ---- Artist-friendly kernel (seed 002, Eq. 6) ------------------------------------------------ */
+/* ---- Artist-friendly kernel (Jimenez et al. 2019, Eq. 6) ------------------------------------------------ */
 
 /* Normalised 1D Gaussian's CDF; a zero width is a step at 0. */
 static double gauss_cdf(double sigma, double x)

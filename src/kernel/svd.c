@@ -1,5 +1,5 @@
 /* kernel/svd.c — rank-N separable approximation of a discretised 2D profile by its singular value
- * decomposition (seed 002, section 3 and Figure 4; Eckart-Young: the truncated SVD is the best rank-N
+ * decomposition (Jimenez et al. 2019, section 3 and Figure 4; Eckart-Young: the truncated SVD is the best rank-N
  * approximation in the Frobenius norm) of the matrix of R_d's cell integrals (kernel/cells.c).
  * LAPACKE dgesdd per channel. */
 #include <lapacke.h>

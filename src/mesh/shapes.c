@@ -1,4 +1,4 @@
-/* mesh/shapes.c — the procedural shapes of SCENE.md (sphere, torus, trefoil, plane, box), centred at
+/* mesh/shapes.c — the procedural shapes of docs/scene-format.md (sphere, torus, trefoil, plane, box), centred at
  * the origin, counter-clockwise seen from outside, with exact (analytic) normals. */
 #include <math.h>
 #include <stdlib.h>

@@ -1,5 +1,5 @@
-/* physics/dipole.c — the classical dipole of Jensen et al. 2001 (seed 004, Table 1; FACTS.md 2.1),
- * its closed-form plane integral and the exact importance sampling of seed 004, section 4. */
+/* physics/dipole.c — the classical dipole of Jensen et al. 2001 (Mertens et al. 2003, Table 1; docs/physics.md §2.1),
+ * its closed-form plane integral and the exact importance sampling of Mertens et al. 2003, section 4. */
 #include "sss/profile.h"
 
 #include <float.h>
@@ -19,7 +19,7 @@ void sss_dipole_init(sss_dipole *d, double sigma_a, double sigma_s_prime, double
         d->z_v = 1.0;
         return;
     }
-    /* Seed 004, Table 1. */
+    /* Mertens et al. 2003, Table 1. */
     double fdr = sss_fresnel_diffuse_reflectance(eta);
     double A = (1.0 + fdr) / (1.0 - fdr);
     double D = 1.0 / (3.0 * st);
@@ -41,18 +41,18 @@ double sss_dipole_rd(const sss_dipole *d, double r)
 {
     if (!(d->alpha_prime > 0.0) || !isfinite(r)) return 0.0;
     r = fabs(r);
-    /* Seed 004, Table 1: R_d = alpha'/(4 pi) [R_d^r + R_d^v]. */
+    /* Mertens et al. 2003, Table 1: R_d = alpha'/(4 pi) [R_d^r + R_d^v]. */
     return d->alpha_prime / (4.0 * PI) *
            (source_term(d->sigma_tr, d->z_r, r) + source_term(d->sigma_tr, d->z_v, r));
 }
 
 double sss_dipole_total_reflectance(const sss_dipole *d)
 {
-    /* Seed 004, Eq. 7 summed over both sources: rho = alpha'/2 (e^(-sigma_tr z_r) + e^(-sigma_tr z_v)). */
+    /* Mertens et al. 2003, Eq. 7 summed over both sources: rho = alpha'/2 (e^(-sigma_tr z_r) + e^(-sigma_tr z_v)). */
     return 0.5 * d->alpha_prime * (exp(-d->sigma_tr * d->z_r) + exp(-d->sigma_tr * d->z_v));
 }
 
-/* Solves sigma_tr z (u - 1) + ln u + ln(1 - xi) = 0 for u >= 1 (seed 004, section 4) and returns
+/* Solves sigma_tr z (u - 1) + ln u + ln(1 - xi) = 0 for u >= 1 (Mertens et al. 2003, section 4) and returns
  * r = z sqrt(u^2 - 1). We iterate on v = ln u: g(v) = a (e^v - 1) + v + L is increasing and convex, so
  * Newton started at an upper bound of the root decreases monotonically onto it (no overshoot). Both
  * -L and log1p(-L/a) bound the root from above, since each of the two terms alone is >= 0. */
@@ -79,7 +79,7 @@ double sss_dipole_sample_radius(const sss_dipole *d, double u_source, double u_r
 {
     if (!(d->alpha_prime > 0.0)) return 0.0;
     double er = exp(-d->sigma_tr * d->z_r), ev = exp(-d->sigma_tr * d->z_v);
-    /* Pick the source by its share of the plane integral (seed 004, Eq. 7). */
+    /* Pick the source by its share of the plane integral (Mertens et al. 2003, Eq. 7). */
     int real = u_source < er / (er + ev);
     double z = real ? d->z_r : d->z_v;
     if (!(u_radius >= 0.0)) u_radius = 0.0;
@@ -91,6 +91,6 @@ double sss_dipole_pdf_radius(const sss_dipole *d, double r)
 {
     double rho = sss_dipole_total_reflectance(d);
     if (!(rho > 0.0) || !(r >= 0.0) || !isfinite(r)) return 0.0;
-    /* p(r) = 2 pi r R_d(r) / rho (seed 004, section 4). */
+    /* p(r) = 2 pi r R_d(r) / rho (Mertens et al. 2003, section 4). */
     return 2.0 * PI * r * sss_dipole_rd(d, r) / rho;
 }

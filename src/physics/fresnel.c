@@ -1,7 +1,7 @@
 /* physics/fresnel.c — Fresnel reflectance, Fresnel moments and the diffuse Fresnel reflectance.
  *
  * sss_fresnel_dielectric follows PBRT-v3 FrDielectric (core/reflection.cpp); the moment fits are
- * PBRT-v3's FresnelMoment1/2 (core/bssrdf.cpp, FACTS.md 1); F_dr is the fit of seed 004, Table 1. */
+ * PBRT-v3's FresnelMoment1/2 (core/bssrdf.cpp, docs/physics.md §1); F_dr is the fit of Mertens et al. 2003, Table 1. */
 #include "sss/material.h"
 
 #include <math.h>
@@ -28,7 +28,7 @@ double sss_fresnel_dielectric(double cos_theta_i, double eta_i, double eta_t)
     return 0.5 * (r_parl * r_parl + r_perp * r_perp);
 }
 
-/* FACTS.md 1: PBRT-v3 FresnelMoment1 polynomial fit. */
+/* docs/physics.md §1: PBRT-v3 FresnelMoment1 polynomial fit. */
 double sss_fresnel_moment1(double eta)
 {
     double e2 = eta * eta, e3 = e2 * eta, e4 = e3 * eta, e5 = e4 * eta;
@@ -37,7 +37,7 @@ double sss_fresnel_moment1(double eta)
     return -4.61686 + 11.1136 * eta - 10.4646 * e2 + 5.11455 * e3 - 1.27198 * e4 + 0.12746 * e5;
 }
 
-/* FACTS.md 1: PBRT-v3 FresnelMoment2 polynomial fit. */
+/* docs/physics.md §1: PBRT-v3 FresnelMoment2 polynomial fit. */
 double sss_fresnel_moment2(double eta)
 {
     double e2 = eta * eta, e3 = e2 * eta, e4 = e3 * eta, e5 = e4 * eta;
@@ -48,13 +48,13 @@ double sss_fresnel_moment2(double eta)
            54.9327 * e3 - 9.00603 * e4 + 0.63942 * e5;
 }
 
-/* Seed 004, Table 1: F_dr = -1.440/eta^2 + 0.710/eta + 0.668 + 0.0636 eta. */
+/* Mertens et al. 2003, Table 1: F_dr = -1.440/eta^2 + 0.710/eta + 0.668 + 0.0636 eta. */
 double sss_fresnel_diffuse_reflectance(double eta)
 {
     return -1.440 / (eta * eta) + 0.710 / eta + 0.668 + 0.0636 * eta;
 }
 
-/* FACTS.md 1: c = 1 - 2 FM1(1/eta), the normalisation of PBRT's S_w. */
+/* docs/physics.md §1: c = 1 - 2 FM1(1/eta), the normalisation of PBRT's S_w. */
 double sss_bssrdf_normalization(double eta)
 {
     return 1.0 - 2.0 * sss_fresnel_moment1(1.0 / eta);

@@ -1,5 +1,5 @@
-/* physics/gaussian.c — Gaussian profiles: d'Eon et al. 2007 six-Gaussian skin fit (FACTS.md 2.4) and
- * the artist-friendly two-Gaussian separable model of seed 002 (Eq. 6, Table 2). */
+/* physics/gaussian.c — Gaussian profiles: d'Eon et al. 2007 six-Gaussian skin fit (docs/physics.md §2.4) and
+ * the artist-friendly two-Gaussian separable model of Jimenez et al. 2019 (Eq. 6, Table 2). */
 #include "sss/profile.h"
 
 #include <math.h>
@@ -7,7 +7,7 @@
 
 #define PI 3.14159265358979323846
 
-/* FACTS.md 2.4: variances in mm^2 and RGB weights of the six terms. */
+/* docs/physics.md §2.4: variances in mm^2 and RGB weights of the six terms. */
 const double sss_gauss6_variance_mm2[SSS_GAUSS6_TERMS] = {0.0064, 0.0484, 0.187, 0.567, 1.99, 7.41};
 const double sss_gauss6_weight[3][SSS_GAUSS6_TERMS] = {
     {0.233, 0.100, 0.118, 0.113, 0.358, 0.078},
@@ -27,7 +27,7 @@ typedef struct preset {
     sss_artist_params p;
 } preset;
 
-/* Seed 002, Table 2 (s in mm). */
+/* Jimenez et al. 2019, Table 2 (s in mm). */
 static const preset presets[] = {
     {"single-layer", {10.34, {0.077, 0.034, 0.02}, {1.0, 0.45, 0.25}, 0.5}},
     {"multi-layer", {9.27, {0.055, 0.044, 0.038}, {1.0, 0.2, 0.13}, 0.5}},
@@ -57,7 +57,7 @@ static double gaussian_1d(double sigma, double x)
 double sss_artist_eval_1d(const sss_artist_params *p, int channel, double x)
 {
     if (!p || channel < 0 || channel > 2 || !isfinite(x)) return 0.0;
-    /* Seed 002, Eq. 6: a_m(x) = w G(x, sigma_n) + (1 - w) G(x, sigma_f). */
+    /* Jimenez et al. 2019, Eq. 6: a_m(x) = w G(x, sigma_n) + (1 - w) G(x, sigma_f). */
     double sn = p->near[channel] * p->s, sf = p->far[channel] * p->s;
     double v = p->w * gaussian_1d(sn, x) + (1.0 - p->w) * gaussian_1d(sf, x);
     return isfinite(v) && v > 0.0 ? v : 0.0;

@@ -1,8 +1,8 @@
-/* physics/material.c — the measured media table (FACTS.md 2.3) and material constructors/validation.
+/* physics/material.c — the measured media table (docs/physics.md §2.3) and material constructors/validation.
  *
  * The table is Jensen et al. 2001 as PBRT-v3 ships it (core/medium.cpp SubsurfaceParameterTable):
  * reduced scattering sigma_s' and absorption sigma_a in mm^-1. PBRT's `subsurface` material multiplies
- * them by `scale` and forces g = 0 because the data are reduced coefficients (FACTS.md 2.2). */
+ * them by `scale` and forces g = 0 because the data are reduced coefficients (docs/physics.md §2.2). */
 #include "sss/material.h"
 
 #include <ctype.h>
@@ -169,7 +169,7 @@ sss_result sss_material_from_medium(const char *name, double scale, double eta, 
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "unknown medium '%s' (known media: %s)",
                              name ? name : "(null)", known);
     }
-    /* g = 0: the table holds reduced scattering coefficients, so sigma_s = sigma_s' (FACTS.md 2.2). */
+    /* g = 0: the table holds reduced scattering coefficients, so sigma_s = sigma_s' (docs/physics.md §2.2). */
     sss_result r = sss_material_from_coefficients(med->sigma_a, med->sigma_s_prime, scale, eta, 0.0, out,
                                                   err);
     if (r != SSS_OK) sss_error_prefix(err, med->name);

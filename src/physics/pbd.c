@@ -1,5 +1,5 @@
 /* physics/pbd.c — the Photon Beam Diffusion profile table, built, evaluated and sampled exactly as
- * PBRT-v3 does (FACTS.md 2.2; pbrt-v3 core/bssrdf.cpp: BeamDiffusionMS, BeamDiffusionSS,
+ * PBRT-v3 does (docs/physics.md §2.2; pbrt-v3 core/bssrdf.cpp: BeamDiffusionMS, BeamDiffusionSS,
  * ComputeBeamDiffusionBSSRDF, TabulatedBSSRDF::Sr / Sample_Sr / Pdf_Sr, SubsurfaceFromDiffuse).
  *
  * One difference in value: where PBRT's rho_eff exceeds 1, the rows nearest albedo 1 are scaled to
@@ -24,7 +24,7 @@ static double phase_hg(double cos_theta, double g)
     return (1.0 - g * g) / (4.0 * PI * denom * sqrt(denom));
 }
 
-/* BeamDiffusionSS / rho with sigma_t = 1 (FACTS.md 2.2, single scattering). */
+/* BeamDiffusionSS / rho with sigma_t = 1 (docs/physics.md §2.2, single scattering). */
 static double single_scattering_unit(double g, double eta, double r, const double *depth)
 {
     double t_crit = r * sqrt(eta * eta - 1.0);
@@ -39,7 +39,7 @@ static double single_scattering_unit(double g, double eta, double r, const doubl
     return sum / N_SAMPLES;
 }
 
-/* Per-albedo constants of BeamDiffusionMS (FACTS.md 2.2, multiple scattering). */
+/* Per-albedo constants of BeamDiffusionMS (docs/physics.md §2.2, multiple scattering). */
 typedef struct ms_params {
     double sigmap_t, rhop, D_g, sigma_tr, z_e, c_phi, c_E;
 } ms_params;
@@ -84,7 +84,7 @@ static double multiple_scattering(const ms_params *p, double r, const double *de
 /* Energy conservation. With no absorption (albedo 1) every photon that enters a half-space leaves it
  * again, so the plane integral of S_r is exactly 1 there and below 1 for any albedo < 1. PBRT's sum of
  * single scattering and the diffusion term overshoots near albedo 1 (rho_eff 1.085 at eta 1, 1.019 at
- * eta 1.33, FACTS.md 1). When it does, rows above x0 = 2 - rho_max are remapped to
+ * eta 1.33, docs/physics.md §1). When it does, rows above x0 = 2 - rho_max are remapped to
  * x0 + (rho_eff - x0) / 2: continuous, still strictly rising with the albedo (so SubsurfaceFromDiffuse
  * stays invertible), exactly 1 at albedo 1. Each remapped row keeps its shape (profile and CDF are
  * scaled together, so sampling is unchanged); every row at or below x0 is PBRT's exactly, which covers

@@ -43,7 +43,7 @@ sss_result sss_profile_init(sss_profile *p, sss_profile_model model, const sss_m
                                  table->eta, table->g, m->eta, m->g);
         q.table = table;
     } else {
-        /* The dipole takes reduced scattering sigma_s' = sigma_s (1 - g) (seed 004, Table 1). */
+        /* The dipole takes reduced scattering sigma_s' = sigma_s (1 - g) (Mertens et al. 2003, Table 1). */
         for (int c = 0; c < 3; c++)
             sss_dipole_init(&q.dipole[c], m->sigma_a[c], m->sigma_s[c] * (1.0 - m->g), m->eta);
     }
@@ -70,7 +70,7 @@ double sss_profile_eval(const sss_profile *p, int channel, double r)
         v = sss_dipole_rd(&p->dipole[channel], r);
         break;
     case SSS_PROFILE_GAUSS6:
-        /* d'Eon 2007: sum of normalised 2D Gaussians (FACTS.md 2.4). */
+        /* d'Eon 2007: sum of normalised 2D Gaussians (docs/physics.md §2.4). */
         for (int k = 0; k < SSS_GAUSS6_TERMS; k++)
             v += sss_gauss6_weight[channel][k] * sss_gaussian_2d(gauss6_variance(p, k), r);
         break;
@@ -104,7 +104,7 @@ double sss_profile_total(const sss_profile *p, int channel)
     return v > 0.0 && isfinite(v) ? v : 0.0;
 }
 
-/* Fraction of the plane integral inside radius r, in closed form for the dipole (seed 004, Eq. 6:
+/* Fraction of the plane integral inside radius r, in closed form for the dipole (Mertens et al. 2003, Eq. 6:
  * int_0^r z (1 + s_tr s) e^(-s_tr s)/s^3 r dr = e^(-s_tr z) - z e^(-s_tr s(r))/s(r)) and for the
  * Gaussians (int_0^r G 2 pi r dr = 1 - e^(-r^2/2v)). */
 static double closed_form_cdf(const sss_profile *p, int channel, double r)

@@ -1,5 +1,5 @@
-/* reference/ref_light.c — the lights of SCENE.md: preprocessing, irradiance with shadow rays (the
- * T(x) of FACTS.md 1 when a Fresnel index is given), and the radiance that camera rays see. */
+/* reference/ref_light.c — the lights of docs/scene-format.md: preprocessing, irradiance with shadow rays (the
+ * T(x) of docs/physics.md §1 when a Fresnel index is given), and the radiance that camera rays see. */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -291,7 +291,7 @@ static void add_sample(const ref_ctx *ctx, const double po[3], const double ng[3
     if (!(cs > 0.0)) return;
     if (!(li[0] > 0.0 || li[1] > 0.0 || li[2] > 0.0)) return;
     if (ref_occluded(ctx, po, wi, t_max)) return;
-    /* FACTS.md 1: the light enters through the interface with F_t = 1 - F_r(cos theta_i). */
+    /* docs/physics.md §1: the light enters through the interface with F_t = 1 - F_r(cos theta_i). */
     double ft = eta > 0.0 ? 1.0 - sss_fresnel_dielectric(cs, 1.0, eta) : 1.0;
     double k = cs * ft * weight;
     for (int c = 0; c < 3; c++) out[c] += li[c] * k;

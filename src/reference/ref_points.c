@@ -1,5 +1,5 @@
 /* reference/ref_points.c — stratified, area-weighted surface samples of one subsurface object and
- * their T(x_i) A_i (FACTS.md 1), computed once and shared by every pixel.
+ * their T(x_i) A_i (docs/physics.md §1), computed once and shared by every pixel.
  *
  * Each triangle is cut into m^2 congruent sub-triangles (m subdivisions per edge) with one sample at
  * each one's centroid, weighted by the exact sub-triangle area A / m^2: the set is stratified over the

@@ -34,7 +34,7 @@ double ref_profile_source_eval(const ref_profile_source *src, int channel, doubl
 {
     double v;
     if (src->kind == SSS_SCENE_PROFILE_ARTIST) {
-        /* Radially symmetric counterpart of seed 002 Eq. 6: w G2(sigma_n) + (1 - w) G2(sigma_f). */
+        /* Radially symmetric counterpart of Jimenez et al. 2019, Eq. 6: w G2(sigma_n) + (1 - w) G2(sigma_f). */
         const sss_artist_params *a = &src->artist;
         double sn = a->near[channel] * a->s, sf = a->far[channel] * a->s;
         v = src->albedo[channel] *

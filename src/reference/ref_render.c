@@ -1,4 +1,4 @@
-/* reference/ref_render.c — the pixel loop: camera samples, shading (FACTS.md 1), adaptive
+/* reference/ref_render.c — the pixel loop: camera samples, shading (docs/physics.md §1), adaptive
  * supersampling of edges, and the library entry point for a scene-independent world. */
 #include <omp.h>
 #include <stdlib.h>
@@ -127,7 +127,7 @@ static int probe_irradiance(const ref_ctx *ctx, const ref_object *obj, const sur
     return 1;
 }
 
-/* Near part below R0 (FACTS.md 1): int over the surface within R0 of S_near(|y - x_o|) T(y) dA, by
+/* Near part below R0 (docs/physics.md §1): int over the surface within R0 of S_near(|y - x_o|) T(y) dA, by
  * ctx->near_probes probe rays as PBRT samples its BSSRDF: radii from the binned S_near (stratified),
  * angles from a randomised Kronecker sequence. Self-normalised, so that a constant T gives exactly
  * near * T; a probe that finds no surface uses T(x_o). (A probe count that adapts to the first
@@ -246,7 +246,7 @@ static void shade(const ref_ctx *ctx, const double dir[3], int stratum, int stra
         for (int c = 0; c < 3; c++) L[c] = src->reflectance[c] / REF_PI * E[c];
         return;
     }
-    /* FACTS.md 1: L = F_t(x_o) / (pi c) * [near part + sum_i T_i A_i S_far(|x_i - x_o|)]. */
+    /* docs/physics.md §1: L = F_t(x_o) / (pi c) * [near part + sum_i T_i A_i S_far(|x_i - x_o|)]. */
     double near[3], far[3] = {0, 0, 0};
     near_part(ctx, obj, &hit, rng, near);
     if (obj->tree.point_count > 0) {

@@ -1,4 +1,4 @@
-/* sam/sam_back.c — the lower-tessellation back-side mesh of seed 001 (section 4.4: "a proof of concept
+/* sam/sam_back.c — the lower-tessellation back-side mesh of Maisch & Ropinski 2017 (section 4.4: "a proof of concept
  * that works on a lower triangulation for back side information", detailed in the paper's appendix,
  * which our copy lacks). Design: the receivers v_o stay the render mesh's vertices (the translucency
  * of Eq. 12 is still per rendered vertex); the sources v_i of Eq. 8-12 are the vertices of a coarser

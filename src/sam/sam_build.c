@@ -1,4 +1,4 @@
-/* sam/sam_build.c — building a Spatial Adjacency Map (seed 001, sections 3.2-3.3 and 4.2): for every
+/* sam/sam_build.c — building a Spatial Adjacency Map (Maisch & Ropinski 2017, sections 3.2-3.3 and 4.2): for every
  * vertex v_o the n back-side vertices (Eq. 13-14) with the largest Monte Carlo form factors K_oi
  * (Eq. 11), with K' of Eq. 15. The sources are the mesh's own vertices or those of a lower-tessellation
  * back-side mesh (section 4.4 and the appendix: larger fans, so n links cover more of the back side).

@@ -1,4 +1,4 @@
-/* sam/sam_geom.c — the geometry of seed 001: reduced fans and their areas (Eq. 16, Fig. 2), the
+/* sam/sam_geom.c — the geometry of Maisch & Ropinski 2017: reduced fans and their areas (Eq. 16, Fig. 2), the
  * back-side criteria (Eq. 13-14), region integrals by a 4D Kronecker sequence (Eq. 11) and the radial
  * profile table with its upper envelope. */
 #include <math.h>

@@ -1,4 +1,4 @@
-/* sam/sam_search.c — the search of seed 001, section 4.2: for a receiving vertex v_o the n back-side
+/* sam/sam_search.c — the search of Maisch & Ropinski 2017, section 4.2: for a receiving vertex v_o the n back-side
  * vertices (Eq. 13-14) with the largest Monte Carlo form factors K_oi (Eq. 11), among the vertices of
  * the source mesh: the mesh itself, or a lower-tessellation back-side mesh (section 4.4, appendix).
  *

@@ -1,4 +1,4 @@
-/* The pinhole camera of SCENE.md: basis, primary rays, projection, GL matrices. fov is along the
+/* The pinhole camera of docs/scene-format.md: basis, primary rays, projection, GL matrices. fov is along the
  * shorter image axis, as PBRT-v3's perspective camera (screen window [-aspect, aspect] x [-1, 1] for
  * wide images, [-1, 1] x [-1/aspect, 1/aspect] for tall ones, scaled by tan(fov / 2)). */
 #include <math.h>

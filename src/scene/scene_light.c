@@ -1,4 +1,4 @@
-/* Lights of SCENE.md: point, spot, directional, area, environment. */
+/* Lights of docs/scene-format.md: point, spot, directional, area, environment. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

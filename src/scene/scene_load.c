@@ -1,6 +1,7 @@
-/* The scene loader: JSON text -> validated sss_scene (SCENE.md), then the load phase (PBD tables,
+/* The scene loader: JSON text -> validated sss_scene (docs/scene-format.md), then the load phase (PBD tables,
  * material resolution, meshes). */
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -172,12 +173,27 @@ static void line_column(const char *text, size_t offset, size_t *line, size_t *c
     }
 }
 
+/* The optional top-level "version" (docs/scene-format.md): absent = 1. Checked before the field names,
+ * so that a newer file is refused for its version rather than for a field this reader does not know. */
+static sss_result parse_version(jr *r, const cJSON *root)
+{
+    long version = 0;
+    sss_result res = jr_int(r, root, "version", 0, 1, 1, INT_MAX, &version);
+    if (res != SSS_OK) return res;
+    if (version > SSS_SCENE_FORMAT_VERSION)
+        return jr_fail_key(r, "version", SSS_ERROR_UNSUPPORTED,
+                           "%ld is newer than this sss reads (scene format version %d)", version,
+                           SSS_SCENE_FORMAT_VERSION);
+    return SSS_OK;
+}
+
 static sss_result parse_root(scene_ctx *c, const cJSON *root, sss_scene *s)
 {
     jr *r = &c->r;
-    static const char *const fields[] = {"camera", "objects", "lights", "render"};
+    static const char *const fields[] = {"version", "camera", "objects", "lights", "render"};
     sss_result res;
     if (!cJSON_IsObject(root)) return jr_fail(r, SSS_ERROR_PARSE, "expected a JSON object at the top level");
+    if ((res = parse_version(r, root)) != SSS_OK) return res;
     if ((res = jr_check_fields(r, root, fields, SCENE_COUNT(fields))) != SSS_OK) return res;
     if ((res = jr_require(r, root, "camera")) != SSS_OK) return res;
     size_t mark = jr_enter_key(r, "camera");
@@ -263,7 +279,7 @@ static sss_result load_object(scene_ctx *c, sss_scene *s, sss_scene_object *o)
     else res = build_procedural(&o->procedural, &o->mesh, r->err);
     if (res != SSS_OK) return jr_prefix(r, o->mesh_path ? "mesh" : "procedural", res);
     sss_mesh_bounds(&o->mesh, o->bounds_min, o->bounds_max);
-    /* SCENE.md: a texture needs UVs in the mesh. */
+    /* docs/scene-format.md: a texture needs UVs in the mesh. */
     if (o->material.texture && !o->mesh.uvs) {
         size_t mark = jr_enter_key(r, "material");
         res = jr_fail_key(r, "texture", SSS_ERROR_INVALID_ARGUMENT, "needs UVs, but the %s has none",

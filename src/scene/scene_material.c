@@ -1,5 +1,5 @@
-/* Materials of SCENE.md: parsing (with the three mutually exclusive `subsurface` parameterisations)
- * and resolution to per-scene-unit coefficients (FACTS.md 2.2, 2.3; PBRT-v3 subsurface/kdsubsurface). */
+/* Materials of docs/scene-format.md: parsing (with the three mutually exclusive `subsurface` parameterisations)
+ * and resolution to per-scene-unit coefficients (docs/physics.md §2.2, 2.3; PBRT-v3 subsurface/kdsubsurface). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -8,7 +8,7 @@
 
 #include "scene/scene_internal.h"
 
-/* seed 002 Table 2, "production" preset (FACTS.md 2.4): the defaults of an artist profile. */
+/* Jimenez et al. 2019, Table 2, "production" preset (docs/physics.md §2.4): the defaults of an artist profile. */
 static const double artist_near_default[3] = {0.22, 0.07, 0.07};
 static const double artist_far_default[3] = {1.0, 0.3, 0.15};
 static const double artist_w_default = 0.65;
@@ -125,10 +125,10 @@ static sss_result parse_subsurface(scene_ctx *c, const cJSON *obj, sss_scene_mat
         if (jr_get(obj, "scale"))
             return jr_fail_key(r, "scale", SSS_ERROR_INVALID_ARGUMENT,
                                "not used with reflectance + mfp (mfp is in scene units)");
-        /* SCENE.md lists reflectance, mfp and eta for this form (PBRT's kdsubsurface without g). */
+        /* docs/scene-format.md lists reflectance, mfp and eta for this form (PBRT's kdsubsurface without g). */
         if (jr_get(obj, "g"))
             return jr_fail_key(r, "g", SSS_ERROR_INVALID_ARGUMENT,
-                               "not allowed with reflectance + mfp (SCENE.md: only explicit coefficients take g)");
+                               "not allowed with reflectance + mfp (docs/scene-format.md: only explicit coefficients take g)");
     }
     if (m->source != SSS_SUBSURFACE_REFLECTANCE) {
         if ((res = jr_number(r, obj, "scale", 0, 1, &m->scale)) != SSS_OK) return res;
@@ -201,7 +201,7 @@ sss_result scene_resolve_material(scene_ctx *c, sss_scene_material *m, const sss
     if (res != SSS_OK) return jr_prefix(&c->r, NULL, res);
     if ((res = sss_material_validate(&m->optical, err)) != SSS_OK) return jr_prefix(&c->r, NULL, res);
     m->table = table;
-    /* The display albedo: the plane integral of the PBD profile (FACTS.md 2.2, rho_eff), exactly the
+    /* The display albedo: the plane integral of the PBD profile (docs/physics.md §2.2, rho_eff), exactly the
      * requested reflectance for kdsubsurface. */
     for (int i = 0; i < 3; i++) {
         if (m->source == SSS_SUBSURFACE_REFLECTANCE) {

@@ -1,4 +1,4 @@
-/* Objects of SCENE.md: mesh | procedural, transform, material, splat mesh, animation. */
+/* Objects of docs/scene-format.md: mesh | procedural, transform, material, splat mesh, animation. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

@@ -1,4 +1,4 @@
-/* Object transforms of SCENE.md: M = T R S (scale, then rotate about an axis, then translate). */
+/* Object transforms of docs/scene-format.md: M = T R S (scale, then rotate about an axis, then translate). */
 #include <math.h>
 #include <string.h>
 

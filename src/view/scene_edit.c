@@ -59,7 +59,7 @@ static double number_or(const cJSON *obj, const char *key, double fallback)
 }
 
 /* One subsurface material. Measured media are coefficients in mm^-1 times `scale` (mm per scene unit,
- * FACTS.md 2.2): a preset keeps the file's `scale` when it had one (the scene's unit), and the scale
+ * docs/physics.md §2.2): a preset keeps the file's `scale` when it had one (the scene's unit), and the scale
  * factor multiplies the coefficients, i.e. `scale`, or divides the mean free path of kdsubsurface. */
 static int edit_material(cJSON *m, int medium, double factor)
 {

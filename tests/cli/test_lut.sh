@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # CLI test of `sss lut`: writes the image (EXR and PFM), prints r_max = max over channels of
-# ln(sigma_s' / 1e-7) / sigma_t' (seed 000, section 7.1, computed here from the FACTS.md 2.3 Marble
+# ln(sigma_s' / 1e-7) / sigma_t' (Maisch & Ropinski 2020, section 7.1, computed here from the docs/physics.md §2.3 Marble
 # coefficients) and A_max = pi r_max^2; the image's layout (x = r, row 0 = A = 0 holds R_d itself,
 # compared with `sss profile` at the texel radii); errors exit 1 (bad medium, size, file type) or 2
 # (usage) and leave no file.

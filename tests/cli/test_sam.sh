@@ -65,7 +65,7 @@ msg=$("$SSS" render "$T/s.json" --technique sam --data "$T/b.sam" -o "$T/c.png" 
 printf '%s\n' "$msg" | grep -q "different mesh" || err "no clear message: $msg"
 [ ! -e "$T/c.png" ] || err "an image was written despite the error"
 
-# back side on a lower-tessellation mesh (seed 001, 4.4): version 2 with the coarse mesh in the file
+# back side on a lower-tessellation mesh (Maisch & Ropinski 2017, 4.4): version 2 with the coarse mesh in the file
 out=$("$SSS" sam build "$BUNNY" --medium Marble --scale 2.5 -n 4 --samples 16 --backside-triangles 600 -o "$T/c.sam") ||
     err "backside build: exit $?"
 [ "$(od -An -tu4 -j8 -N4 "$T/c.sam" | tr -d ' ')" = 2 ] || err "c.sam is not version 2"
@@ -86,7 +86,7 @@ msg=$("$SSS" sam info "$T/c.sam" "$ROOT/assets/dragon_low.ply" 2>&1); rc=$?
 msg=$("$SSS" sam build "$BUNNY" --medium Marble --backside-mesh "$T/none.ply" -o "$T/u.sam" 2>&1); rc=$?
 [ $rc -eq 1 ] && printf '%s
 ' "$msg" | grep -q "none.ply" || err "missing back-side mesh: $rc $msg"
-# a scene object's splat mesh (SCENE.md splat_triangles), rendered from the file
+# a scene object's splat mesh (docs/scene-format.md splat_triangles), rendered from the file
 sed 's/"subdivisions": 2}/"subdivisions": 3}, "splat_triangles": 80/' "$T/s.json" > "$T/sp.json"
 out=$("$SSS" sam build "$T/sp.json" -n 10 --backside-splat -o "$T/sp.sam") || err "--backside-splat: exit $?"
 [ "$(val "$out" backside_triangles)" -le 80 ] && [ "$(val "$out" vertices)" = 642 ] || err "--backside-splat: $out"

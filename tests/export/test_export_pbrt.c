@@ -52,7 +52,7 @@ static void test_file_contents(const char *dir)
     CHECK(n > 0);
 
     /* Camera: PBRT's left-handed camera space needs the mirror before LookAt; fov passes unchanged
-     * (PBRT's perspective fov is along the shorter axis, as SCENE.md's). */
+     * (PBRT's perspective fov is along the shorter axis, as the scene format's). */
     char *scale = strstr(text, "Scale -1 1 1"), *look = strstr(text, "LookAt 0 1 5  0 0.5 0  0 1 0");
     CHECK(scale && look && scale < look);
     CHECK(contains(text, "\"float fov\" [40]"));

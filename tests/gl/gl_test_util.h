@@ -164,7 +164,7 @@ static inline double gt_scene_dssim(const char *file, const char *ref_name, cons
 }
 
 /* F_t at normal incidence into a material (PBRT-v3's dielectric Fresnel); *co gets the exit factor
- * c_o = F_t / (pi c) of FACTS.md 1 for a view along the normal. */
+ * c_o = F_t / (pi c) of docs/physics.md §1 for a view along the normal. */
 static inline double gt_normal_transmission(const sss_scene_material *m, double *co)
 {
     double eta = m->optical.eta, ft = 1.0 - sss_fresnel_dielectric(1.0, 1.0, eta);

@@ -1,6 +1,6 @@
-/* chen2012 (Chen et al. 2012 as seed 000 configures it, src/gl/tech_chen2012.c):
+/* chen2012 (Chen et al. 2012 as Maisch & Ropinski 2020 configure it, src/gl/tech_chen2012.c):
  *  - energy: a large flat plane lit at normal incidence by a directional light (E = 1) shows
- *    c_o F_t E rho_eff in the middle of the view (FACTS.md 1; rho_eff the scene material's PBD albedo;
+ *    c_o F_t E rho_eff in the middle of the view (docs/physics.md §1; rho_eff the scene material's PBD albedo;
  *    F_t and c from the physics module). Each splat carries a texel's flux F_t E A and the
  *    disc-integrated kernel keeps its integral exact, so the mean over the window is exact up to the
  *    kernel's cut-off (splat_energy = 1: r_max, holding at least lut_energy = 99.9%) and the LUT's
@@ -13,7 +13,7 @@
  *    fractions that admit levels 0, 1 and 2 (within 0.5%: texel centres on the plane's rim);
  *  - one buffer per light: two directional lights give the sum of the images of each alone;
  *  - the committed test scenes against their cached references (DSSIM, printed; bounds below), no
- *    NaN/Inf, and seed 000's ordering on the back-lit dragon (section 8.1, Fig. 6a): the splatting
+ *    NaN/Inf, and Maisch & Ropinski 2020's ordering on the back-lit dragon (section 8.1, Fig. 6a): the splatting
  *    techniques beat the screen-space ones, here `ssss` and `screen`. */
 #include <unistd.h>
 
@@ -119,7 +119,7 @@ static void test_levels(void)
         return;
     }
     /* The buffer spans the plane's bounding sphere (radius sqrt 2, 1% margin). The splats' required
-     * radius with splat_energy = 1 is the LUT's r_max: the larger of seed 000's source cut-off and the
+     * radius with splat_energy = 1 is the LUT's r_max: the larger of Maisch & Ropinski 2020's source cut-off and the
      * radius holding lut_energy = 99.9% of every channel. texel_fraction = 1.4 w_L / r_max lets level
      * L (width w_L) qualify and not level L + 1 (2 w_L). */
     const sss_scene_material *m = &scene.objects[0].material;
@@ -152,11 +152,11 @@ int main(void)
     /* Back-lit dragon: measured 0.023 (bound +1/3). */
     double d_bl = gt_scene_dssim("gl_backlit.json", "ref_backlit.exr", "chen2012", 0.031);
     /* Front-lit head with a shadow edge: measured 0.014, below `local` (0.040): splats from the light's
-     * view are dense where the light falls (seed 000, 8.1: Chen "does comparatively well"). */
+     * view are dense where the light falls (Maisch & Ropinski 2020, 8.1: Chen "does comparatively well"). */
     double d_se = gt_scene_dssim("gl_shadow_edge.json", "ref_shadow_edge.exr", "chen2012", 0.019);
     double d_local = gt_scene_dssim("gl_shadow_edge.json", "ref_shadow_edge.exr", "local", 0.0);
     CHECK(d_se < d_local);
-    /* seed 000's ordering on the back-lit scene */
+    /* Maisch & Ropinski 2020's ordering on the back-lit scene */
     const char *others[] = {"ssss", "screen"};
     for (int i = 0; i < 2; i++) {
         if (!sss_gl_technique_find(others[i])) {

@@ -7,7 +7,7 @@
  * That code fails the energy check below by -52% (measured, with this file built against it).
  *
  *  - energy: a large flat plane under a sky of constant radiance L = 1 over the upper hemisphere
- *    (black below). Its middle shows c_o F_t E rho_eff (FACTS.md 1), as in the single-light test of
+ *    (black below). Its middle shows c_o F_t E rho_eff (docs/physics.md §1), as in the single-light test of
  *    test_chen2012.c, where F_t E is what the 32 lights deliver: the camera pass's per-pixel sum over
  *    the same lights (read back as "irradiance"; no light-view buffer, no splat involved). With
  *    splat_energy = 1 the splats keep the kernel's integral, so bound 0.75% as there (measured
@@ -28,7 +28,7 @@
 
 static char sky_path[256];
 
-/* Equirectangular map (SCENE.md: +y up, rows from the zenith down) with radiance 1 over the upper
+/* Equirectangular map (docs/scene-format.md: +y up, rows from the zenith down) with radiance 1 over the upper
  * hemisphere and 0 below; the row boundary at h / 2 lies exactly on the horizon. */
 static int write_sky(void)
 {

@@ -1,6 +1,6 @@
-/* dss (Deep Screen Space as seed 000 configures it, src/gl/tech_dss.c):
+/* dss (Deep Screen Space as Maisch & Ropinski 2020 configure it, src/gl/tech_dss.c):
  *  - energy: a large flat plane lit at normal incidence by a directional light (E = 1) shows
- *    c_o F_t E rho_eff in the middle of the view (FACTS.md 1; rho_eff the plane integral of R_d, the
+ *    c_o F_t E rho_eff in the middle of the view (docs/physics.md §1; rho_eff the plane integral of R_d, the
  *    scene material's PBD albedo; F_t and c from the physics module). The splats tile the plane and
  *    the disc-integrated kernel keeps each splat's integral A R'_d exact, so the spatial mean over many
  *    splats is exact up to the kernel's cut-off (splat_energy = 1: r_max, which holds at least
@@ -13,7 +13,7 @@
  *    0.99 leaves out up to 1% of the red);
  *  - linearity in the lights: two directional lights give the sum of the images of each alone;
  *  - the committed test scenes against their cached references (DSSIM, printed; bounds below), no
- *    NaN/Inf, and seed 000's ordering on the back-lit dragon (section 8.1, Fig. 6a): the splatting
+ *    NaN/Inf, and Maisch & Ropinski 2020's ordering on the back-lit dragon (section 8.1, Fig. 6a): the splatting
  *    techniques beat the screen-space ones, here `ssss` and `screen`. */
 #include <unistd.h>
 
@@ -56,15 +56,15 @@ int main(void)
     test_plane_energy();
     plane_lights_add("dss", NULL, 0);
     /* Back-lit dragon: measured 0.030 (0.026 with footprint = 0; bound 0.035). The translucency
-     * dominates (seed 000, 8.1). */
+     * dominates (Maisch & Ropinski 2020, 8.1). */
     double d_bl = gt_scene_dssim("gl_backlit.json", "ref_backlit.exr", "dss", 0.035);
     /* Front-lit head with a shadow edge: measured 0.029, better than `local` (0.040). The surfels are
      * a few pixels apart and the Skin1 kernel is narrower than that: with one disc of each surfel's own
      * area (footprint = 0) their lattice showed, 0.045 (0.061 with the surfels on the splat mesh's
-     * chords too, surface_snap = 0; test_dss_chords); the shadow edge still blurs, as seed 000 reports
+     * chords too, surface_snap = 0; test_dss_chords); the shadow edge still blurs, as Maisch & Ropinski 2020 report
      * for DSS ("shadow edges are not preserved very well", section 8.1). Bound +1/3: 0.039. */
     gt_scene_dssim("gl_shadow_edge.json", "ref_shadow_edge.exr", "dss", 0.039);
-    /* seed 000's ordering on the back-lit scene */
+    /* Maisch & Ropinski 2020's ordering on the back-lit scene */
     const char *others[] = {"ssss", "screen"};
     for (int i = 0; i < 2; i++) {
         if (!sss_gl_technique_find(others[i])) {

@@ -10,7 +10,7 @@
  *    the red kernel reaches ~0.08 units, so near the line facing the camera and the light it is a
  *    plane to the kernel), rendered from 160 facets, splatted from 5 (chord depth up to 0.0123 units,
  *    2.5 mm, 3.7 blue mean free paths). Lit at normal incidence (E = 1) it must show
- *    c_o F_t E rho_eff of the plane (FACTS.md 1), as test_dss's plane does: with 1.3-pixel surfels and
+ *    c_o F_t E rho_eff of the plane (docs/physics.md §1), as test_dss's plane does: with 1.3-pixel surfels and
  *    splat_energy 1 within 1% (measured -0.2%, -0.3%, -0.4%; surfels on the chords: -56%, -83%, -96%).
  *  - The front-lit bust against its cached CPU reference (scenes/references/eval_front_384x384.exr):
  *    smoothed over the surfel lattice (Gaussian, sigma 2 pixels), the blue/red ratio of dss divided by

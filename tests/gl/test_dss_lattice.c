@@ -1,6 +1,6 @@
 /* dss's surfel lattice must not print into the image (footprint, dss_splat.frag.glsl; docs/dss.md).
  *
- * A uniformly lit plane scatters light uniformly: the reference image of its middle is flat (FACTS.md
+ * A uniformly lit plane scatters light uniformly: the reference image of its middle is flat (docs/physics.md
  * 1: c_o F_t E rho_eff at every pixel, whatever R_d's width). dss tessellates the splat mesh's
  * triangles into surfels a few pixels apart, and Skin1's blue kernel (1/sigma_tr 0.4 pixel here) is
  * far narrower than that, so the image shows what the surfels' footprints add up to. With one disc of

@@ -156,7 +156,7 @@ static void test_registry(void)
     CHECK(t != NULL);
     CHECK(sss_gl_technique_find("no-such-technique") == NULL);
     CHECK(sss_gl_technique_at(-1) == NULL && sss_gl_technique_at(sss_gl_technique_count()) == NULL);
-    /* the paper's defaults (seed 000, sections 4.2, 5, 6.1, 6.2) */
+    /* the paper's defaults (Maisch & Ropinski 2020, sections 4.2, 5, 6.1, 6.2) */
     int found = 0;
     for (int i = 0; t && i < t->param_count; i++) {
         const sss_gl_param_info *p = &t->params[i];

@@ -12,7 +12,7 @@
  *   area light       0.039      0.05    local 0.12
  *   environment      0.073      0.095   (local 0.048: the sqrt(i) brightening over-brightens here)
  *   spot + sun       0.037      0.05    local 0.068
- * Seed 000's brightening term sqrt(i) (default on, as the paper) adds 30-46% to these area- and
+ * Maisch & Ropinski 2020's brightening term sqrt(i) (default on, as the paper) adds 30-46% to these area- and
  * environment-lit scenes; without it the mean colour is within 4% of the reference, checked below. */
 #include "gl_test_util.h"
 
@@ -33,7 +33,7 @@ static void test_backlit(void)
     printf("backlit: DSSIM full %.4f, screen-space only %.4f\n", d_full, d_screen);
     CHECK(d_full < 0.065);
     CHECK(d_screen > 2.0 * d_full);
-    /* the translucency pass alone carries most of the light (seed 000, section 8.1, Fig. 6a) */
+    /* the translucency pass alone carries most of the light (Maisch & Ropinski 2020, section 8.1, Fig. 6a) */
     double mf[3], ms[3], mt[3], mr[3];
     gt_mean(&full, mf);
     gt_mean(&screen, ms);

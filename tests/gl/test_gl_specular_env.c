@@ -1,4 +1,4 @@
-/* The interface's specular reflection of an environment map (SCENE.md `specular`): under a constant
+/* The interface's specular reflection of an environment map (docs/scene-format.md `specular`): under a constant
  * environment of radiance L, a smooth interface adds exactly F_r(n . v) L to what the camera sees,
  * whatever the mip level the roughness selects, and nothing is added without `specular`. At the
  * centre of a sphere facing the camera n . v = 1, so the added radiance is ((eta - 1)/(eta + 1))^2 L. */

@@ -1,5 +1,5 @@
 /* maisch2020 properties that need no reference image:
- *  - zoom stability (seed 000, Fig. 2): the same sphere seen from two camera distances (pixel
+ *  - zoom stability (Maisch & Ropinski 2020, Fig. 2): the same sphere seen from two camera distances (pixel
  *    footprints 0.3 and 0.6 mm, around the green and blue kernels' widths) has the same mean colour
  *    within 2% per channel once the near image is box-downsampled to the far one's footprint, with
  *    the disc-integrated kernel (measured: at most 1.1%); the naive centre-sample kernel
@@ -51,7 +51,7 @@ static void test_zoom(void)
         CHECK(0);
         return;
     }
-    /* Seed 000's brightening factor sqrt(i) of outer layer i is off here: the layer index is a
+    /* Maisch & Ropinski 2020's brightening factor sqrt(i) of outer layer i is off here: the layer index is a
      * screen-space quantity, so the factor itself changes with zoom (measured: red 14% with it on). */
     double worst[2] = {0, 0};
     for (int pre = 1; pre >= 0; pre--) {

@@ -6,7 +6,7 @@
  * directional light travelling along -x, i.e. straight onto the silhouette at x = 1. Within the
  * kernel's reach of the rim (five red mean free paths, 0.09 radians of the sphere) the surface leaves
  * its tangent plane by 0.4% of the radius and the irradiance varies by 0.4% (cos 0.09): the
- * scattering integral at a rim point is that of a uniformly lit plane, F_t E rho_eff (FACTS.md 1: the
+ * scattering integral at a rim point is that of a uniformly lit plane, F_t E rho_eff (docs/physics.md §1: the
  * plane integral of R_d is rho_eff), from the surface the camera sees and, within a few mean free
  * paths of the silhouette, from the surface just past it (the splats' part).
  *

@@ -5,7 +5,7 @@
  * travels at 45 degrees along the bar's normal, so the bar's shadow falls 0.3 units away, more than
  * ten red mean free paths from the pixels measured: the irradiance is uniform over all of the plane
  * that matters, the strip under the bar included. A uniformly lit plane is translation invariant, so
- * the plane's radiance next to the bar equals that of the open plane, c_o F_t E rho_eff (FACTS.md 1:
+ * the plane's radiance next to the bar equals that of the open plane, c_o F_t E rho_eff (docs/physics.md §1:
  * the plane integral of R_d is rho_eff), whatever hides the strip from the camera.
  *
  * The strip under the bar faces the camera but is not seen by it: the screen-space pass cannot gather

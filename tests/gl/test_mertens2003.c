@@ -1,6 +1,6 @@
-/* mertens2003 (seed 004, src/gl/tech_mertens2003.c):
+/* mertens2003 (Mertens et al. 2003, src/gl/tech_mertens2003.c):
  *  - unbiasedness: a large flat plane under a directional light at normal incidence, seen head-on,
- *    has B(x_o) = rho_eff E everywhere, so the pixels show c_o F_t E rho_eff (FACTS.md 1; rho_eff the
+ *    has B(x_o) = rho_eff E everywhere, so the pixels show c_o F_t E rho_eff (docs/physics.md §1; rho_eff the
  *    material's PBD albedo, F_t and c from the physics module). On the plane the sample p' is the
  *    surface point, r = r', the Jacobian is 1 and every sample finds the object, so the estimator is
  *    unbiased for the integral of the tabulated R_d (the LUT's row A = 0; the importance tables and
@@ -150,7 +150,7 @@ static void test_shadow_edge(void)
     printf("shadow edge: DSSIM %.4f\n", d);
     /* measured 0.037 (bound +1/3): the local response is right, but samples of the wide red kernel that
      * land on nearby folds (glasses, ear) weigh R_d(r) / R_d(r') >> 1 and leave red specks, the
-     * undersampling artefacts seed 004 describes (section 7.1); `local` measures 0.040 */
+     * undersampling artefacts Mertens et al. 2003 describe (section 7.1); `local` measures 0.040 */
     CHECK(d < 0.049);
     CHECK(sss_image_count_nonfinite(&img) == 0);
     sss_image_free(&ref);

@@ -1,12 +1,12 @@
 /* mertens2003's importance-sampling tables (src/gl/tech_mertens2003_table.c), without GL:
  *  - the tabulated radii are the exact sampler's quantiles: sss_pbd_sample_radius at the nodes (PBD),
- *    and for the dipole the empirical CDF of sss_dipole_sample_radius (seed 004's two-uniform Newton
+ *    and for the dipole the empirical CDF of sss_dipole_sample_radius (Mertens et al. 2003's two-uniform Newton
  *    sampler, 20000 draws) agrees with the table's CDF (Kolmogorov-Smirnov distance below 1.63 /
  *    sqrt(n), the 1% critical value);
  *  - the density the shader uses is that of the distribution it samples: it integrates to 1, and the
  *    fraction of u in [0, 1) mapping below r equals the integral of the density up to r;
  *  - it approximates R_d(r) 2 pi r / rho: E[R_d(r) 2 pi r / pdf(r)] over the table = rho (the plane
- *    integral, sss_profile_total) within 0.5%, the estimator of seed 004 Eq. 9 on a plane. */
+ *    integral, sss_profile_total) within 0.5%, the estimator of Mertens et al. 2003, Eq. 9 on a plane. */
 #include <stdlib.h>
 
 #include "check.h"

@@ -1,4 +1,4 @@
-/* Seed 000's ordering on the back-lit scene (section 8.1, Fig. 6a; issue 5): the techniques with a
+/* Maisch & Ropinski 2020's ordering on the back-lit scene (section 8.1, Fig. 6a; issue 5): the techniques with a
  * translucency part — maisch2020, dss, chen2012 — beat the screen-space ones — screen and ssss (with
  * its shadow-map transmittance, its default as in the SSSS reference code) — in DSSIM against the CPU
  * ground truth (tests/data/gl/ref_backlit256.exr).

@@ -1,6 +1,6 @@
-/* Technique "sam" (seed 001) against the CPU ground truth (cached references, tests/data/gl/README.md).
+/* Technique "sam" (Maisch & Ropinski 2017) against the CPU ground truth (cached references, tests/data/gl/README.md).
  *
- * Convergence (seed 001, Fig. 10): on a back-lit sphere of 162 vertices (tests/data/gl/sam_backlit.json,
+ * Convergence (Maisch & Ropinski 2017, Fig. 10): on a back-lit sphere of 162 vertices (tests/data/gl/sam_backlit.json,
  * Marble at 5 mm per unit: the scattering distance is about the radius) the RMSE against the reference
  * falls with every step of n = 3, 10, 20, 50 (measured 44.9, 38.3, 32.0, 19.1 in 8-bit codes). The links
  * rank form factors, not light: the nearest back-side vertices (past the sphere's equator as seen from
@@ -16,7 +16,7 @@
  *   backlit dragon   0.165      0.185   translucency off 0.186, local 0.190 (n = 50: 0.110)
  *   shadow edge      0.018      0.025   local 0.040
  *   twist t = 1      0.018      0.025   (deforming: links updated through adjacency)
- * The back-lit dragon is seed 001's hard case (section 5.2: a finely tessellated model, small against
+ * The back-lit dragon is Maisch & Ropinski 2017's hard case (section 5.2: a finely tessellated model, small against
  * the mean free path): three links cover three reduced fans, a small part of the back side that
  * transmits light, so the image is darker than the reference; more links converge (n = 50 measured).
  * Time (Eq. 17-18): the first frame is never blended; a frame one second later converges to the

@@ -1,6 +1,6 @@
-/* Technique "sam" with the back side on a lower-tessellation mesh (seed 001, section 4.4 and its
+/* Technique "sam" with the back side on a lower-tessellation mesh (Maisch & Ropinski 2017, section 4.4 and its
  * appendix) on the back-lit dragon (scenes/gl_backlit.json, 51k vertices, against the cached reference
- * tests/data/gl/ref_backlit.exr). The dragon is seed 001's hard case: at n = 3 the links to three
+ * tests/data/gl/ref_backlit.exr). The dragon is Maisch & Ropinski 2017's hard case: at n = 3 the links to three
  * neighbouring back-side vertices of the fine mesh cover a tiny part of the back side. On a coarse mesh
  * the same n links cover far more, so the image at equal n is closer to the reference.
  *

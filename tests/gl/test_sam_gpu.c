@@ -2,7 +2,7 @@
  * (scenes/gl_twist.json) rendered at the twist's peak (t = 1): deformed world positions (the scene
  * module's animation), fan areas (Eq. 16), the link update of section 3.4 (sss_sam_update), and the
  * per-vertex translucency of Eq. 12 with Eq. 15's approximate form factors (sss_sam_approximate times
- * the GPU's own L_d). The same with a lower-tessellation back-side mesh (seed 001, 4.4) given in object
+ * the GPU's own L_d). The same with a lower-tessellation back-side mesh (Maisch & Ropinski 2017, 4.4) given in object
  * space through a .sam file: its vertices are posed as the scene module poses that mesh (so the GPU's
  * return from the file's scene units to object space is exact), its fan areas, the link update over its
  * adjacency (sss_sam_update_back) and Eq. 12 gathering L_d from it. Also: a static object's links are

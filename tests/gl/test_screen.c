@@ -1,4 +1,4 @@
-/* Technique "screen" = seed 000's screen-space part alone (maisch2020 without the translucency pass):
+/* Technique "screen" = Maisch & Ropinski 2020's screen-space part alone (maisch2020 without the translucency pass):
  *  - its parameters are maisch2020's screen-space ones (same names, types, defaults and ranges);
  *  - it runs maisch2020's code: its image equals maisch2020 with translucency = 0 bit for bit, with
  *    default and with changed parameters (n, layers, brightening), on the back-lit dragon, where the

@@ -5,7 +5,7 @@
  * neck as a faint ghost. Mode 2 evaluates such texels each at its own mean position.
  *
  * Oracle: the cached CPU reference of the front-lit bust (scenes/references/eval_front_384x384.exr,
- * seed 000 Fig. 6b), at its own size. With brightening off (where the kernel's energy is right, see
+ * Maisch & Ropinski 2020, Fig. 6b), at its own size. With brightening off (where the kernel's energy is right, see
  * docs/maisch2020.md) mode 2 must be closer to the reference than mode 1 (measured: DSSIM 0.0156 vs
  * 0.0182), and in the neck region below the chin (a shadowed window where the ghost shows) its mean
  * must be closer to the reference's. On a single smooth surface both modes are one sample and agree:

@@ -1,4 +1,4 @@
-/* The layered screen-space sum of seed 000 (section 4.2) on flat, uniformly lit planes.
+/* The layered screen-space sum of Maisch & Ropinski 2020 (section 4.2) on flat, uniformly lit planes.
  * Energy: a plane lit at normal incidence by a directional light (E = 1) sums to F_t E rho_eff in the
  * middle of the view (Eq. 6 integrates R_d over the plane: rho_eff, the material's PBD albedo; the
  * disc-integrated kernel keeps each cell's integral, the LUT holds >= 99.9% of the energy). Skin1 at

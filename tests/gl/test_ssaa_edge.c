@@ -2,7 +2,7 @@
  *  - a flat, uniformly lit Lambertian plane whose straight edge crosses the view at 20.3 degrees from
  *    the vertical (slope and offset chosen so that no render-pixel grid lines up with it), on a black background: with k x k samples per pixel, an edge pixel's value is the
  *    fraction of the pixel the plane covers times the interior value. The fraction is computed here
- *    from the camera's pinhole geometry (SCENE.md: looking down, fov along the shorter axis), not from
+ *    from the camera's pinhole geometry (docs/scene-format.md: looking down, fov along the shorter axis), not from
  *    the renderer; the interior value must be reflectance / pi x E (E = 1). The rasteriser tests the
  *    k^2 render-pixel centres, so a straight edge puts at most half a sample per row of k samples off
  *    the exact area: |value / interior - fraction| <= 1 / (2k) per pixel (k = 4: 0.125, k = 3: 1/6),

@@ -1,4 +1,4 @@
-/* ssss with the pre-integrated kernel on a straight shadow edge (seed 002, section 4 and Fig. 7): a
+/* ssss with the pre-integrated kernel on a straight shadow edge (Jimenez et al. 2019, section 4 and Fig. 7): a
  * flat Skin1 plane (10 mm per scene unit) front-lit by a directional light (normal incidence), half in
  * the sharp shadow of a box behind the camera, viewed head-on (tests/data/gl/ssss_edge.json, 192 x 48
  * pixels, the edge at x = 0 between columns 95 and 96).

@@ -1,5 +1,5 @@
 /* ssss properties that need no reference image:
- *  - stochastic rotation (seed 002, section 6): a bright dot (a 1-degree spot light, radius ~5 px, on a
+ *  - stochastic rotation (Jimenez et al. 2019, section 6): a bright dot (a 1-degree spot light, radius ~5 px, on a
  *    flat Skin1 plane at 20 mm per unit, seen head-on; pre-integrated kernel with 25 taps so that the
  *    taps do not alias into copies of the dot) spreads into the separable kernel's axis-aligned cross:
  *    in the ring 8-16 px around the dot the mean along the axes (within 15 degrees) is ~2x the mean

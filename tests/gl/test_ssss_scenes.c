@@ -12,14 +12,14 @@
  *   ssss-gauss6   0.18  -> 0.23     0.026 -> 0.034
  *   ssss-svd      0.037 -> 0.05     0.017 -> 0.023
  * screen and ssss-gauss6 miss the back-lit dragon's light: the screen-space pass sees only the visible
- * surface (seed 000, section 8.1), and the six-Gaussian fit is skin's (variances in mm at 1000 mm per
+ * surface (Maisch & Ropinski 2020, section 8.1), and the six-Gaussian fit is skin's (variances in mm at 1000 mm per
  * unit: its transmittance T(s) vanishes beyond ~3 mm of Skimmilk), so they are bounded from above only.
  * ssss and ssss-svd get the back-lit light from the transmittance through thin parts (Jimenez et al.
- * 2010, from the shadow map); without it ssss measures 0.186, which is what seed 000 compares against
+ * 2010, from the shadow map); without it ssss measures 0.186, which is what Maisch & Ropinski 2020 compare against
  * (its SSSS [JZJ*15] is the screen-space filter; Fig. 9 adds translucency only in a separate variant).
  * Here maisch2020 must beat screen and ssss without transmittance. With the transmittance (the default,
  * as the SSSS reference code) ssss measures 0.041 at this size, below maisch2020's 0.052, whose
- * quarter-resolution translucency is only 32 x 32 pixels at 128 px: seed 000's full ordering (against
+ * quarter-resolution translucency is only 32 x 32 pixels at 128 px: Maisch & Ropinski 2020's full ordering (against
  * ssss with transmittance too) is asserted at 256 x 256 by test_ordering.c. */
 #include "gl_test_util.h"
 
@@ -64,7 +64,7 @@ int main(void)
             sss_gl_param_value off = {"transmittance", 0};
             double d_plain = gt_technique_dssim(&scene, &ref, "ssss", &off, 1);
             printf("%s: ssss without transmittance %.4f\n", files[s], d_plain);
-            /* seed 000, section 8.1 and Fig. 10: the splatting translucency wins where light comes from
+            /* Maisch & Ropinski 2020, section 8.1 and Fig. 10: the splatting translucency wins where light comes from
              * surfaces the screen does not see */
             CHECK(d_maisch < measured[0][0]);
             CHECK(d_maisch < d_plain);

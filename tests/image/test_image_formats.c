@@ -109,7 +109,7 @@ static void test_png_grey_levels(const char *dir)
     remove(path);
 }
 
-/* SCENE.md render.exposure: out = round(255 srgb(clamp(linear 2^E, 0, 1))). */
+/* docs/scene-format.md render.exposure: out = round(255 srgb(clamp(linear 2^E, 0, 1))). */
 static void test_tone_map(void)
 {
     sss_image img = {0};

@@ -1,4 +1,4 @@
-/* Image metrics (FACTS.md 5): SSIM/DSSIM, PSNR, RMSE against scikit-image's numbers for committed
+/* Image metrics (docs/physics.md §5): SSIM/DSSIM, PSNR, RMSE against scikit-image's numbers for committed
  * image pairs (tests/data/images/ssim_reference.txt, from tools/ssim_reference.py), closed forms,
  * identity and symmetry. */
 #include <math.h>

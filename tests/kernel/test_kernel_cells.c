@@ -1,4 +1,4 @@
-/* The discretised profile behind the SVD and guided kernels (seed 002, section 3 and Appendix A):
+/* The discretised profile behind the SVD and guided kernels (Jimenez et al. 2019, section 3 and Appendix A):
  * each grid cell holds the integral of R_d over it (kq_cell_integrals), for odd and even grids alike.
  * Checked against independent computations:
  *  - the six-Gaussian fit: every cell against its closed form (products of erf differences);

@@ -1,4 +1,4 @@
-/* The disc-integrated LUT R'_d(r, A) (seed 000, Eq. 5, sections 7.1-7.2; FACTS.md 3) against its
+/* The disc-integrated LUT R'_d(r, A) (Maisch & Ropinski 2020, Eq. 5, sections 7.1-7.2; docs/physics.md §3) against its
  * defining properties and independent quadratures: A -> 0 gives R_d(r); r = 0 gives the disc average
  * (1/A) int_0^r_A R_d 2 pi x dx; random texels agree with a brute-force 2D integral in polar
  * coordinates around the disc's centre; a disc holding the whole profile holds its whole energy;
@@ -141,7 +141,7 @@ static void check_gauss6(void)
     sss_lut_free(&lut);
 }
 
-/* Seed 000, section 7.1: Q(r_max) = alpha' sigma_t' e^(-sigma_t' r_max) equals the cut-off in the
+/* Maisch & Ropinski 2020, section 7.1: Q(r_max) = alpha' sigma_t' e^(-sigma_t' r_max) equals the cut-off in the
  * channel that sets r_max and is below it in the others. */
 static void check_r_max(void)
 {

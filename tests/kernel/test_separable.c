@@ -1,4 +1,4 @@
-/* Separable kernels of seed 002 against properties the paper fixes and independent quadratures:
+/* Separable kernels of Jimenez et al. 2019 against properties the paper fixes and independent quadratures:
  * the pre-integrated a_p integrates to ||R_d||_1 and, convolved with a straight shadow edge, gives
  * the full 2D convolution (Eq. 4 says exactly); discretised taps are symmetric, ascending, sit at the
  * quantiles of the dominant channel and weigh each channel's kernel over their intervals; the artist
@@ -163,7 +163,7 @@ static void check_artist(const char *preset)
     sss_artist_params a;
     CHECK(sss_artist_preset(preset, &a, NULL) == SSS_OK);
     am_q q = {&a};
-    /* The continuous a_m integrates to 1 (a normalised mixture, seed 002 Eq. 6). */
+    /* The continuous a_m integrates to 1 (a normalised mixture, Jimenez et al. 2019, Eq. 6). */
     double tot[3] = {0, 0, 0};
     tu_graded(am_fn, &q, -20.0 * a.s, 20.0 * a.s, 0.0, 24, tot);
     for (int c = 0; c < 3; c++) CHECK_NEAR(tot[c], 1.0, 1e-9);
@@ -266,7 +266,7 @@ static void check_svd(const sss_profile *p, const char *what)
     sss_svd_kernel_free(&k);
 }
 
-/* ---- Guided rank-1 (seed 002, Appendix A): a constrained minimum ------------------------------- */
+/* ---- Guided rank-1 (Jimenez et al. 2019, Appendix A): a constrained minimum ------------------------------- */
 
 static void check_guided(const sss_profile *p, double k, const char *what)
 {

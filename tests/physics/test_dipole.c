@@ -1,4 +1,4 @@
-/* Classical dipole (seed 004): the closed-form total reflectance against an independent adaptive
+/* Classical dipole (Mertens et al. 2003): the closed-form total reflectance against an independent adaptive
  * quadrature of R_d over the plane; the exact sampler against R_d(r) 2 pi r / rho by a chi-square test;
  * the pdf integrates to 1. */
 #include "check.h"
@@ -35,7 +35,7 @@ static double plane_integral(const ctx *c, double r0, double r1)
 
 int main(void)
 {
-    /* (sigma_a, sigma_s', eta): measured media channels in mm^-1 (FACTS.md 2.3) and synthetic ones,
+    /* (sigma_a, sigma_s', eta): measured media channels in mm^-1 (docs/physics.md §2.3) and synthetic ones,
      * including no absorption (sigma_tr = 0) and strong absorption. */
     static const double cases[][3] = {
         {0.0021, 2.19, 1.33}, /* Marble R */
@@ -108,7 +108,7 @@ int main(void)
     }
     CHECK(isfinite(sss_dipole_sample_radius(&d, 0.9, 1.0)));
     CHECK(isfinite(sss_dipole_sample_radius(&d, 0.9, 0.999999999999)));
-    /* The real source's quantile: its radial CDF (seed 004, Eq. 6) at the sample equals u. */
+    /* The real source's quantile: its radial CDF (Mertens et al. 2003, Eq. 6) at the sample equals u. */
     for (double u = 0.05; u < 1.0; u += 0.1) {
         double r = sss_dipole_sample_radius(&d, 0.0, u); /* u_source = 0 -> real source */
         double s = sqrt(r * r + d.z_r * d.z_r);

@@ -1,5 +1,5 @@
 /* Fresnel reflectance against the textbook closed forms; Fresnel moments and F_dr against numerical
- * hemispherical integrals of the Fresnel reflectance; the check values of FACTS.md 1. */
+ * hemispherical integrals of the Fresnel reflectance; the check values of docs/physics.md §1. */
 #include "check.h"
 #include "physics/physics_test_util.h"
 #include "sss/material.h"
@@ -64,7 +64,7 @@ int main(void)
         CHECK_NEAR(sss_fresnel_dielectric(c, 1.0, eta), sss_fresnel_dielectric(ct, eta, 1.0), 1e-14);
     }
 
-    /* FACTS.md 1 check values at eta = 1.33 (printed to 4 decimals: half a unit of the last digit). */
+    /* docs/physics.md §1 check values at eta = 1.33 (printed to 4 decimals: half a unit of the last digit). */
     double fm1 = sss_fresnel_moment1(1.33), fm2 = sss_fresnel_moment2(1.33);
     CHECK_NEAR(fm1, 0.2365, 5.01e-5);
     CHECK_NEAR(fm2, 0.1086, 5.01e-5);
@@ -75,7 +75,7 @@ int main(void)
 
     /* The moment fits approximate FM_i(eta) = int_0^1 F_r(mu) mu^i dmu for light inside the medium.
      * The polynomial fits are good to about 1.5e-3 over eta in [1.1, 2] (their fitted range); we allow
-     * 2.5e-3. F_dr (seed 004) is the same hemispherical average, 2 int F mu dmu; same tolerance. */
+     * 2.5e-3. F_dr (Mertens et al. 2003) is the same hemispherical average, 2 int F mu dmu; same tolerance. */
     for (double eta = 1.1; eta <= 2.0001; eta += 0.1) {
         moment_ctx m1 = {eta, 1}, m2 = {eta, 2};
         double n1 = tu_integrate(moment_integrand, &m1, 0.0, 1.0, 1e-10);

@@ -1,5 +1,5 @@
-/* Gaussian profiles (FACTS.md 2.4): normalisation of the 2D and 1D Gaussians, the six-Gaussian skin fit
- * and the artist-friendly presets of seed 002 Table 2. */
+/* Gaussian profiles (docs/physics.md §2.4): normalisation of the 2D and 1D Gaussians, the six-Gaussian skin fit
+ * and the artist-friendly presets of Jimenez et al. 2019, Table 2. */
 #include <string.h>
 
 #include "check.h"
@@ -41,7 +41,7 @@ int main(void)
     CHECK(sss_gaussian_2d(0.0, 0.1) == 0.0 && sss_gaussian_2d(-1.0, 0.1) == 0.0);
     CHECK(sss_gaussian_2d(1.0, NAN) == 0.0);
 
-    /* Six-Gaussian fit: the values printed in FACTS.md 2.4; each channel's weights sum to 1 (d'Eon's
+    /* Six-Gaussian fit: the values printed in docs/physics.md §2.4; each channel's weights sum to 1 (d'Eon's
      * fit is normalised), and the variances increase. */
     static const double var[6] = {0.0064, 0.0484, 0.187, 0.567, 1.99, 7.41};
     static const double wr[6] = {0.233, 0.100, 0.118, 0.113, 0.358, 0.078};
@@ -58,7 +58,7 @@ int main(void)
         CHECK_NEAR(s, 1.0, 1e-12);
     }
 
-    /* Artist presets (seed 002, Table 2) and normalisation of a_m over the line. */
+    /* Artist presets (Jimenez et al. 2019, Table 2) and normalisation of a_m over the line. */
     sss_artist_params p;
     sss_error err;
     CHECK(sss_artist_preset("single-layer", &p, &err) == SSS_OK);

@@ -1,4 +1,4 @@
-/* Measured media lookup (FACTS.md 2.3) and material construction/validation with useful errors. */
+/* Measured media lookup (docs/physics.md §2.3) and material construction/validation with useful errors. */
 #include <string.h>
 
 #include "check.h"
@@ -8,7 +8,7 @@ static int contains(const char *s, const char *sub) { return strstr(s, sub) != N
 
 int main(void)
 {
-    /* The twelve media of Jensen et al. 2001, as FACTS.md 2.3 lists them. */
+    /* The twelve media of Jensen et al. 2001, as docs/physics.md §2.3 lists them. */
     static const char *const names[] = {"Apple", "Chicken1", "Chicken2", "Cream", "Ketchup", "Marble",
                                         "Potato", "Skimmilk", "Skin1", "Skin2", "Spectralon", "Wholemilk"};
     CHECK(sss_measured_medium_count() == 12);
@@ -18,7 +18,7 @@ int main(void)
         CHECK_MSG(m != NULL, "%s", names[i]);
         if (m) CHECK(strcmp(m->name, names[i]) == 0);
     }
-    /* Spot values straight from the FACTS.md table. */
+    /* Spot values straight from the docs/physics.md table. */
     const sss_measured_medium *skin = sss_measured_medium_find("Skin1");
     CHECK(skin && skin->sigma_s_prime[0] == 0.74 && skin->sigma_a[2] == 0.48);
     const sss_measured_medium *ket = sss_measured_medium_find("Ketchup");

@@ -1,4 +1,4 @@
-/* Photon Beam Diffusion table (FACTS.md 2.2): PBRT-v3's published rho_eff values and S_r vectors,
+/* Photon Beam Diffusion table (docs/physics.md §2.2): PBRT-v3's published rho_eff values and S_r vectors,
  * energy conservation near albedo 1 (where sss departs from PBRT), monotonicity, the plane integral of
  * S_r by an independent quadrature, inversion of rho_eff, and the sampler against the profile
  * (chi-square). */
@@ -122,12 +122,12 @@ int main(void)
     sss_error err;
     CHECK(sss_pbd_table_build(1.33, 0.0, &table, &err) == SSS_OK);
 
-    /* Table layout of FACTS.md 2.2. */
+    /* Table layout of docs/physics.md §2.2. */
     CHECK(table.radius[0] == 0.0 && table.radius[1] == 2.5e-3);
     CHECK_REL(table.radius[63], 2.5e-3 * pow(1.2, 62), 1e-12);
     CHECK(table.rho[0] == 0.0 && fabs(table.rho[99] - 1.0) < 1e-15);
 
-    /* PBRT-v3's rho_eff at eta 1.33 (FACTS.md 1), to their printed precision. */
+    /* PBRT-v3's rho_eff at eta 1.33 (docs/physics.md §1), to their printed precision. */
     static const double rho_in[4] = {0.5, 0.9, 0.99, 0.999}, rho_out[4] = {0.066, 0.296, 0.673, 0.898};
     for (int i = 0; i < 4; i++) CHECK_NEAR(sss_pbd_rho_eff(&table, rho_in[i]), rho_out[i], 5.01e-4);
     /* ... but not PBRT's 1.019 at albedo 1: with nothing absorbed, all light that enters leaves, so

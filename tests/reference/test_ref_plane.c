@@ -1,5 +1,5 @@
 /* Reference renderer: a large flat plane under a directional light at normal incidence. Far from the
- * edges the radiance is c_o F_t E rho_eff (FACTS.md 1): c_o = F_t(cos theta_o) / (pi c), F_t of the
+ * edges the radiance is c_o F_t E rho_eff (docs/physics.md §1): c_o = F_t(cos theta_o) / (pi c), F_t of the
  * light at normal incidence, E the irradiance, rho_eff the plane integral of the profile from the
  * physics module. Within 0.5% per pixel. Also: scaling the light scales the image. */
 #include "ref_test_util.h"

@@ -1,6 +1,6 @@
 /* Reference renderer through the scene module: camera rays agree with sss_camera_ray; animated objects
  * are posed at the given time (t = 0 and t = period agree, a quarter period differs); every profile and
- * parameterisation of SCENE.md renders finite images (pbd, dipole, artist, kdsubsurface); an
+ * parameterisation of docs/scene-format.md renders finite images (pbd, dipole, artist, kdsubsurface); an
  * environment map read from a file lights the scene and shows where rays miss. */
 #include <stdio.h>
 #include <unistd.h>

@@ -143,7 +143,7 @@ static void test_tree(void)
 static void test_env_convention(void)
 {
     double d[3], u, v;
-    sss_reference_env_direction(0.5, 0.5, 0.0, d); /* SCENE.md: u = 0.5 at -z */
+    sss_reference_env_direction(0.5, 0.5, 0.0, d); /* docs/scene-format.md: u = 0.5 at -z */
     CHECK_NEAR(d[0], 0.0, 1e-12);
     CHECK_NEAR(d[1], 0.0, 1e-12);
     CHECK_NEAR(d[2], -1.0, 1e-12);

@@ -1,5 +1,5 @@
-/* Numerical robustness of the disc-integrated LUT (seed 000) over the sweep of sweep_util.h (every
- * measured medium x 5 eta x 3 scales, PBD and dipole), at size 32, with the default r_max (seed 000's
+/* Numerical robustness of the disc-integrated LUT (Maisch & Ropinski 2020) over the sweep of sweep_util.h (every
+ * measured medium x 5 eta x 3 scales, PBD and dipole), at size 32, with the default r_max (Maisch & Ropinski 2020's
  * source cut-off) and with r_max holding 99.9% of the widest channel's energy: the build succeeds,
  * every texel is finite and >= 0, row A = 0 is R_d itself, bilinear lookups stay finite and >= 0; with
  * the energy r_max, the disc of radius r_max centred on the origin (texel (0, A_max) x A_max) holds

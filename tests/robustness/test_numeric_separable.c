@@ -1,4 +1,4 @@
-/* Numerical robustness of the separable kernels (seed 002) over the sweep of sweep_util.h (every
+/* Numerical robustness of the separable kernels (Jimenez et al. 2019) over the sweep of sweep_util.h (every
  * measured medium x 5 eta x 3 scales, PBD and dipole): the 7-tap pre-integrated kernel has finite,
  * ascending offsets symmetric about 0, finite weights >= 0 summing to 1 per channel, and totals equal
  * to the profile's plane integral (sss_profile_total) within 1%; the rank-2 SVD of a 24 x 24 raster

@@ -1,4 +1,4 @@
-/* SAM with a lower-tessellation back-side mesh (seed 001, section 4.4 and its appendix).
+/* SAM with a lower-tessellation back-side mesh (Maisch & Ropinski 2017, section 4.4 and its appendix).
  *
  * Sphere (2562 vertices) with a given icosphere (162) and with its own simplification as back side:
  * every link indexes the back-side mesh and passes Eq. 13-14 against its positions and normals (on a

@@ -1,4 +1,4 @@
-/* Deforming meshes (seed 001, section 3.4): after a twist, every link is in range and either passes
+/* Deforming meshes (Maisch & Ropinski 2017, section 3.4): after a twist, every link is in range and either passes
  * Eq. 13-14 or none of its one-ring neighbours does (it is refreshed through adjacency whenever it
  * can be); updates never lower a link's score F'_j R_d(|v_j - v_o|), never link a vertex twice, and
  * settle when nothing moves. The approximate form factors of Eq. 15 equal K at rest, are finite,

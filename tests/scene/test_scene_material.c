@@ -1,4 +1,4 @@
-/* Scene materials resolved to coefficients: measured media x scale (FACTS.md 2.3), explicit
+/* Scene materials resolved to coefficients: measured media x scale (docs/physics.md §2.3), explicit
  * coefficients, kdsubsurface inversion (reflectance + mfp), profiles, the shared PBD table cache. */
 #include <math.h>
 #include <stdio.h>
@@ -31,7 +31,7 @@ static void test_medium(void)
              &err) != SSS_OK)
         return;
     const sss_scene_material *m = &s.objects[0].material;
-    /* Marble (Jensen et al. 2001, FACTS.md 2.3): sigma_s' 2.19, 2.62, 3.00; sigma_a 0.0021, 0.0041,
+    /* Marble (Jensen et al. 2001, docs/physics.md §2.3): sigma_s' 2.19, 2.62, 3.00; sigma_a 0.0021, 0.0041,
      * 0.0071 mm^-1; 100 mm per scene unit. */
     const double ss[3] = {2.19, 2.62, 3.00}, sa[3] = {0.0021, 0.0041, 0.0071};
     for (int i = 0; i < 3; i++) {
@@ -40,7 +40,7 @@ static void test_medium(void)
     }
     CHECK(m->source == SSS_SUBSURFACE_MEDIUM && strcmp(m->medium->name, "Marble") == 0);
     CHECK(m->optical.g == 0 && m->optical.eta == 1.33);
-    /* rho_eff of Marble at eta 1.33 under PBRT-v3's table (FACTS.md 1): 0.901, 0.868, 0.834. */
+    /* rho_eff of Marble at eta 1.33 under PBRT-v3's table (docs/physics.md §1): 0.901, 0.868, 0.834. */
     CHECK_NEAR(m->albedo[0], 0.901, 2e-3);
     CHECK_NEAR(m->albedo[1], 0.868, 2e-3);
     CHECK_NEAR(m->albedo[2], 0.834, 2e-3);
@@ -96,7 +96,7 @@ static void test_reflectance(void)
     CHECK(s.objects[0].material.optical.eta == 1.4 && s.objects[0].material.table->eta == 1.4);
     CHECK(s.objects[1].material.optical.g == 0 && s.objects[1].material.table->g == 0);
     sss_scene_free(&s);
-    /* SCENE.md lists only reflectance, mfp and eta for this form: g is an error naming the field. */
+    /* docs/scene-format.md lists only reflectance, mfp and eta for this form: g is an error naming the field. */
     const char *with_g = "{\"camera\": {\"position\": [0, 0, 5], \"look_at\": [0, 0, 0]}, \"objects\": [{" SPHERE
                          ", \"material\": {\"type\": \"subsurface\", \"reflectance\": [0.3, 0.6, 0.9],"
                          " \"mfp\": 0.25, \"g\": 0.3}}]}";
@@ -142,7 +142,7 @@ static void test_extras(void)
     CHECK(m->texture && strcmp(m->texture, SCENES "/assets/albedo.png") == 0);
     CHECK(m->has_specular && m->roughness == 0.3);
     CHECK(m->profile == SSS_SCENE_PROFILE_ARTIST && sss_scene_material_profile_model(m) == SSS_PROFILE_PBD);
-    /* Defaults of the artist profile: seed 002's production preset (FACTS.md 2.4). */
+    /* Defaults of the artist profile: Jimenez et al. 2019's production preset (docs/physics.md §2.4). */
     CHECK(m->artist.s == 0.5 && m->artist.w == 0.65);
     CHECK(m->artist.near[0] == 0.22 && m->artist.near[1] == 0.07 && m->artist.near[2] == 0.07);
     CHECK(m->artist.far[0] == 1.0 && m->artist.far[1] == 0.3 && m->artist.far[2] == 0.15);

@@ -1,4 +1,4 @@
-/* Scene loader: SCENE.md's example verbatim, defaults, and a table of bad scenes whose errors must
+/* Scene loader: the scene format's example verbatim, defaults, and a table of bad scenes whose errors must
  * name the file and the JSON path. */
 #include <stdlib.h>
 #include <string.h>
@@ -22,7 +22,7 @@ static int parse_ok(const char *json, const char *name, sss_scene *s)
     return res == SSS_OK;
 }
 
-/* SCENE.md's example scene, copied verbatim into tests/data/scenes/example.json; its mesh
+/* the scene format's example scene, copied verbatim into tests/data/scenes/example.json; its mesh
  * assets/dragon.ply is a fixture octahedron there. */
 static void test_example(void)
 {
@@ -46,7 +46,7 @@ static void test_example(void)
     CHECK(o->material.type == SSS_SCENE_MATERIAL_SUBSURFACE && o->material.source == SSS_SUBSURFACE_MEDIUM);
     CHECK(o->material.medium && strcmp(o->material.medium->name, "Ketchup") == 0);
     CHECK(o->material.scale == 100.0 && o->material.optical.eta == 1.33 && o->material.optical.g == 0);
-    /* Ketchup (FACTS.md 2.3): sigma_s' 0.18, 0.07, 0.03; sigma_a 0.061, 0.97, 1.45 mm^-1, times 100. */
+    /* Ketchup (docs/physics.md §2.3): sigma_s' 0.18, 0.07, 0.03; sigma_a 0.061, 0.97, 1.45 mm^-1, times 100. */
     CHECK_REL(o->material.optical.sigma_s[0], 18.0, 1e-12);
     CHECK_REL(o->material.optical.sigma_a[2], 145.0, 1e-12);
     CHECK(o->material.profile == SSS_SCENE_PROFILE_PBD && o->material.table != NULL);
@@ -299,6 +299,50 @@ static void test_bad_scenes(void)
     }
 }
 
+/* The format version (docs/scene-format.md): "version": 1 reads exactly as a file without it; a newer
+ * version is refused for its version even when it also has fields this reader does not know. */
+static void test_version(void)
+{
+    sss_scene_load_desc desc = {SSS_SCENE_SKIP_MESHES};
+    const char *plain = SCENE_OBJS(OBJ);
+    const char *v1 = "{\"version\": 1, " CAM ", \"objects\": [" OBJ "]}";
+    sss_scene a, b;
+    sss_error err = {0};
+    sss_result ra = sss_scene_parse(plain, strlen(plain), SCENES, "plain.json", &desc, &a, &err);
+    CHECK_MSG(ra == SSS_OK, "%s", err.message);
+    sss_result rb = sss_scene_parse(v1, strlen(v1), SCENES, "v1.json", &desc, &b, &err);
+    CHECK_MSG(rb == SSS_OK, "%s", err.message);
+    if (ra == SSS_OK && rb == SSS_OK) {
+        CHECK(memcmp(&a.camera, &b.camera, sizeof a.camera) == 0 && a.object_count == b.object_count);
+        CHECK(memcmp(&a.objects[0].transform, &b.objects[0].transform, sizeof a.objects[0].transform) == 0);
+        CHECK(strcmp(a.render.technique, b.render.technique) == 0 && a.light_count == b.light_count);
+    }
+    sss_scene_free(&a);
+    sss_scene_free(&b);
+
+    static const struct {
+        const char *json;
+        sss_result code;
+        const char *expect;
+    } bad[] = {
+        {"{\"version\": 2, " CAM ", \"objects\": [" OBJ "], \"fog\": {}}", SSS_ERROR_UNSUPPORTED,
+         "v.json: version: 2 is newer than this sss reads (scene format version 1)"},
+        {"{\"version\": 1.5, " CAM ", \"objects\": [" OBJ "]}", SSS_ERROR_PARSE, "v.json: version: expected an integer"},
+        {"{\"version\": \"1\", " CAM ", \"objects\": [" OBJ "]}", SSS_ERROR_PARSE, "v.json: version: expected an integer"},
+        {"{\"version\": 0, " CAM ", \"objects\": [" OBJ "]}", SSS_ERROR_INVALID_ARGUMENT, "v.json: version: 0 is out of range"},
+        {"{\"version\": 1e300, " CAM ", \"objects\": [" OBJ "]}", SSS_ERROR_INVALID_ARGUMENT, "is out of range 1..2147483647"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        sss_result res = sss_scene_parse(bad[i].json, strlen(bad[i].json), SCENES, "v.json", &desc, &a, &err);
+        CHECK_MSG(res == bad[i].code, "version case %zu: result %d, expected %d (%s)", i, (int)res,
+                  (int)bad[i].code, err.message);
+        CHECK_MSG(strstr(err.message, bad[i].expect), "version case %zu: \"%s\" lacks \"%s\"", i, err.message,
+                  bad[i].expect);
+        CHECK(a.objects == NULL && a.name == NULL);
+        sss_scene_free(&a);
+    }
+}
+
 /* The location of a syntax error: the second comma of line 3 is at column 27 (cJSON reports the
  * position where it gave up, which may be one past the offending character). */
 static void test_syntax_location(void)
@@ -366,6 +410,7 @@ int main(void)
     test_defaults();
     test_extreme_values();
     test_bad_scenes();
+    test_version();
     test_syntax_location();
     test_files();
     return CHECK_DONE();
