@@ -3,6 +3,20 @@
 #include <string.h>
 
 #include "cli/cli.h"
+#include "sss/version.h"
+
+/* `sss version` and `sss --version`: the version of the library the tool runs with. */
+static int cmd_version(int argc, char **argv)
+{
+    if (cli_wants_help(argc, argv)) {
+        printf("usage: sss version (or sss --version)\n\nPrints 'sss MAJOR.MINOR.PATCH', the version of "
+               "the sss library.\n");
+        return CLI_EXIT_OK;
+    }
+    if (argc > 1) return cli_usage_error("version", "takes no arguments, got '%s'", argv[1]);
+    printf("sss %s\n", sss_version());
+    return CLI_EXIT_OK;
+}
 
 typedef struct command {
     const char *name;
@@ -23,6 +37,7 @@ static const command commands[] = {
     {"view", sss_cmd_view, "show a scene in a window: orbit camera, techniques, DSSIM vs reference"},
     {"export", sss_cmd_export, "write a scene for another renderer (export pbrt)"},
     {"sam", sss_cmd_sam, "build or inspect a Spatial Adjacency Map (seed 001) of a mesh"},
+    {"version", cmd_version, "print the library's version (also 'sss --version')"},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 
@@ -64,10 +79,7 @@ int main(int argc, char **argv)
         print_help(stdout);
         return CLI_EXIT_OK;
     }
-    if (strcmp(name, "--version") == 0) {
-        printf("sss 0.1.0\n");
-        return CLI_EXIT_OK;
-    }
+    if (strcmp(name, "--version") == 0) return cmd_version(argc - 1, argv + 1);
     const command *c = find_command(name);
     if (!c) {
         fprintf(stderr, "sss: unknown command '%s'\n", name);
