@@ -29,5 +29,7 @@ set_target_properties(sss PROPERTIES VERSION ${PROJECT_VERSION} SOVERSION ${PROJ
 if(NOT SSS_FUZZ)
   target_link_options(sss PRIVATE -Wl,--no-undefined)
 endif()
+target_link_options(sss PRIVATE -Wl,--version-script=${PROJECT_SOURCE_DIR}/cmake/libsss.map)
+set_target_properties(sss PROPERTIES LINK_DEPENDS ${PROJECT_SOURCE_DIR}/cmake/libsss.map)
 add_library(sss::sss ALIAS sss)
 add_library(sss::sss_static ALIAS sss_static)
