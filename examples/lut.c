@@ -17,12 +17,13 @@
 
 int main(int argc, char **argv)
 {
-    if (argc < 3 || argc > 4) {
-        fprintf(stderr, "usage: %s MEDIUM OUT.exr [SIZE]\n", argv[0]);
+    char *end = NULL;
+    long size = argc == 4 ? strtol(argv[3], &end, 10) : 512;
+    if (argc < 3 || argc > 4 || (end && (*end != '\0' || end == argv[3])) || size < 2 || size > 8192) {
+        fprintf(stderr, "usage: %s MEDIUM OUT.exr [SIZE in 2..8192]\n", argv[0]);
         return 2;
     }
     const char *medium = argv[1], *output = argv[2];
-    int size = argc == 4 ? atoi(argv[3]) : 512;
 
     /* Every fallible call returns an sss_result (SSS_OK = 0) and fills err with a message naming the
      * input; the library itself never prints. */
@@ -54,7 +55,7 @@ int main(int argc, char **argv)
     /* A zero-initialised description means the defaults (linear axes, the paper's r_max); only the
      * size is set here. */
     sss_lut_desc desc = {0};
-    desc.size = size;
+    desc.size = (int)size;
     sss_lut lut;
     sss_result result = sss_lut_build(&profile, &desc, &lut, &err);
     free(table); /* the LUT no longer needs the profile */
