@@ -1,6 +1,7 @@
 # cmake --install: the public headers (with the generated version.h), libsss.so.MAJOR and libsss.a,
 # the sss tool, the CMake package (find_package(sss CONFIG): sss::sss shared, sss::sss_static), the
-# pkg-config file sss.pc, and docs/ (with LICENSE, when the repository has one) in share/doc/sss.
+# pkg-config file sss.pc, and docs/ and examples/ (with LICENSE, when the repository has one) in
+# share/doc/sss.
 include(CMakePackageConfigHelpers)
 set(sss_cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/sss)
 set(sss_pkgconfig_dir ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
@@ -75,6 +76,7 @@ configure_file(cmake/sss.pc.in ${CMAKE_CURRENT_BINARY_DIR}/sss.pc @ONLY)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/sss.pc DESTINATION ${sss_pkgconfig_dir})
 
 install(DIRECTORY docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(DIRECTORY examples DESTINATION ${CMAKE_INSTALL_DOCDIR})  # sources to copy, and their CMakeLists.txt
 if(EXISTS ${PROJECT_SOURCE_DIR}/LICENSE)
   install(FILES LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR})
 endif()

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # sss as an installed library: `cmake --install` into a temporary prefix, then examples/ built out of
-# tree against that prefix four ways (find_package with sss::sss and sss::sss_static, pkg-config, and
+# tree (the copy installed in share/doc/sss/examples) against that prefix four ways (find_package with sss::sss and sss::sss_static, pkg-config, and
 # pkg-config --static with libsss.a), each program run and its output compared with the installed
 # `sss` tool's for the same input and settings. The examples and the tool call the same library
 # functions on the same input (the reference is deterministic for a seed, llvmpipe for a scene), so the
@@ -22,11 +22,12 @@ pc=$(find "$P" -name sss.pc 2>/dev/null | head -1)
 [ -n "$pc" ] || { echo "FAIL: cmake --install installed no sss.pc: $(find "$P" 2>/dev/null | head)"; exit 1; }
 libdir=$(cd "$(dirname "$pc")/.." && pwd)  # lib or lib/<multiarch>
 SSS=$P/bin/sss
+EXAMPLES=$P/share/doc/sss/examples
 export PKG_CONFIG_PATH=$libdir/pkgconfig
 
 # The installed tree: headers (with the generated version.h), both libraries, the tool, the CMake
-# package, sss.pc, the docs.
-for f in include/sss/sss.h include/sss/version.h bin/sss share/doc/sss/limits.md; do
+# package, sss.pc, the docs and examples.
+for f in include/sss/sss.h include/sss/version.h bin/sss share/doc/sss/limits.md share/doc/sss/examples/CMakeLists.txt; do
     [ -f "$P/$f" ] || fail "not installed: $f"
 done
 for f in libsss.a libsss.so pkgconfig/sss.pc cmake/sss/sssConfig.cmake cmake/sss/sssConfigVersion.cmake; do
@@ -98,7 +99,7 @@ for variant in shared static; do
     static=OFF
     [ $variant = static ] && static=ON
     b=$T/cmake-$variant
-    if cmake -S "$ROOT/examples" -B "$b" -DCMAKE_PREFIX_PATH="$P" -DSSS_EXAMPLES_STATIC=$static >"$T/cmake-$variant.log" 2>&1 &&
+    if cmake -S "$EXAMPLES" -B "$b" -DCMAKE_PREFIX_PATH="$P" -DSSS_EXAMPLES_STATIC=$static >"$T/cmake-$variant.log" 2>&1 &&
         cmake --build "$b" >>"$T/cmake-$variant.log" 2>&1; then
         check_examples "$b" "find_package $variant"
     else
@@ -114,7 +115,7 @@ b=$T/pc-shared
 mkdir -p "$b"
 for e in lut render reference; do
     # shellcheck disable=SC2046,SC2086
-    cc $CFLAGS "$ROOT/examples/$e.c" -o "$b/example_$e" $(pkg-config --cflags --libs sss) -Wl,-rpath,"$libdir" \
+    cc $CFLAGS "$EXAMPLES/$e.c" -o "$b/example_$e" $(pkg-config --cflags --libs sss) -Wl,-rpath,"$libdir" \
         2>"$b/$e.log" || fail "pkg-config: example_$e did not build: $(cat "$b/$e.log")"
 done
 check_examples "$b" "pkg-config"
@@ -126,7 +127,7 @@ mkdir -p "$b/lib"
 ln -s "$libdir/libsss.a" "$b/lib/libsss.a"
 for e in lut render reference; do
     # shellcheck disable=SC2046,SC2086
-    cc $CFLAGS "$ROOT/examples/$e.c" -o "$b/example_$e" -L"$b/lib" $(pkg-config --static --cflags --libs sss) \
+    cc $CFLAGS "$EXAMPLES/$e.c" -o "$b/example_$e" -L"$b/lib" $(pkg-config --static --cflags --libs sss) \
         2>"$b/$e.log" || fail "pkg-config --static: example_$e did not build: $(cat "$b/$e.log")"
 done
 ! readelf -d "$b/example_lut" 2>/dev/null | grep -q 'NEEDED.*libsss\.so' || fail "pkg-config --static: linked libsss.so"
