@@ -33,11 +33,11 @@ static const command commands[] = {
     {"reference", sss_cmd_reference, "render a scene's CPU ground truth (the subsurface integral)"},
     {"render", sss_cmd_render, "render a scene in real time with OpenGL (headless) to an image"},
     {"techniques", sss_cmd_techniques, "list the real-time techniques"},
+    {"version", cmd_version, "print the library's version (also 'sss --version')"},
     {"eval", sss_cmd_eval, "evaluate techniques against the reference: metrics, timings, sheets, plots, report"},
     {"view", sss_cmd_view, "show a scene in a window: orbit camera, techniques, DSSIM vs reference"},
     {"export", sss_cmd_export, "write a scene for another renderer (export pbrt)"},
     {"sam", sss_cmd_sam, "build or inspect a Spatial Adjacency Map (seed 001) of a mesh"},
-    {"version", cmd_version, "print the library's version (also 'sss --version')"},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 
