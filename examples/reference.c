@@ -3,9 +3,8 @@
  *   example_reference SCENE.json OUT.png [draft|final]      e.g.  example_reference scene.json ref.png draft
  *
  * Renders the subsurface integral of every translucent object under direct lighting with Embree 3 and
- * OpenMP (all cores); `draft` is fast and noisier, `final` (the default) is what `sss eval` compares
- * against. OUT.png is tone-mapped with the scene's exposure; an .exr/.pfm/.hdr name keeps the linear
- * values. The image depends only on the scene, the quality and the seed (0 here), not on the thread
+ * OpenMP (all cores); `draft` is fast and noisier, `final` (the default) the converged image. OUT.png
+ * is tone-mapped with the scene's exposure; an .exr/.pfm/.hdr name keeps the linear values. The image depends only on the scene, the quality and the seed (0 here), not on the thread
  * count: `sss reference SCENE.json --quality Q -o OUT.png` writes the same pixels.
  *
  * Build: cc reference.c $(pkg-config --cflags --libs sss), or CMake: find_package(sss) and sss::sss.
