@@ -1,6 +1,8 @@
 # Thin wrapper around CMake. The two set-up commands of the README:
 #   make demo    installs missing packages, builds (Release) and renders the default scene
 #   make check   installs missing packages, builds (Release) and runs every test through ctest
+#   make install [PREFIX=/usr/local]  builds, then installs the library, headers, tool, CMake package,
+#                               pkg-config file and docs under PREFIX (docs/versioning.md)
 # Also: make build, make sanitize (ASan + UBSan build and unit tests), make bench, make clean,
 #   make fuzz [FUZZ_SECONDS=N]  libFuzzer (clang) on every parser, N seconds each (default 60); the
 #                               corpus grows in $(FUZZ_BUILD)/fuzz-corpus from run to run
@@ -9,10 +11,12 @@ BUILD ?= build
 SAN_BUILD ?= build-asan
 JOBS ?= $(shell nproc)
 
+PREFIX ?= /usr/local
+
 FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 60
 
-.PHONY: all build demo check sanitize bench clean deps fuzz fuzz-ci fuzz-build
+.PHONY: all build demo check install sanitize bench clean deps fuzz fuzz-ci fuzz-build
 
 all: build
 
@@ -31,6 +35,9 @@ demo: deps build
 
 check: deps build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 sanitize: deps
 	cmake -S . -B $(SAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DSSS_SANITIZE=ON

@@ -1,8 +1,10 @@
 /* sss/sss.h — the whole sss library. Include the module headers instead when you need only one
- * concern: common (errors), material + profile (physics), kernel, image, mesh, scene, reference (CPU
- * ground truth), export (PBRT), gl (real-time renderer), sam (spatial adjacency maps), eval, view. */
+ * concern: version (SSS_VERSION_*, sss_version), common (errors), material + profile (physics),
+ * kernel, image, mesh, scene, reference (CPU ground truth), export (PBRT), gl (real-time renderer),
+ * sam (spatial adjacency maps), eval, view. */
 #ifndef SSS_SSS_H
 #define SSS_SSS_H
+#include "sss/version.h"
 #include "sss/common.h"
 #include "sss/material.h"
 #include "sss/profile.h"

@@ -3,6 +3,20 @@
 #include <string.h>
 
 #include "cli/cli.h"
+#include "sss/version.h"
+
+/* `sss version` and `sss --version`: the version of the library the tool runs with. */
+static int cmd_version(int argc, char **argv)
+{
+    if (cli_wants_help(argc, argv)) {
+        printf("usage: sss version (or sss --version)\n\nPrints 'sss MAJOR.MINOR.PATCH', the version of "
+               "the sss library.\n");
+        return CLI_EXIT_OK;
+    }
+    if (argc > 1) return cli_usage_error("version", "takes no arguments, got '%s'", argv[1]);
+    printf("sss %s\n", sss_version());
+    return CLI_EXIT_OK;
+}
 
 typedef struct command {
     const char *name;
@@ -19,6 +33,7 @@ static const command commands[] = {
     {"reference", sss_cmd_reference, "render a scene's CPU ground truth (the subsurface integral)"},
     {"render", sss_cmd_render, "render a scene in real time with OpenGL (headless) to an image"},
     {"techniques", sss_cmd_techniques, "list the real-time techniques"},
+    {"version", cmd_version, "print the library's version (also 'sss --version')"},
     {"eval", sss_cmd_eval, "evaluate techniques against the reference: metrics, timings, sheets, plots, report"},
     {"view", sss_cmd_view, "show a scene in a window: orbit camera, techniques, DSSIM vs reference"},
     {"export", sss_cmd_export, "write a scene for another renderer (export pbrt)"},
@@ -64,10 +79,7 @@ int main(int argc, char **argv)
         print_help(stdout);
         return CLI_EXIT_OK;
     }
-    if (strcmp(name, "--version") == 0) {
-        printf("sss 0.1.0\n");
-        return CLI_EXIT_OK;
-    }
+    if (strcmp(name, "--version") == 0) return cmd_version(argc - 1, argv + 1);
     const command *c = find_command(name);
     if (!c) {
         fprintf(stderr, "sss: unknown command '%s'\n", name);
