@@ -8,20 +8,53 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/text.h"
+
+/* Every diagnostic of the tool goes through here: "sss CMD: message" (or "sss: message") with the
+ * message's control characters escaped, since it names files and scene strings from data. */
+static void vmessage(const char *cmd, const char *fmt, va_list ap)
+{
+    va_list again;
+    va_copy(again, ap);
+    int n = vsnprintf(NULL, 0, fmt, ap);
+    char *text = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    char *escaped = text ? malloc(SSS_TEXT_ESCAPE_MAX * (size_t)n + 1) : NULL;
+    if (cmd) fprintf(stderr, "sss %s: ", cmd);
+    else fputs("sss: ", stderr);
+    if (escaped) {
+        vsnprintf(text, (size_t)n + 1, fmt, again);
+        sss_text_escape(text, (size_t)n, escaped);
+        fputs(escaped, stderr);
+    } else {
+        fputs("(out of memory formatting the message)", stderr);
+    }
+    fputc('\n', stderr);
+    free(escaped);
+    free(text);
+    va_end(again);
+}
+
+void cli_message(const char *cmd, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vmessage(cmd, fmt, ap);
+    va_end(ap);
+}
+
 int cli_usage_error(const char *cmd, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    fprintf(stderr, "sss %s: ", cmd);
-    vfprintf(stderr, fmt, ap);
-    fprintf(stderr, "\nTry 'sss %s --help'.\n", cmd);
+    vmessage(cmd, fmt, ap);
     va_end(ap);
+    fprintf(stderr, "Try 'sss %s --help'.\n", cmd);
     return CLI_EXIT_USAGE;
 }
 
 int cli_fail(const char *cmd, const sss_error *err)
 {
-    fprintf(stderr, "sss %s: %s\n", cmd, err && err->message[0] ? err->message : "unknown error");
+    cli_message(cmd, "%s", err && err->message[0] ? err->message : "unknown error");
     return CLI_EXIT_ERROR;
 }
 
@@ -29,9 +62,7 @@ int cli_failf(const char *cmd, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    fprintf(stderr, "sss %s: ", cmd);
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
+    vmessage(cmd, fmt, ap);
     va_end(ap);
     return CLI_EXIT_ERROR;
 }

@@ -22,6 +22,14 @@ int sss_cmd_eval(int argc, char **argv);
 int sss_cmd_view(int argc, char **argv);
 int sss_cmd_sam(int argc, char **argv);
 
+/* Prints "sss CMD: message" (cmd NULL: "sss: message") to stderr with the message's control characters
+ * escaped (core/text.h): every diagnostic goes through it, since messages name files and scene
+ * strings from data. The functions below print through it. */
+void cli_message(const char *cmd, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
 /* Prints "sss CMD: message" and "Try 'sss CMD --help'." to stderr; returns CLI_EXIT_USAGE. */
 int cli_usage_error(const char *cmd, const char *fmt, ...)
 #if defined(__GNUC__)
