@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 
 #include "core/file_util.h"
+#include "core/text.h"
 #include "scene/scene_internal.h"
 
 char *scene_strdup(const char *s)
@@ -332,6 +333,13 @@ sss_result sss_scene_parse(const char *json_text, size_t size, const char *base_
         line_column(json_text, off, &line, &col);
         return jr_fail(&ctx.r, SSS_ERROR_PARSE, "line %zu, column %zu: unexpected text after the JSON value",
                        line, col);
+    }
+
+    char nul_path[JR_PATH_SIZE];
+    if (sss_json_find_nul(json_text + start, size - start, nul_path, sizeof nul_path)) {
+        cJSON_Delete(root); /* cJSON would keep only the part before the NUL */
+        return jr_fail(&ctx.r, SSS_ERROR_PARSE, "%s%sa string holds a NUL character (\\u0000)", nul_path,
+                       nul_path[0] ? ": " : "");
     }
 
     sss_result res = SSS_OK;
