@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/file_util.h"
 #include "core/text.h"
 
 /* Every diagnostic of the tool goes through here: "sss CMD: message" (or "sss: message") with the
@@ -98,6 +99,39 @@ int cli_parse_int(const char *cmd, const char *option, const char *text, int *ou
     }
     *out = (int)v;
     return 1;
+}
+
+int cli_parse_int_in(const char *cmd, const char *option, const char *text, int min, int max, int *out)
+{
+    int v;
+    if (!cli_parse_int(cmd, option, text, &v)) return 0;
+    if (v < min || v > max) {
+        cli_usage_error(cmd, "%s must be in %d..%d, got %d", option, min, max, v);
+        return 0;
+    }
+    *out = v;
+    return 1;
+}
+
+int cli_parse_positive(const char *cmd, const char *option, const char *text, double *out)
+{
+    double v;
+    if (!cli_parse_double(cmd, option, text, &v)) return 0;
+    if (!(v > 0.0)) {
+        cli_usage_error(cmd, "%s must be a number > 0, got '%s'", option, text);
+        return 0;
+    }
+    *out = v;
+    return 1;
+}
+
+int cli_require_extension(const char *cmd, const char *option, const char *path, const char *ext)
+{
+    char have[16];
+    sss_path_extension(path, have, sizeof have);
+    if (strcmp(have, ext) == 0) return 1;
+    cli_usage_error(cmd, "%s '%s': the file is written as .%s, so its name must end in .%s", option, path, ext, ext);
+    return 0;
 }
 
 const char *cli_option_value(const char *cmd, int argc, char **argv, int *i)
