@@ -247,6 +247,23 @@ static sss_result build_procedural(const sss_procedural *p, sss_mesh *m, sss_err
     }
 }
 
+/* Refuses an object whose world-space positions leave the range every renderer can handle, naming
+ * the field that puts it there (the transform, or the mesh itself when it is that large at rest). */
+static sss_result check_world_reach(jr *r, const sss_scene_object *o)
+{
+    double reach = sss_scene_object_world_reach(o);
+    if (reach <= SSS_SCENE_MAX_WORLD_COORD) return SSS_OK;
+    sss_scene_object at_rest = *o;
+    sss_transform_identity(&at_rest.transform);
+    const char *key = sss_scene_object_world_reach(&at_rest) <= SSS_SCENE_MAX_WORLD_COORD ? "transform"
+                      : o->mesh_path                                                       ? "mesh"
+                                                                                           : "procedural";
+    return jr_fail_key(r, key, SSS_ERROR_LIMIT,
+                       "world-space positions reach %g, beyond %g (the real-time renderer's single-precision "
+                       "range; docs/limits.md)",
+                       reach, SSS_SCENE_MAX_WORLD_COORD);
+}
+
 static sss_result load_object(scene_ctx *c, sss_scene *s, sss_scene_object *o)
 {
     jr *r = &c->r;
@@ -264,6 +281,7 @@ static sss_result load_object(scene_ctx *c, sss_scene *s, sss_scene_object *o)
     else res = build_procedural(&o->procedural, &o->mesh, r->err);
     if (res != SSS_OK) return jr_prefix(r, o->mesh_path ? "mesh" : "procedural", res);
     sss_mesh_bounds(&o->mesh, o->bounds_min, o->bounds_max);
+    if ((res = check_world_reach(r, o)) != SSS_OK) return res;
     /* SCENE.md: a texture needs UVs in the mesh. */
     if (o->material.texture && !o->mesh.uvs) {
         size_t mark = jr_enter_key(r, "material");
