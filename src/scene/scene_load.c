@@ -1,6 +1,7 @@
 /* The scene loader: JSON text -> validated sss_scene (SCENE.md), then the load phase (PBD tables,
  * material resolution, meshes). */
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -259,9 +260,9 @@ static sss_result check_world_reach(jr *r, const sss_scene_object *o)
                       : o->mesh_path                                                       ? "mesh"
                                                                                            : "procedural";
     return jr_fail_key(r, key, SSS_ERROR_LIMIT,
-                       "world-space positions reach %g, beyond %g (the real-time renderer's single-precision "
+                       "world-space positions reach %g%s, beyond %g (the real-time renderer's single-precision "
                        "range; docs/limits.md)",
-                       reach, SSS_SCENE_MAX_WORLD_COORD);
+                       reach, reach > FLT_MAX ? " (not finite in single precision)" : "", SSS_SCENE_MAX_WORLD_COORD);
 }
 
 static sss_result load_object(scene_ctx *c, sss_scene *s, sss_scene_object *o)
