@@ -61,6 +61,10 @@ double sss_srgb_decode(double encoded); /* its inverse */
 
 /* Number of NaN or infinite values (0 means the image is safe to write). */
 size_t sss_image_count_nonfinite(const sss_image *img);
+/* Fails with SSS_ERROR_INVALID_ARGUMENT when img holds NaN or Inf, naming name, the first such pixel and
+ * the count ("sky.pfm: pixel (1, 3) is nan (1 non-finite value)"): for inputs such as environment
+ * maps, where one NaN would spread through every light. */
+sss_result sss_image_require_finite(const sss_image *img, const char *name, sss_error *err);
 
 typedef struct sss_image_metrics {
     double ssim;     /* mean SSIM over pixels and channels, 8-bit sRGB, data range 255 */

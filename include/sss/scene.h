@@ -281,6 +281,15 @@ sss_result sss_scene_object_world_mesh(const sss_scene_object *obj, double t, ss
 /* The same for any mesh in the object's space (e.g. its splat mesh or a simplification of it). */
 sss_result sss_scene_object_pose_mesh(const sss_scene_object *obj, const sss_mesh *mesh, double t,
                                       sss_mesh *out, sss_error *err);
+/* The box that holds the object's mesh (object space) at every time of its animation: its bounds,
+ * padded by the twist's and bend's diagonal or the wave's amplitude. */
+void sss_scene_object_animated_bounds(const sss_scene_object *obj, float lo[3], float hi[3]);
+/* The largest |coordinate| of the object's world-space positions at any time (the animated box's
+ * corners through the transform: exact bounds for an affine map); INFINITY when one is not finite.
+ * The loader refuses objects beyond SSS_SCENE_MAX_WORLD_COORD: the real-time renderer works in
+ * float, where products of larger coordinates (areas, depths) overflow to Inf and NaN. */
+double sss_scene_object_world_reach(const sss_scene_object *obj);
+#define SSS_SCENE_MAX_WORLD_COORD 1e18
 /* A deep copy of a mesh (positions, normals, uvs, indices, source_flags). */
 sss_result sss_scene_mesh_copy(const sss_mesh *mesh, sss_mesh *out, sss_error *err);
 

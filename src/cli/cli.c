@@ -8,20 +8,54 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/file_util.h"
+#include "core/text.h"
+
+/* Every diagnostic of the tool goes through here: "sss CMD: message" (or "sss: message") with the
+ * message's control characters escaped, since it names files and scene strings from data. */
+static void vmessage(const char *cmd, const char *fmt, va_list ap)
+{
+    va_list again;
+    va_copy(again, ap);
+    int n = vsnprintf(NULL, 0, fmt, ap);
+    char *text = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    char *escaped = text ? malloc(SSS_TEXT_ESCAPE_MAX * (size_t)n + 1) : NULL;
+    if (cmd) fprintf(stderr, "sss %s: ", cmd);
+    else fputs("sss: ", stderr);
+    if (escaped) {
+        vsnprintf(text, (size_t)n + 1, fmt, again);
+        sss_text_escape(text, (size_t)n, escaped);
+        fputs(escaped, stderr);
+    } else {
+        fputs("(out of memory formatting the message)", stderr);
+    }
+    fputc('\n', stderr);
+    free(escaped);
+    free(text);
+    va_end(again);
+}
+
+void cli_message(const char *cmd, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vmessage(cmd, fmt, ap);
+    va_end(ap);
+}
+
 int cli_usage_error(const char *cmd, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    fprintf(stderr, "sss %s: ", cmd);
-    vfprintf(stderr, fmt, ap);
-    fprintf(stderr, "\nTry 'sss %s --help'.\n", cmd);
+    vmessage(cmd, fmt, ap);
     va_end(ap);
+    fprintf(stderr, "Try 'sss %s --help'.\n", cmd);
     return CLI_EXIT_USAGE;
 }
 
 int cli_fail(const char *cmd, const sss_error *err)
 {
-    fprintf(stderr, "sss %s: %s\n", cmd, err && err->message[0] ? err->message : "unknown error");
+    cli_message(cmd, "%s", err && err->message[0] ? err->message : "unknown error");
     return CLI_EXIT_ERROR;
 }
 
@@ -29,9 +63,7 @@ int cli_failf(const char *cmd, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    fprintf(stderr, "sss %s: ", cmd);
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
+    vmessage(cmd, fmt, ap);
     va_end(ap);
     return CLI_EXIT_ERROR;
 }
@@ -67,6 +99,39 @@ int cli_parse_int(const char *cmd, const char *option, const char *text, int *ou
     }
     *out = (int)v;
     return 1;
+}
+
+int cli_parse_int_in(const char *cmd, const char *option, const char *text, int min, int max, int *out)
+{
+    int v;
+    if (!cli_parse_int(cmd, option, text, &v)) return 0;
+    if (v < min || v > max) {
+        cli_usage_error(cmd, "%s must be in %d..%d, got %d", option, min, max, v);
+        return 0;
+    }
+    *out = v;
+    return 1;
+}
+
+int cli_parse_positive(const char *cmd, const char *option, const char *text, double *out)
+{
+    double v;
+    if (!cli_parse_double(cmd, option, text, &v)) return 0;
+    if (!(v > 0.0)) {
+        cli_usage_error(cmd, "%s must be a number > 0, got '%s'", option, text);
+        return 0;
+    }
+    *out = v;
+    return 1;
+}
+
+int cli_require_extension(const char *cmd, const char *option, const char *path, const char *ext)
+{
+    char have[16];
+    sss_path_extension(path, have, sizeof have);
+    if (strcmp(have, ext) == 0) return 1;
+    cli_usage_error(cmd, "%s '%s': the file is written as .%s, so its name must end in .%s", option, path, ext, ext);
+    return 0;
 }
 
 const char *cli_option_value(const char *cmd, int argc, char **argv, int *i)

@@ -22,6 +22,14 @@ int sss_cmd_eval(int argc, char **argv);
 int sss_cmd_view(int argc, char **argv);
 int sss_cmd_sam(int argc, char **argv);
 
+/* Prints "sss CMD: message" (cmd NULL: "sss: message") to stderr with the message's control characters
+ * escaped (core/text.h): every diagnostic goes through it, since messages name files and scene
+ * strings from data. The functions below print through it. */
+void cli_message(const char *cmd, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
 /* Prints "sss CMD: message" and "Try 'sss CMD --help'." to stderr; returns CLI_EXIT_USAGE. */
 int cli_usage_error(const char *cmd, const char *fmt, ...)
 #if defined(__GNUC__)
@@ -44,6 +52,14 @@ int cli_wants_help(int argc, char **argv);
  * a usage error naming the option and return 0; on success they return 1. */
 int cli_parse_double(const char *cmd, const char *option, const char *text, double *out);
 int cli_parse_int(const char *cmd, const char *option, const char *text, int *out);
+/* The same with a range: options whose default is a sentinel (0, -1) must not take it silently from
+ * the command line ("--range 0" is refused, not "the default range"). */
+int cli_parse_int_in(const char *cmd, const char *option, const char *text, int min, int max, int *out);
+int cli_parse_positive(const char *cmd, const char *option, const char *text, double *out); /* finite, > 0 */
+
+/* For an output written in one format: 1 when path ends in .ext (any case), otherwise prints a usage
+ * error and returns 0 (a .obj name must not receive PLY bytes). */
+int cli_require_extension(const char *cmd, const char *option, const char *path, const char *ext);
 
 /* For options with a value: returns argv[*i + 1] and advances *i, or prints a usage error and
  * returns NULL when the value is missing. */

@@ -66,8 +66,8 @@ static void warn_nonfinite(const char *path, const sss_image *img)
 {
     size_t bad = sss_image_count_nonfinite(img);
     if (bad)
-        fprintf(stderr, "sss compare: warning: %s holds %zu NaN/Inf values (compared as: NaN and -Inf black, +Inf white)\n",
-                path, bad);
+        cli_message(CMD, "warning: %s holds %zu NaN/Inf values (compared as: NaN and -Inf black, +Inf white)", path,
+                    bad);
 }
 
 int sss_cmd_compare(int argc, char **argv)

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "cli/cli.h"
+#include "core/text.h"
 #include "sss/eval.h"
 
 #define CMD "eval"
@@ -100,7 +101,9 @@ static void on_progress(void *user, double fraction, const char *stage)
         int cols = ioctl(fileno(stderr), TIOCGWINSZ, &ws) == 0 && ws.ws_col > 0 ? ws.ws_col : 80;
         int room = cols - 1 - (27 + 5 + 4 + 10 + 2);
         if (room < 0) room = 0;
-        fprintf(stderr, "\r\033[K[%s] %3d%% ETA %s  %.*s", bar, (int)(100.0 * fraction), eta, room, stage ? stage : "");
+        char shown[SSS_TEXT_ESCAPE_MAX * 256 + 1]; /* the stage names scenes: escaped like every message */
+        sss_text_escape(stage ? stage : "", stage ? strnlen(stage, 256) : 0, shown);
+        fprintf(stderr, "\r\033[K[%s] %3d%% ETA %s  %.*s", bar, (int)(100.0 * fraction), eta, room, shown);
         fflush(stderr);
         p->bar_shown = 1;
     } else {
@@ -108,7 +111,9 @@ static void on_progress(void *user, double fraction, const char *stage)
         major_stage(stage, major, sizeof major);
         if (strcmp(major, p->last) != 0) {
             snprintf(p->last, sizeof p->last, "%s", major);
-            fprintf(stderr, "[%3d%%] %s\n", (int)(100.0 * fraction), major);
+            char shown[SSS_TEXT_ESCAPE_MAX * sizeof major + 1];
+            sss_text_escape(major, strlen(major), shown);
+            fprintf(stderr, "[%3d%%] %s\n", (int)(100.0 * fraction), shown);
         }
     }
 }
@@ -118,7 +123,7 @@ static void on_note(void *user, const char *msg)
     progress_state *p = user;
     if (p->quiet) return;
     if (p->tty && p->bar_shown) fputs("\r\033[K", stderr);
-    fprintf(stderr, "sss eval: %s\n", msg);
+    cli_message(CMD, "%s", msg);
 }
 
 /* Splits a comma-separated list in place. */

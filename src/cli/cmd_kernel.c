@@ -1,6 +1,7 @@
 /* cli/cmd_kernel.c — `sss kernel`: the separable kernels of Jimenez et al. 2019 as text: the importance-sampled
  * taps of the pre-integrated kernel (Eq. 4-5) or of the artist model (Eq. 6), or the rank-N SVD
  * approximation's singular values and vectors. */
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -90,16 +91,20 @@ int sss_cmd_kernel(int argc, char **argv)
     int taps = 7, rank = 3, grid = 64;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
-        if (strcmp(a, "--scale") == 0 || strcmp(a, "--eta") == 0 || strcmp(a, "--range") == 0 ||
-            strcmp(a, "--extent") == 0) {
+        if (strcmp(a, "--scale") == 0 || strcmp(a, "--eta") == 0) {
             const char *v = cli_option_value(CMD, argc, argv, &i);
-            double *dst = strcmp(a, "--scale") == 0 ? &scale : strcmp(a, "--eta") == 0 ? &eta
-                                                          : strcmp(a, "--range") == 0 ? &range : &extent;
-            if (!v || !cli_parse_double(CMD, a, v, dst)) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--taps") == 0 || strcmp(a, "--rank") == 0 || strcmp(a, "--grid") == 0) {
+            if (!v || !cli_parse_double(CMD, a, v, strcmp(a, "--scale") == 0 ? &scale : &eta)) return CLI_EXIT_USAGE;
+        } else if (strcmp(a, "--range") == 0 || strcmp(a, "--extent") == 0) {
+            /* 0 is the library's "automatic": given on the command line it must be a real width */
             const char *v = cli_option_value(CMD, argc, argv, &i);
-            int *dst = strcmp(a, "--taps") == 0 ? &taps : strcmp(a, "--rank") == 0 ? &rank : &grid;
-            if (!v || !cli_parse_int(CMD, a, v, dst)) return CLI_EXIT_USAGE;
+            if (!v || !cli_parse_positive(CMD, a, v, strcmp(a, "--range") == 0 ? &range : &extent))
+                return CLI_EXIT_USAGE;
+        } else if (strcmp(a, "--taps") == 0) {
+            const char *v = cli_option_value(CMD, argc, argv, &i);
+            if (!v || !cli_parse_int_in(CMD, a, v, 1, INT_MAX, &taps)) return CLI_EXIT_USAGE; /* 0: the default 7 */
+        } else if (strcmp(a, "--rank") == 0 || strcmp(a, "--grid") == 0) {
+            const char *v = cli_option_value(CMD, argc, argv, &i);
+            if (!v || !cli_parse_int(CMD, a, v, strcmp(a, "--rank") == 0 ? &rank : &grid)) return CLI_EXIT_USAGE;
         } else if (strcmp(a, "--artist") == 0) {
             if (!(preset = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
         } else if (strcmp(a, "--method") == 0) {

@@ -111,5 +111,6 @@ int sss_cmd_mesh(int argc, char **argv)
     if (is_info) return cmd_info(input);
     if (is_simplify && !have_triangles) return cli_usage_error(CMD, "simplify needs --triangles N");
     if (!output) return cli_usage_error(CMD, "%s needs -o OUT.ply", sub);
+    if (!cli_require_extension(CMD, "-o", output, "ply")) return CLI_EXIT_USAGE;
     return cmd_write(input, output, is_simplify ? triangles : 0);
 }

@@ -72,9 +72,14 @@ static int frame_path(const char *out, int k, char *buf, size_t cap)
     return n > 0 && (size_t)n < cap;
 }
 
-/* Accepts a printf pattern only when it holds exactly one %d-style conversion (and %% escapes). */
+#define PATTERN_WIDTH_MAX 32 /* frame numbers have at most 6 digits; a wider field only pads */
+
+/* Accepts a name without '%', or a printf pattern with exactly one %d-style conversion (optionally
+ * zero-padded to a width <= PATTERN_WIDTH_MAX) and %% escapes: with no conversion every frame would
+ * go to one file, and a width beyond int makes snprintf fail. */
 static int valid_pattern(const char *s)
 {
+    if (!strchr(s, '%')) return 1;
     int conv = 0;
     for (const char *p = strchr(s, '%'); p; p = strchr(p, '%')) {
         p++;
@@ -82,12 +87,14 @@ static int valid_pattern(const char *s)
             p++;
             continue;
         }
-        while (*p >= '0' && *p <= '9') p++;
+        int width = 0;
+        for (; *p >= '0' && *p <= '9'; p++)
+            if ((width = 10 * width + (*p - '0')) > PATTERN_WIDTH_MAX) return 0;
         if (*p != 'd') return 0;
         conv++;
         p++;
     }
-    return conv <= 1;
+    return conv == 1;
 }
 
 static sss_result write_timings_json(const char *path, const char *technique, int w, int h, int supersample,
@@ -194,9 +201,14 @@ int sss_cmd_render(int argc, char **argv)
     if (animate && !frames_given && !window) return cli_usage_error(CMD, "--animate needs --frames N");
     if (window && !frames_given && (out || exr))
         return cli_usage_error(CMD, "--window with -o/--exr needs --frames N (which frame to write)");
-    if (out && !valid_pattern(out)) return cli_usage_error(CMD, "-o '%s': '%%' must start one %%d conversion", out);
-    if (exr && !valid_pattern(exr)) return cli_usage_error(CMD, "--exr '%s': '%%' must start one %%d conversion", exr);
+    if (out && !valid_pattern(out))
+        return cli_usage_error(CMD, "-o '%s': a frame pattern needs exactly one %%d (width at most %d; %%%% for '%%')",
+                               out, PATTERN_WIDTH_MAX);
+    if (exr && !valid_pattern(exr))
+        return cli_usage_error(CMD, "--exr '%s': a frame pattern needs exactly one %%d (width at most %d; %%%% for '%%')",
+                               exr, PATTERN_WIDTH_MAX);
     if (out && !animate && strchr(out, '%')) return cli_usage_error(CMD, "-o holds a %%d pattern but --animate is not set");
+    if (exr && !animate && strchr(exr, '%')) return cli_usage_error(CMD, "--exr holds a %%d pattern but --animate is not set");
     if (exr) {
         char ext[16];
         sss_path_extension(exr, ext, sizeof ext);

@@ -1,6 +1,7 @@
 /* cli/cmd_sam.c — `sss sam build` writes the Spatial Adjacency Map of a mesh (Maisch & Ropinski 2017) for a medium,
  * or of a scene object for its material and transform; `sss sam info` prints a .sam file's header and
  * checks it against a mesh or scene object. */
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -100,8 +101,8 @@ static int cmd_info(int argc, char **argv)
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i], *v;
         if (strcmp(a, "--object") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &object)) return CLI_EXIT_USAGE;
-            if (object < 0) return cli_usage_error(CMD, "--object must be >= 0");
+            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int_in(CMD, a, v, 0, INT_MAX, &object))
+                return CLI_EXIT_USAGE;
         } else if (a[0] == '-' && a[1]) {
             return cli_usage_error(CMD, "unknown option '%s'", a);
         } else if (!file) {
@@ -166,10 +167,15 @@ static int cmd_build(int argc, char **argv)
             if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_double(CMD, a, v, a[2] == 's' ? &scale : &eta))
                 return CLI_EXIT_USAGE;
             *(a[2] == 's' ? &scale_given : &eta_given) = 1;
-        } else if (strcmp(a, "-n") == 0 || strcmp(a, "--samples") == 0 || strcmp(a, "--threads") == 0 ||
-                   strcmp(a, "--object") == 0) {
-            int *dst = a[1] == 'n' ? &n : a[2] == 's' ? &samples : a[2] == 't' ? &threads : &object;
+        } else if (strcmp(a, "-n") == 0 || strcmp(a, "--samples") == 0) {
+            int *dst = a[1] == 'n' ? &n : &samples;
             if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, dst)) return CLI_EXIT_USAGE;
+        } else if (strcmp(a, "--object") == 0) { /* -1 (and --threads 0) are the defaults' sentinels */
+            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int_in(CMD, a, v, 0, INT_MAX, &object))
+                return CLI_EXIT_USAGE;
+        } else if (strcmp(a, "--threads") == 0) {
+            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int_in(CMD, a, v, 1, 4096, &threads))
+                return CLI_EXIT_USAGE;
         } else if (strcmp(a, "--seed") == 0) {
             double x;
             if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_double(CMD, a, v, &x)) return CLI_EXIT_USAGE;
@@ -194,10 +200,10 @@ static int cmd_build(int argc, char **argv)
     }
     if (!input) return cli_usage_error(CMD, "missing MESH or SCENE.json");
     if (!output) return cli_usage_error(CMD, "missing -o FILE.sam");
+    if (!cli_require_extension(CMD, "-o", output, "sam")) return CLI_EXIT_USAGE;
     if (n < 1 || n > SSS_SAM_MAX_N) return cli_usage_error(CMD, "-n must be in 1..%d", SSS_SAM_MAX_N);
     if (samples < 1 || samples > SSS_SAM_MAX_SAMPLES)
         return cli_usage_error(CMD, "--samples must be in 1..%d", SSS_SAM_MAX_SAMPLES);
-    if (threads < 0) return cli_usage_error(CMD, "--threads must be >= 0");
     int scene_input = is_scene(input);
     if (scene_input && (medium || scale_given || eta_given))
         return cli_usage_error(CMD, "--medium, --scale and --eta apply to a mesh; a scene object has its material");

@@ -69,7 +69,7 @@ int main(int argc, char **argv)
         if (argc >= 3 && strcmp(name, "help") == 0) {
             const command *c = find_command(argv[2]);
             if (!c) {
-                fprintf(stderr, "sss: unknown command '%s'\n", argv[2]);
+                cli_message(NULL, "unknown command '%s'", argv[2]);
                 return CLI_EXIT_USAGE;
             }
             char help[] = "--help";
@@ -82,7 +82,7 @@ int main(int argc, char **argv)
     if (strcmp(name, "--version") == 0) return cmd_version(argc - 1, argv + 1);
     const command *c = find_command(name);
     if (!c) {
-        fprintf(stderr, "sss: unknown command '%s'\n", name);
+        cli_message(NULL, "unknown command '%s'", name);
         print_help(stderr);
         return CLI_EXIT_USAGE;
     }

@@ -2,31 +2,63 @@
 
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+
+#include "core/text.h"
+
+/* Stores text (length n) as err's message: control characters escaped (messages reach terminals and
+ * name files and scene strings from data), and, when too long, the middle of the longest path cut
+ * rather than the end, which holds the cause. */
+static void store_message(sss_error *err, const char *text, size_t n)
+{
+    char *escaped = malloc(SSS_TEXT_ESCAPE_MAX * n + 1);
+    if (!escaped) { /* no memory for the copy: keep what fits of the raw text, still escaped */
+        size_t fit = (sizeof err->message - 1) / SSS_TEXT_ESCAPE_MAX;
+        sss_text_escape(text, n < fit ? n : fit, err->message);
+        return;
+    }
+    size_t len = sss_text_escape(text, n, escaped);
+    len = sss_text_shorten_middle(escaped, len, sizeof err->message - 1);
+    memcpy(err->message, escaped, len + 1);
+    free(escaped);
+}
 
 sss_result sss_error_set(sss_error *err, sss_result code, const char *fmt, ...)
 {
-    if (err) {
-        va_list ap;
-        va_start(ap, fmt);
-        err->code = code;
-        vsnprintf(err->message, sizeof err->message, fmt, ap);
-        va_end(ap);
+    if (!err) return code;
+    err->code = code;
+    va_list ap, again;
+    va_start(ap, fmt);
+    va_copy(again, ap);
+    char small[SSS_ERROR_MESSAGE_SIZE];
+    int n = vsnprintf(small, sizeof small, fmt, ap);
+    if (n < 0) {
+        small[0] = '\0';
+        n = 0;
     }
+    char *text = (size_t)n < sizeof small ? small : malloc((size_t)n + 1);
+    if (text && text != small) vsnprintf(text, (size_t)n + 1, fmt, again);
+    if (text) store_message(err, text, (size_t)n);
+    else store_message(err, small, strlen(small)); /* no memory: the part that fitted */
+    if (text != small) free(text);
+    va_end(again);
+    va_end(ap);
     return code;
 }
 
 void sss_error_prefix(sss_error *err, const char *prefix)
 {
     if (!err || !prefix) return;
-    /* Build "prefix: message" in place, truncating the old message to what still fits. */
-    char old[SSS_ERROR_MESSAGE_SIZE];
-    memcpy(old, err->message, sizeof old);
-    size_t n = strlen(prefix), cap = sizeof err->message - 1, at = 0;
-    for (size_t i = 0; i < n && at < cap; i++) err->message[at++] = prefix[i];
-    for (const char *s = ": "; *s && at < cap; s++) err->message[at++] = *s;
-    for (size_t i = 0; old[i] && at < cap; i++) err->message[at++] = old[i];
-    err->message[at] = '\0';
+    /* "prefix: message", then fitted like any message (the old one is already escaped). */
+    size_t np = strlen(prefix), nm = strlen(err->message);
+    char *text = malloc(np + 2 + nm + 1);
+    if (!text) return;
+    memcpy(text, prefix, np);
+    memcpy(text + np, ": ", 2);
+    memcpy(text + np + 2, err->message, nm + 1);
+    store_message(err, text, np + 2 + nm);
+    free(text);
 }
 
 const char *sss_result_string(sss_result code)

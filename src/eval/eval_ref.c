@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "core/file_util.h"
+#include "core/text.h"
 #include "eval/eval_internal.h"
 
 static const char *quality_name(sss_reference_quality q) { return q == SSS_REFERENCE_DRAFT ? "draft" : "final"; }
@@ -33,7 +34,9 @@ static int read_sidecar(const char *exr, uint64_t *hash, char quality[8])
     char *text = NULL;
     size_t size = 0;
     if (sss_read_file(path, 1 << 20, &text, &size, NULL) != SSS_OK) return 0;
-    cJSON *root = cJSON_Parse(text);
+    char nul_path[256];
+    /* a string cut at a NUL could pass for another scene's hash: such a sidecar counts as absent */
+    cJSON *root = sss_json_find_nul(text, size, nul_path, sizeof nul_path) ? NULL : cJSON_ParseWithLength(text, size);
     free(text);
     if (!root) return 0;
     const cJSON *h = cJSON_GetObjectItemCaseSensitive(root, "scene_fnv1a64");

@@ -10,6 +10,28 @@
 
 #define PATH_CAP 4096
 
+/* Every string from data (file names, the scene's name, texture and medium names) is written through
+ * here: quoted, with the escapes PBRT-v3's tokenizer decodes (\b \f \n \r \t \\ \' \"), so a quote
+ * cannot end the string and a newline cannot end it or a comment; other bytes go unchanged (its
+ * tokenizer keeps them inside a string). */
+static void pbrt_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        switch (*s) {
+        case '"': fputs("\\\"", f); break;
+        case '\\': fputs("\\\\", f); break;
+        case '\n': fputs("\\n", f); break;
+        case '\r': fputs("\\r", f); break;
+        case '\t': fputs("\\t", f); break;
+        case '\b': fputs("\\b", f); break;
+        case '\f': fputs("\\f", f); break;
+        default: fputc(*s, f);
+        }
+    }
+    fputc('"', f);
+}
+
 static void rgb(FILE *f, const char *type_name, const double v[3])
 {
     fprintf(f, " \"rgb %s\" [%.9g %.9g %.9g]", type_name, v[0], v[1], v[2]);
@@ -56,9 +78,10 @@ static void write_camera(FILE *f, const sss_scene *scene, const char *image_name
     fprintf(f, "LookAt %.9g %.9g %.9g  %.9g %.9g %.9g  %.9g %.9g %.9g\n", c->position[0], c->position[1],
             c->position[2], c->look_at[0], c->look_at[1], c->look_at[2], c->up[0], c->up[1], c->up[2]);
     fprintf(f, "Camera \"perspective\" \"float fov\" [%.9g]\n", c->fov);
-    fprintf(f, "Film \"image\" \"integer xresolution\" [%d] \"integer yresolution\" [%d]\n"
-               "    \"string filename\" [\"%s\"] \"float scale\" [%.9g]\n",
-            c->width, c->height, image_name, exposure_scale);
+    fprintf(f, "Film \"image\" \"integer xresolution\" [%d] \"integer yresolution\" [%d]\n    \"string filename\" [",
+            c->width, c->height);
+    pbrt_string(f, image_name);
+    fprintf(f, "] \"float scale\" [%.9g]\n", exposure_scale);
     fprintf(f, "Sampler \"halton\" \"integer pixelsamples\" [%d]\n", spp);
     fprintf(f, "# maxdepth 1: refraction at the camera hit, BSSRDF probe, direct light at the entry point\n"
                "# (the single-bounce subsurface integral that sss reference evaluates).\n");
@@ -73,14 +96,21 @@ static void write_material(FILE *f, const sss_scene_material *m)
         fprintf(f, "\n");
         return;
     }
-    if (m->profile != SSS_SCENE_PROFILE_PBD)
-        fprintf(f, "    # profile \"%s\" has no PBRT equivalent: PBRT uses its photon beam diffusion table\n",
-                sss_scene_profile_name(m->profile));
-    if (m->texture) fprintf(f, "    # texture \"%s\" is not exported\n", m->texture);
+    if (m->profile != SSS_SCENE_PROFILE_PBD) {
+        fprintf(f, "    # profile ");
+        pbrt_string(f, sss_scene_profile_name(m->profile));
+        fprintf(f, " has no PBRT equivalent: PBRT uses its photon beam diffusion table\n");
+    }
+    if (m->texture) {
+        fprintf(f, "    # texture ");
+        pbrt_string(f, m->texture);
+        fprintf(f, " is not exported\n");
+    }
     switch (m->source) {
     case SSS_SUBSURFACE_MEDIUM:
-        fprintf(f, "    Material \"subsurface\" \"string name\" [\"%s\"] \"float scale\" [%.9g] \"float eta\" [%.9g]\n",
-                m->medium->name, m->scale, m->optical.eta);
+        fprintf(f, "    Material \"subsurface\" \"string name\" [");
+        pbrt_string(f, m->medium->name);
+        fprintf(f, "] \"float scale\" [%.9g] \"float eta\" [%.9g]\n", m->scale, m->optical.eta);
         break;
     case SSS_SUBSURFACE_COEFFICIENTS:
         fprintf(f, "    Material \"subsurface\"");
@@ -147,7 +177,9 @@ static void write_light(FILE *f, const sss_light *l)
         transform_directive(f, m);
         /* PBRT resolves relative names against the .pbrt file's folder: write an absolute path. */
         char *abs = realpath(l->file, NULL);
-        fprintf(f, "    LightSource \"infinite\" \"string mapname\" [\"%s\"]", abs ? abs : l->file);
+        fprintf(f, "    LightSource \"infinite\" \"string mapname\" [");
+        pbrt_string(f, abs ? abs : l->file);
+        fprintf(f, "]");
         free(abs);
         rgb(f, "L", l->scale);
         fprintf(f, "\nAttributeEnd\n");
@@ -212,8 +244,9 @@ sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *d
     if (res == SSS_OK) f = sss_atomic_open(out_path, tmp, sizeof tmp, err);
     if (res == SSS_OK && !f) res = err ? err->code : SSS_ERROR_IO;
     if (f) {
-        fprintf(f, "# Written by sss export pbrt from %s (time %.9g s).\n", scene->name ? scene->name : "a scene",
-                d.time);
+        fprintf(f, "# Written by sss export pbrt from ");
+        pbrt_string(f, scene->name ? scene->name : "a scene");
+        fprintf(f, " (time %.9g s).\n", d.time);
         write_camera(f, scene, image_name, d.pixel_samples);
         fprintf(f, "WorldBegin\n");
         for (size_t i = 0; i < scene->light_count; i++) write_light(f, &scene->lights[i]);
@@ -221,8 +254,9 @@ sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *d
             const char *slash = strrchr(mesh_paths[i], '/');
             fprintf(f, "AttributeBegin\n");
             write_material(f, &scene->objects[i].material);
-            fprintf(f, "    Shape \"plymesh\" \"string filename\" [\"%s\"]\nAttributeEnd\n",
-                    slash ? slash + 1 : mesh_paths[i]);
+            fprintf(f, "    Shape \"plymesh\" \"string filename\" [");
+            pbrt_string(f, slash ? slash + 1 : mesh_paths[i]);
+            fprintf(f, "]\nAttributeEnd\n");
         }
         fprintf(f, "WorldEnd\n");
         res = sss_atomic_close(f, tmp, out_path, err);

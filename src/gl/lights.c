@@ -13,6 +13,7 @@
  *    irradiance at normal incidence, with an orthographic shadow map.
  */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -167,6 +168,17 @@ static sss_result env_cached(sss_gl_renderer *r, const sss_light *L, const struc
     sss_image img;
     sss_result res = sss_image_read(L->file, &img, err);
     if (res != SSS_OK) return res;
+    if ((res = sss_image_require_finite(&img, L->file, err)) != SSS_OK) { /* as the reference: refused, not zeroed */
+        sss_image_free(&img);
+        const sss_scene *sc = r->scene;
+        for (size_t i = 0; i < sc->light_count; i++)
+            if (&sc->lights[i] == L) {
+                char prefix[512];
+                snprintf(prefix, sizeof prefix, "%s: lights[%zu].file", sc->name ? sc->name : "scene", i);
+                sss_error_prefix(err, prefix);
+            }
+        return res;
+    }
     res = env_downsample(&img, &c, err);
     if (res == SSS_OK && !gs->env_tex) res = env_upload(gs, L, &img, r->ctx->max_texture_size, err);
     if (res == SSS_OK && !(c.file = strdup(L->file)))

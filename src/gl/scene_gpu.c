@@ -64,24 +64,6 @@ static void col_major_from_rows(const double m[16], float out[16])
 }
 
 /* Object-space bounds grown by what the animation can add (conservative). */
-static void animated_bounds(const sss_scene_object *so, float lo[3], float hi[3])
-{
-    double diag = 0.0;
-    for (int k = 0; k < 3; k++) {
-        lo[k] = so->bounds_min[k];
-        hi[k] = so->bounds_max[k];
-        diag += (double)(hi[k] - lo[k]) * (hi[k] - lo[k]);
-    }
-    diag = sqrt(diag);
-    double pad = 0.0;
-    if (so->animation.type == SSS_ANIMATION_TWIST || so->animation.type == SSS_ANIMATION_BEND) pad = diag;
-    if (so->animation.type == SSS_ANIMATION_WAVE) pad = fabs(so->animation.amplitude);
-    for (int k = 0; k < 3; k++) {
-        lo[k] -= (float)pad;
-        hi[k] += (float)pad;
-    }
-}
-
 /* The kernel LUT of a material as a cascade of `levels` tables (one array layer each): level l covers
  * r in [0, r_max / 16^l] and A in [0, pi (r_max / 16^l)^2]. One table spanning the longest channel's
  * r_max resolves areas only down to ~1e-4 A_max (sqrt axes, 512 texels): with r_max set by a weakly
@@ -247,17 +229,17 @@ sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err)
         rec->anim[2] = o->subsurface ? 1.0f : 0.0f;
         rec->anim[3] = o->has_uv ? 1.0f : 0.0f;
         float lo[3], hi[3];
-        animated_bounds(so, lo, hi);
+        sss_scene_object_animated_bounds(so, lo, hi);
         for (int c = 0; c < 8; c++) {
             double p[3] = {(c & 1) ? hi[0] : lo[0], (c & 2) ? hi[1] : lo[1], (c & 4) ? hi[2] : lo[2]}, w[3];
             sss_transform_point(so->transform.matrix, p, w);
-            /* GL works in float: positions beyond ~1e18 leave no room for products (areas, depth) */
-            if (!isfinite(w[0]) || !isfinite(w[1]) || !isfinite(w[2]) || fabs(w[0]) > 1e18 || fabs(w[1]) > 1e18 ||
-                fabs(w[2]) > 1e18) {
+            /* GL works in float: positions beyond ~1e18 leave no room for products (areas, depth); the
+             * loader refuses such objects, scenes built in code are caught here */
+            double reach = fmax(fabs(w[0]), fmax(fabs(w[1]), fabs(w[2])));
+            if (!isfinite(w[0]) || !isfinite(w[1]) || !isfinite(w[2]) || !(reach <= SSS_SCENE_MAX_WORLD_COORD)) {
                 res = sss_error_set(err, SSS_ERROR_LIMIT,
-                                    "%s: objects[%zu]: a world-space vertex position is not finite in single "
-                                    "precision (|x| > 1e18; transform scale too large?)",
-                                    s->name ? s->name : "scene", i);
+                                    "%s: objects[%zu]: world-space positions reach %g, beyond %g (single precision)",
+                                    s->name ? s->name : "scene", i, reach, SSS_SCENE_MAX_WORLD_COORD);
                 break;
             }
             for (int k = 0; k < 3; k++) {

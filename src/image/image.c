@@ -57,6 +57,18 @@ size_t sss_image_count_nonfinite(const sss_image *img)
     return bad;
 }
 
+sss_result sss_image_require_finite(const sss_image *img, const char *name, sss_error *err)
+{
+    size_t bad = sss_image_count_nonfinite(img);
+    if (!bad) return SSS_OK;
+    size_t i = 0;
+    while (isfinite(img->pixels[i])) i++;
+    size_t pixel = i / 3;
+    return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: pixel (%zu, %zu) is %g (%zu non-finite value%s)",
+                         name ? name : "image", pixel % (size_t)img->width, pixel / (size_t)img->width,
+                         (double)img->pixels[i], bad, bad == 1 ? "" : "s");
+}
+
 /* IEC 61966-2-1 sRGB transfer function and its exact inverse. */
 double sss_srgb_encode(double linear)
 {

@@ -64,11 +64,6 @@ static sss_result env_build(ref_env *e, size_t index, sss_error *err)
         cdf[0] = 0.0;
         for (int x = 0; x < w; x++) {
             const float *p = e->map->pixels + 3 * ((size_t)y * (size_t)w + (size_t)x);
-            for (int c = 0; c < 3; c++)
-                if (!isfinite(p[c]))
-                    return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
-                                         "lights[%zu].file: environment map has a non-finite pixel at (%d, %d)",
-                                         index, x, y);
             double l = fmax(luminance(p), 0.0) * sl * st;
             cdf[x + 1] = cdf[x] + l;
         }
@@ -223,22 +218,23 @@ sss_result ref_lights_init(ref_ctx *ctx, sss_error *err)
                 return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "lights[%zu].rotate_y: not finite", i);
             memcpy(e->scale, s->scale, sizeof e->scale);
             e->rotate_y = s->rotate_y;
+            sss_result r = SSS_OK;
             if (w->environment_maps && w->environment_maps[i]) {
                 e->map = w->environment_maps[i];
             } else {
                 if (!s->file)
                     return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "lights[%zu].file: missing", i);
-                sss_result r = sss_image_read(s->file, &e->owned_map, err);
-                if (r != SSS_OK) {
-                    char prefix[64];
-                    snprintf(prefix, sizeof prefix, "lights[%zu].file", i);
-                    sss_error_prefix(err, prefix);
-                    return r;
-                }
+                r = sss_image_read(s->file, &e->owned_map, err);
                 e->map = &e->owned_map;
             }
-            sss_result r = env_build(e, i, err);
-            if (r != SSS_OK) return r;
+            if (r == SSS_OK) r = sss_image_require_finite(e->map, s->file ? s->file : "environment map", err);
+            if (r != SSS_OK) {
+                char prefix[64];
+                snprintf(prefix, sizeof prefix, "lights[%zu].file", i);
+                sss_error_prefix(err, prefix);
+                return r;
+            }
+            if ((r = env_build(e, i, err)) != SSS_OK) return r;
             ctx->has_env = 1;
             break;
         }

@@ -2,6 +2,7 @@
  * handed to the scene-independent renderer. */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "reference/ref_internal.h"
 
@@ -56,6 +57,9 @@ sss_result sss_reference_render(const sss_scene *scene, const sss_reference_desc
         world.light_count = scene->light_count;
         world.exposure = scene->render.exposure;
         r = sss_reference_render_world(&world, desc, out, progress, user, stats, err);
+        /* messages about the scene's parts ("lights[0].file: ...") name the scene file, as the loader's do */
+        if (r != SSS_OK && err && (!strncmp(err->message, "lights[", 7) || !strncmp(err->message, "objects[", 8)))
+            sss_error_prefix(err, scene->name ? scene->name : "scene");
     }
     for (size_t i = 0; i < n; i++) sss_mesh_free(&meshes[i]);
     free(meshes);

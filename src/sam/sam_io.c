@@ -212,6 +212,31 @@ static sss_result read_back(reader *b, const char *path, uint32_t flags, sss_sam
     return SSS_OK;
 }
 
+/* The header's floats: finite and within what the writer's inputs allow (eta as sss/material.h, |g| < 1,
+ * coefficients >= 0, the table's energy fraction in (0, 1]); a checksum is easy to repair, so a NaN
+ * here must be caught before it reaches the renderer. */
+static sss_result check_header_floats(const sss_sam *s, const char *name, sss_error *err)
+{
+    const sss_material *m = &s->material;
+    if (!(s->energy > 0.0 && s->energy <= 1.0))
+        return sss_error_set(err, SSS_ERROR_PARSE, "%s: header: energy %g is outside (0, 1]", name, s->energy);
+    for (int c = 0; c < 3; c++)
+        if (!(m->sigma_a[c] >= 0.0 && isfinite(m->sigma_a[c])) || !(m->sigma_s[c] >= 0.0 && isfinite(m->sigma_s[c])))
+            return sss_error_set(err, SSS_ERROR_PARSE,
+                                 "%s: header: sigma_a %g, sigma_s %g (channel %d) must be finite and >= 0", name,
+                                 m->sigma_a[c], m->sigma_s[c], c);
+    if (!(m->eta >= SSS_ETA_MIN && m->eta <= SSS_ETA_MAX))
+        return sss_error_set(err, SSS_ERROR_PARSE, "%s: header: eta %g is outside [%g, %g]", name, m->eta, SSS_ETA_MIN,
+                             SSS_ETA_MAX);
+    if (!(m->g > -1.0 && m->g < 1.0))
+        return sss_error_set(err, SSS_ERROR_PARSE, "%s: header: g %g is outside (-1, 1)", name, m->g);
+    for (int i = 0; i < 16; i++)
+        if (!isfinite(s->transform[i]))
+            return sss_error_set(err, SSS_ERROR_PARSE, "%s: header: transform entry %d is %g", name, i,
+                                 s->transform[i]);
+    return SSS_OK;
+}
+
 /* The fixed header: counts, material, transform (into s) and the file size they imply (*expect).
  * head holds the first got bytes of the input. Nothing is allocated. */
 static sss_result parse_header(const uint8_t *head, size_t got, const char *name, sss_sam *s, uint32_t *back_flags,
@@ -261,6 +286,8 @@ static sss_result parse_header(const uint8_t *head, size_t got, const char *name
                              "%s: header out of range (%u vertices, %u triangles, n = %u, %u samples, model %u)", name,
                              s->vertex_count, s->triangle_count, s->n, s->samples, model);
     s->model = (sss_profile_model)model;
+    sss_result res = check_header_floats(s, name, err);
+    if (res != SSS_OK) return res;
     uint64_t nv = s->vertex_count, slots = nv * s->n;
     uint64_t bv = s->back_vertex_count, bt = s->back_triangle_count;
     uint64_t back_bytes = bv ? 4 * (7 * bv + ((*back_flags & BACK_HAS_UVS) ? 2 * bv : 0) + 3 * bt) : 0;

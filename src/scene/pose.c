@@ -14,6 +14,40 @@ static void *dup_array(const void *src, size_t count, size_t elem, int *failed)
     return d;
 }
 
+void sss_scene_object_animated_bounds(const sss_scene_object *obj, float lo[3], float hi[3])
+{
+    double diag = 0.0;
+    for (int k = 0; k < 3; k++) {
+        lo[k] = obj->bounds_min[k];
+        hi[k] = obj->bounds_max[k];
+        diag += (double)(hi[k] - lo[k]) * (hi[k] - lo[k]);
+    }
+    diag = sqrt(diag);
+    double pad = 0.0;
+    if (obj->animation.type == SSS_ANIMATION_TWIST || obj->animation.type == SSS_ANIMATION_BEND) pad = diag;
+    if (obj->animation.type == SSS_ANIMATION_WAVE) pad = fabs(obj->animation.amplitude);
+    for (int k = 0; k < 3; k++) {
+        lo[k] -= (float)pad;
+        hi[k] += (float)pad;
+    }
+}
+
+double sss_scene_object_world_reach(const sss_scene_object *obj)
+{
+    float lo[3], hi[3];
+    sss_scene_object_animated_bounds(obj, lo, hi);
+    double reach = 0.0;
+    for (int c = 0; c < 8; c++) {
+        double p[3] = {(c & 1) ? hi[0] : lo[0], (c & 2) ? hi[1] : lo[1], (c & 4) ? hi[2] : lo[2]}, w[3];
+        sss_transform_point(obj->transform.matrix, p, w);
+        for (int k = 0; k < 3; k++) {
+            if (!isfinite(w[k])) return INFINITY;
+            if (fabs(w[k]) > reach) reach = fabs(w[k]);
+        }
+    }
+    return reach;
+}
+
 sss_result sss_scene_mesh_copy(const sss_mesh *mesh, sss_mesh *out, sss_error *err)
 {
     memset(out, 0, sizeof *out);

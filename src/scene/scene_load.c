@@ -1,6 +1,7 @@
 /* The scene loader: JSON text -> validated sss_scene (docs/scene-format.md), then the load phase (PBD tables,
  * material resolution, meshes). */
 #include <errno.h>
+#include <float.h>
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
@@ -9,6 +10,7 @@
 #include <sys/stat.h>
 
 #include "core/file_util.h"
+#include "core/text.h"
 #include "scene/scene_internal.h"
 
 char *scene_strdup(const char *s)
@@ -262,6 +264,23 @@ static sss_result build_procedural(const sss_procedural *p, sss_mesh *m, sss_err
     }
 }
 
+/* Refuses an object whose world-space positions leave the range every renderer can handle, naming
+ * the field that puts it there (the transform, or the mesh itself when it is that large at rest). */
+static sss_result check_world_reach(jr *r, const sss_scene_object *o)
+{
+    double reach = sss_scene_object_world_reach(o);
+    if (reach <= SSS_SCENE_MAX_WORLD_COORD) return SSS_OK;
+    sss_scene_object at_rest = *o;
+    sss_transform_identity(&at_rest.transform);
+    const char *key = sss_scene_object_world_reach(&at_rest) <= SSS_SCENE_MAX_WORLD_COORD ? "transform"
+                      : o->mesh_path                                                       ? "mesh"
+                                                                                           : "procedural";
+    return jr_fail_key(r, key, SSS_ERROR_LIMIT,
+                       "world-space positions reach %g%s, beyond %g (the real-time renderer's single-precision "
+                       "range; docs/limits.md)",
+                       reach, reach > FLT_MAX ? " (not finite in single precision)" : "", SSS_SCENE_MAX_WORLD_COORD);
+}
+
 static sss_result load_object(scene_ctx *c, sss_scene *s, sss_scene_object *o)
 {
     jr *r = &c->r;
@@ -279,6 +298,7 @@ static sss_result load_object(scene_ctx *c, sss_scene *s, sss_scene_object *o)
     else res = build_procedural(&o->procedural, &o->mesh, r->err);
     if (res != SSS_OK) return jr_prefix(r, o->mesh_path ? "mesh" : "procedural", res);
     sss_mesh_bounds(&o->mesh, o->bounds_min, o->bounds_max);
+    if ((res = check_world_reach(r, o)) != SSS_OK) return res;
     /* docs/scene-format.md: a texture needs UVs in the mesh. */
     if (o->material.texture && !o->mesh.uvs) {
         size_t mark = jr_enter_key(r, "material");
@@ -348,6 +368,13 @@ sss_result sss_scene_parse(const char *json_text, size_t size, const char *base_
         line_column(json_text, off, &line, &col);
         return jr_fail(&ctx.r, SSS_ERROR_PARSE, "line %zu, column %zu: unexpected text after the JSON value",
                        line, col);
+    }
+
+    char nul_path[JR_PATH_SIZE];
+    if (sss_json_find_nul(json_text + start, size - start, nul_path, sizeof nul_path)) {
+        cJSON_Delete(root); /* cJSON would keep only the part before the NUL */
+        return jr_fail(&ctx.r, SSS_ERROR_PARSE, "%s%sa string holds a NUL character (\\u0000)", nul_path,
+                       nul_path[0] ? ": " : "");
     }
 
     sss_result res = SSS_OK;

@@ -9,6 +9,7 @@
 
 #include <cjson/cJSON.h>
 
+#include "core/text.h"
 #include "sss/material.h"
 #include "view/view_internal.h"
 
@@ -94,6 +95,9 @@ sss_result view_scene_json(const char *text, size_t size, const char *name, cons
 {
     *out = NULL;
     if (!name) name = "scene";
+    char nul_path[256];
+    if (sss_json_find_nul(text, size, nul_path, sizeof nul_path))
+        return sss_error_set(err, SSS_ERROR_PARSE, "%s: %s: a string holds a NUL character (\\u0000)", name, nul_path);
     cJSON *root = cJSON_ParseWithLength(text, size);
     if (!cJSON_IsObject(root)) {
         cJSON_Delete(root);
