@@ -94,7 +94,8 @@ static void random_suffix(char out[13])
     static _Thread_local uint64_t counter;
     struct timespec ts;
     clock_gettime(CLOCK_REALTIME, &ts);
-    uint64_t x = (uint64_t)ts.tv_nsec ^ (uint64_t)ts.tv_sec << 30 ^ (uint64_t)getpid() << 40 ^ ++counter * 0x9e3779b97f4a7c15ull;
+    uint64_t x = (uint64_t)ts.tv_nsec ^ (uint64_t)ts.tv_sec << 30 ^ (uint64_t)getpid() << 40;
+    x ^= ++counter * 0x9e3779b97f4a7c15ull;
     for (int i = 0; i < 12; i++) {
         x ^= x >> 30; /* splitmix64's finaliser per letter */
         x *= 0xbf58476d1ce4e5b9ull;

@@ -78,8 +78,8 @@ static sss_result chunk_error(const char *path, const unsigned char head[8], int
 {
     char type[5] = {0};
     for (int i = 0; i < 4; i++) type[i] = head[4 + i] >= 0x20 && head[4 + i] < 0x7f ? (char)head[4 + i] : '?';
-    return sss_error_set(err, SSS_ERROR_PARSE, status == 1 ? "%s: truncated in chunk %s" : "%s: corrupt: chunk %s fails its CRC check",
-                         path, type);
+    if (status == 1) return sss_error_set(err, SSS_ERROR_PARSE, "%s: truncated in chunk %s", path, type);
+    return sss_error_set(err, SSS_ERROR_PARSE, "%s: corrupt: chunk %s fails its CRC check", path, type);
 }
 
 /* The header's size against SSS_IMAGE_MAX_DIM per side and SSS_IMAGE_MAX_PNG_PIXELS in all. */
@@ -121,7 +121,8 @@ static sss_result png_check(FILE *f, const char *path, int size_only, uint32_t *
         uint32_t len = be32(hd);
         long long have = sss_image_stream_remaining_(f);
         if (len > 0x7fffffffu || (have >= 0 && (long long)len + 4 > have))
-            return sss_error_set(err, SSS_ERROR_PARSE, "%s: truncated (a chunk is longer than the rest of the file)", path);
+            return sss_error_set(err, SSS_ERROR_PARSE, "%s: truncated (a chunk is longer than the rest of the file)",
+                                 path);
         if ((status = check_chunk(f, table, hd, len, NULL)) != 0) return chunk_error(path, hd, status, err);
         if (memcmp(hd + 4, "IDAT", 4) == 0) idat += len;
         if (memcmp(hd + 4, "IEND", 4) == 0) break;
