@@ -148,13 +148,20 @@ static char *dup_string(const char *s)
     return d;
 }
 
+static sss_result staging_failed(sss_outputs *t, const char *tmp, const char *path, sss_error *err)
+{
+    remove(tmp);
+    t->failure = SSS_ERROR_OUT_OF_MEMORY;
+    return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+}
+
 /* Adds (tmp, path) to the active transaction; a path staged before is replaced by the newer file. */
 static sss_result stage(sss_outputs *t, const char *tmp, const char *path, sss_error *err)
 {
+    char *name = dup_string(tmp);
+    if (!name) return staging_failed(t, tmp, path, err);
     for (size_t i = 0; i < t->count; i++)
         if (strcmp(t->items[i].path, path) == 0) {
-            char *name = dup_string(tmp);
-            if (!name) break;
             remove(t->items[i].tmp);
             free(t->items[i].tmp);
             t->items[i].tmp = name;
@@ -168,14 +175,12 @@ static sss_result stage(sss_outputs *t, const char *tmp, const char *path, sss_e
             t->capacity = cap;
         }
     }
-    char *a = t->count < t->capacity ? dup_string(tmp) : NULL, *b = a ? dup_string(path) : NULL;
-    if (!b) {
-        free(a);
-        remove(tmp);
-        t->failure = SSS_ERROR_OUT_OF_MEMORY;
-        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    char *target = t->count < t->capacity ? dup_string(path) : NULL;
+    if (!target) {
+        free(name);
+        return staging_failed(t, tmp, path, err);
     }
-    t->items[t->count++] = (sss_staged_output){a, b};
+    t->items[t->count++] = (sss_staged_output){name, target};
     return SSS_OK;
 }
 
