@@ -19,6 +19,10 @@ extern "C" {
 
 /* Largest accepted width or height, for reading and creating (documented limit). */
 #define SSS_IMAGE_MAX_DIM 32768
+/* Largest PNG decoded, width x height (2^27: e.g. 16384 x 8192, 1.6 GB as floats). Deflate expands up
+ * to 1032:1, so a PNG of under a megabyte can claim gigabytes: the claim is refused from the header
+ * (SSS_ERROR_LIMIT) before anything is decoded. */
+#define SSS_IMAGE_MAX_PNG_PIXELS (1L << 27)
 
 typedef struct sss_image {
     int width, height;
@@ -32,7 +36,10 @@ void sss_image_free(sss_image *img);
  * A header that claims more pixels than the file's data could hold (given the format's best
  * compression) is refused before the image is allocated. */
 sss_result sss_image_read(const char *path, sss_image *out, sss_error *err);
-/* The same from memory (size bytes; for fuzzing and embedded data): the format comes from name's
+/* Only the size, from the file's header, with sss_image_read's checks up to decoding the pixels (so
+ * that two images can be compared in size before either is decoded). */
+sss_result sss_image_read_size(const char *path, int *width, int *height, sss_error *err);
+/* sss_image_read from memory (size bytes; for fuzzing and embedded data): the format comes from name's
  * extension, which also names the input in messages (NULL = "image", which has no format). */
 sss_result sss_image_decode(const void *data, size_t size, const char *name, sss_image *out, sss_error *err);
 /* PNG is tone-mapped with exposure; HDR, PFM and EXR store linear values (exposure ignored).

@@ -6,8 +6,10 @@
  * resolves paths relative to the scene file's folder, loads meshes (sss_mesh_read or the procedural
  * shapes), resolves materials to per-scene-unit coefficients (sss_material) and builds one PBD table
  * per distinct (eta, g) of the subsurface materials (shared; PBRT needs it for kdsubsurface).
- * Does not: render, load textures or environment maps (only their paths are resolved and checked),
- * validate technique names (the renderer does; the loader keeps the string).
+ * Textures are decoded once at load and refused when unreadable or holding NaN/Inf (the renderers
+ * then read them again), so every command refuses the same texture files.
+ * Does not: render, keep texture pixels, load environment maps (their paths are resolved and
+ * checked), validate technique names (the renderer does; the loader keeps the string).
  * Threads: loading different scenes concurrently is safe except for cJSON's global "last error"
  * pointer, which this loader does not use.
  *

@@ -107,16 +107,18 @@ int sss_cmd_compare(int argc, char **argv)
     sss_image img[2] = {{0}, {0}}, map = {0};
     sss_error err = {0};
     int status = CLI_EXIT_OK;
+    if (cli_check_outputs(CMD, &map_path, 1, files, 2, NULL) != CLI_EXIT_OK) return CLI_EXIT_ERROR;
+    /* Sizes from the headers first: neither image is decoded when they differ. */
+    int w[2], h[2];
+    for (int k = 0; k < 2; k++)
+        if (sss_image_read_size(files[k], &w[k], &h[k], &err) != SSS_OK) return cli_fail(CMD, &err);
+    if (w[0] != w[1] || h[0] != h[1])
+        return cli_failf(CMD, "image sizes differ: %s is %dx%d, %s is %dx%d", files[0], w[0], h[0], files[1], w[1], h[1]);
     for (int k = 0; k < 2; k++)
         if (sss_image_read(files[k], &img[k], &err) != SSS_OK) {
             status = cli_fail(CMD, &err);
             goto done;
         }
-    if (img[0].width != img[1].width || img[0].height != img[1].height) {
-        status = cli_failf(CMD, "image sizes differ: %s is %dx%d, %s is %dx%d", files[0], img[0].width, img[0].height,
-                           files[1], img[1].width, img[1].height);
-        goto done;
-    }
     warn_nonfinite(files[0], &img[0]);
     warn_nonfinite(files[1], &img[1]);
     sss_image_metrics m;

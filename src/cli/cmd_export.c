@@ -56,6 +56,10 @@ int sss_cmd_export(int argc, char **argv)
     sss_scene scene = {0};
     sss_error err = {0};
     if (sss_scene_load(scene_path, NULL, &scene, &err) != SSS_OK) return cli_fail(cmd, &err);
+    if (cli_check_outputs(cmd, &out, 1, NULL, 0, &scene) != CLI_EXIT_OK) {
+        sss_scene_free(&scene);
+        return CLI_EXIT_ERROR;
+    }
     sss_result res = sss_export_pbrt(&scene, &desc, out, &err);
     sss_scene_free(&scene);
     if (res != SSS_OK) return cli_fail(cmd, &err);

@@ -54,6 +54,7 @@ static int cmd_write(const char *path, const char *output, int triangles)
 {
     sss_mesh m, s;
     sss_error err;
+    if (cli_check_outputs(CMD, &output, 1, &path, 1, NULL) != CLI_EXIT_OK) return CLI_EXIT_ERROR;
     if (sss_mesh_read(path, &m, &err) != SSS_OK) return cli_fail(CMD, &err);
     const sss_mesh *result = &m;
     if (triangles > 0) {

@@ -177,6 +177,11 @@ int sss_cmd_reference(int argc, char **argv)
     sss_error err;
     memset(&err, 0, sizeof err);
     if (sss_scene_load(scene_path, NULL, &scene, &err) != SSS_OK) return cli_fail(CMD, &err);
+    const char *paths[3] = {out_path, exr_path, pfm_path};
+    if (cli_check_outputs(CMD, paths, 3, NULL, 0, &scene) != CLI_EXIT_OK) {
+        sss_scene_free(&scene);
+        return CLI_EXIT_ERROR;
+    }
     progress_state ps = {isatty(fileno(stderr)), -1, sss_time_seconds()};
     sss_image img = {0};
     sss_reference_stats st;
@@ -191,7 +196,6 @@ int sss_cmd_reference(int argc, char **argv)
         status = cli_failf(CMD, "%s: the image has NaN or Inf values; nothing written", scene_path);
         goto done;
     }
-    const char *paths[3] = {out_path, exr_path, pfm_path};
     for (int k = 0; k < 3; k++) {
         if (!paths[k]) continue;
         if (sss_image_write(paths[k], &img, scene.render.exposure, &err) != SSS_OK) {

@@ -119,6 +119,24 @@ static sss_result write_timings_json(const char *path, const char *technique, in
     return sss_atomic_close(f, tmp, path, err);
 }
 
+/* Refuses, before rendering, an output (every frame's with --animate) that is an input's file. */
+static int check_outputs(const char *out, const char *exr, const char *json, int animate, int frames,
+                         const char *data, const sss_scene *scene)
+{
+    const char *fixed[3] = {animate ? NULL : out, animate ? NULL : exr, json};
+    if (cli_check_outputs(CMD, fixed, 3, &data, 1, scene) != CLI_EXIT_OK) return CLI_EXIT_ERROR;
+    const char *targets[2] = {out, exr};
+    for (int k = 0; animate && k < frames; k++)
+        for (int o = 0; o < 2; o++) {
+            char path[4096];
+            if (!targets[o]) continue;
+            if (!frame_path(targets[o], k, path, sizeof path)) return cli_failf(CMD, "output name too long: %s", targets[o]);
+            const char *frame = path;
+            if (cli_check_outputs(CMD, &frame, 1, &data, 1, scene) != CLI_EXIT_OK) return CLI_EXIT_ERROR;
+        }
+    return CLI_EXIT_OK;
+}
+
 int sss_cmd_render(int argc, char **argv)
 {
     if (cli_wants_help(argc, argv)) {
@@ -224,6 +242,10 @@ int sss_cmd_render(int argc, char **argv)
     sss_error err = {0};
     sss_scene scene;
     if (sss_scene_load(scene_path, NULL, &scene, &err) != SSS_OK) return cli_fail(CMD, &err);
+    if (check_outputs(out, exr, json, animate, frames, data, &scene) != CLI_EXIT_OK) {
+        sss_scene_free(&scene);
+        return CLI_EXIT_ERROR;
+    }
     sss_gl_context_desc cdesc;
     memset(&cdesc, 0, sizeof cdesc);
     cdesc.platform = window ? SSS_GL_PLATFORM_WINDOW : SSS_GL_PLATFORM_HEADLESS;

@@ -227,6 +227,8 @@ static int cmd_build(int argc, char **argv)
     sss_result res;
     sss_mesh back;
     memset(&back, 0, sizeof back);
+    const char *inputs[2] = {input, back_file};
+    if (cli_check_outputs(CMD, &output, 1, inputs, 2, NULL) != CLI_EXIT_OK) return CLI_EXIT_ERROR;
     if (back_file) {
         if (sss_mesh_read(back_file, &back, &err) != SSS_OK) return cli_fail(CMD, &err);
         desc.backside = &back;
@@ -236,6 +238,11 @@ static int cmd_build(int argc, char **argv)
         if (sss_scene_load(input, NULL, &scene, &err) != SSS_OK) {
             sss_mesh_free(&back);
             return cli_fail(CMD, &err);
+        }
+        if (cli_check_outputs(CMD, &output, 1, NULL, 0, &scene) != CLI_EXIT_OK) {
+            sss_scene_free(&scene);
+            sss_mesh_free(&back);
+            return CLI_EXIT_ERROR;
         }
         int k = object >= 0 ? object : first_subsurface(&scene);
         if (k < 0) {

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "cli/cli.h"
+#include "core/file_util.h"
 #include "sss/version.h"
 
 /* `sss version` and `sss --version`: the version of the library the tool runs with. */
@@ -22,22 +23,23 @@ typedef struct command {
     const char *name;
     int (*run)(int argc, char **argv);
     const char *summary;
+    int staged; /* its outputs are written by one transaction (core/file_util.h): all or none */
 } command;
 
 static const command commands[] = {
-    {"profile", sss_cmd_profile, "print the diffusion profile S_r(r) of a medium as TSV"},
-    {"lut", sss_cmd_lut, "build the disc-integrated kernel LUT of Maisch & Ropinski 2020 and write it as EXR"},
-    {"kernel", sss_cmd_kernel, "print the taps of a separable kernel (Jimenez et al. 2019)"},
-    {"compare", sss_cmd_compare, "compare two images: DSSIM, PSNR, RMSE, and a DSSIM map"},
-    {"mesh", sss_cmd_mesh, "inspect or simplify a mesh (mesh info, mesh simplify)"},
-    {"reference", sss_cmd_reference, "render a scene's CPU ground truth (the subsurface integral)"},
-    {"render", sss_cmd_render, "render a scene in real time with OpenGL (headless) to an image"},
-    {"techniques", sss_cmd_techniques, "list the real-time techniques"},
-    {"version", cmd_version, "print the library's version (also 'sss --version')"},
-    {"eval", sss_cmd_eval, "evaluate techniques against the reference: metrics, timings, sheets, plots, report"},
-    {"view", sss_cmd_view, "show a scene in a window: orbit camera, techniques, DSSIM vs reference"},
-    {"export", sss_cmd_export, "write a scene for another renderer (export pbrt)"},
-    {"sam", sss_cmd_sam, "build or inspect a Spatial Adjacency Map (Maisch & Ropinski 2017) of a mesh"},
+    {"profile", sss_cmd_profile, "print the diffusion profile S_r(r) of a medium as TSV", 1},
+    {"lut", sss_cmd_lut, "build the disc-integrated kernel LUT of Maisch & Ropinski 2020 and write it as EXR", 1},
+    {"kernel", sss_cmd_kernel, "print the taps of a separable kernel (Jimenez et al. 2019)", 1},
+    {"compare", sss_cmd_compare, "compare two images: DSSIM, PSNR, RMSE, and a DSSIM map", 1},
+    {"mesh", sss_cmd_mesh, "inspect or simplify a mesh (mesh info, mesh simplify)", 1},
+    {"reference", sss_cmd_reference, "render a scene's CPU ground truth (the subsurface integral)", 1},
+    {"render", sss_cmd_render, "render a scene in real time with OpenGL (headless) to an image", 1},
+    {"techniques", sss_cmd_techniques, "list the real-time techniques", 1},
+    {"version", cmd_version, "print the library's version (also 'sss --version')", 1},
+    {"eval", sss_cmd_eval, "evaluate techniques against the reference: metrics, timings, sheets, plots, report", 0},
+    {"view", sss_cmd_view, "show a scene in a window: orbit camera, techniques, DSSIM vs reference", 0},
+    {"export", sss_cmd_export, "write a scene for another renderer (export pbrt)", 1},
+    {"sam", sss_cmd_sam, "build or inspect a Spatial Adjacency Map (Maisch & Ropinski 2017) of a mesh", 1},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 
@@ -86,5 +88,13 @@ int main(int argc, char **argv)
         print_help(stderr);
         return CLI_EXIT_USAGE;
     }
-    return c->run(argc - 1, argv + 1);
+    if (!c->staged) return c->run(argc - 1, argv + 1);
+    /* eval reads back the files it wrote (sheets into the report) and view writes while it runs:
+     * they commit file by file. */
+    sss_outputs outputs;
+    sss_outputs_begin(&outputs);
+    int status = c->run(argc - 1, argv + 1);
+    sss_error err = {0};
+    if (sss_outputs_end(&outputs, status == CLI_EXIT_OK, &err) != SSS_OK) status = cli_fail(name, &err);
+    return status;
 }

@@ -2,40 +2,72 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
+
+/* ---- Reading ---------------------------------------------------------------------------------- */
+
+int sss_open_input(const char *path, uint64_t max_size, uint64_t *size, sss_error *err)
+{
+    if (size) *size = 0;
+    /* O_NONBLOCK: opening a FIFO without a writer would otherwise wait forever; the type is
+     * checked on the open descriptor (no window between a check and the open). */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+    if (fd < 0) {
+        sss_error_set(err, SSS_ERROR_IO, "%s: cannot open: %s", path, strerror(errno));
+        return -1;
+    }
+    struct stat st;
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        int folder = S_ISDIR(st.st_mode);
+        close(fd);
+        sss_error_set(err, SSS_ERROR_IO, "%s: not a regular file%s", path, folder ? " (a folder)" : "");
+        return -1;
+    }
+    if ((uint64_t)st.st_size > max_size) {
+        close(fd);
+        sss_error_set(err, SSS_ERROR_LIMIT, "%s: file is %lld bytes, larger than the %llu accepted", path,
+                      (long long)st.st_size, (unsigned long long)max_size);
+        return -1;
+    }
+    int flags = fcntl(fd, F_GETFL);
+    if (flags < 0 || fcntl(fd, F_SETFL, flags & ~O_NONBLOCK) != 0) {
+        close(fd);
+        sss_error_set(err, SSS_ERROR_IO, "%s: cannot open: %s", path, strerror(errno));
+        return -1;
+    }
+    if (size) *size = (uint64_t)st.st_size;
+    return fd;
+}
+
+FILE *sss_fopen_input(const char *path, uint64_t max_size, uint64_t *size, sss_error *err)
+{
+    int fd = sss_open_input(path, max_size, size, err);
+    if (fd < 0) return NULL;
+    FILE *f = fdopen(fd, "rb");
+    if (!f) {
+        sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: cannot open: %s", path, strerror(errno));
+        close(fd);
+    }
+    return f;
+}
 
 sss_result sss_read_file(const char *path, size_t max_size, char **data, size_t *size, sss_error *err)
 {
     *data = NULL;
     *size = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f) return sss_error_set(err, SSS_ERROR_IO, "%s: cannot open: %s", path, strerror(errno));
-    struct stat st;
-    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
-        fclose(f);
-        return sss_error_set(err, SSS_ERROR_IO, "%s: not a regular file", path);
-    }
-    if (fseek(f, 0, SEEK_END) != 0) {
-        fclose(f);
-        return sss_error_set(err, SSS_ERROR_IO, "%s: cannot seek (not a regular file?)", path);
-    }
-    long len = ftell(f);
-    if (len < 0 || fseek(f, 0, SEEK_SET) != 0) {
-        fclose(f);
-        return sss_error_set(err, SSS_ERROR_IO, "%s: cannot determine the file size", path);
-    }
-    if ((unsigned long)len > max_size) {
-        fclose(f);
-        return sss_error_set(err, SSS_ERROR_LIMIT, "%s: file is %ld bytes, larger than the %zu accepted",
-                             path, len, max_size);
-    }
+    uint64_t len = 0;
+    FILE *f = sss_fopen_input(path, max_size, &len, err);
+    if (!f) return err ? err->code : SSS_ERROR_IO;
     char *buf = malloc((size_t)len + 1);
     if (!buf) {
         fclose(f);
-        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory reading %ld bytes", path, len);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory reading %llu bytes", path,
+                             (unsigned long long)len);
     }
     size_t got = fread(buf, 1, (size_t)len, f);
     int failed = ferror(f);
@@ -50,17 +82,111 @@ sss_result sss_read_file(const char *path, size_t max_size, char **data, size_t 
     return SSS_OK;
 }
 
-int sss_temp_path(const char *path, char *tmp, size_t cap)
+/* ---- Writing ---------------------------------------------------------------------------------- */
+
+static _Thread_local sss_outputs *active_outputs;
+
+/* 12 letters from a 64-bit mix of the clock, the pid and a counter: unpredictable enough that a
+ * planted name is unlikely, and O_EXCL makes a planted one harmless (another name is tried). */
+static void random_suffix(char out[13])
 {
+    static const char letters[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+    static _Thread_local uint64_t counter;
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    uint64_t x = (uint64_t)ts.tv_nsec ^ (uint64_t)ts.tv_sec << 30 ^ (uint64_t)getpid() << 40;
+    x ^= ++counter * 0x9e3779b97f4a7c15ull;
+    for (int i = 0; i < 12; i++) {
+        x ^= x >> 30; /* splitmix64's finaliser per letter */
+        x *= 0xbf58476d1ce4e5b9ull;
+        x ^= x >> 27;
+        out[i] = letters[x % (sizeof letters - 1)];
+    }
+    out[12] = '\0';
+}
+
+FILE *sss_atomic_open(const char *path, char *tmp, size_t cap, sss_error *err)
+{
+    struct stat st;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
+        sss_error_set(err, SSS_ERROR_IO, "%s: cannot write: is a folder", path);
+        return NULL;
+    }
     const char *slash = strrchr(path, '/');
     size_t dir_len = slash ? (size_t)(slash - path) + 1 : 0;
-    int n = snprintf(tmp, cap, "%.*s.%s.tmp-%ld", (int)dir_len, path, slash ? slash + 1 : path,
-                     (long)getpid());
-    return n > 0 && (size_t)n < cap;
+    for (int attempt = 0; attempt < 64; attempt++) {
+        char suffix[13];
+        random_suffix(suffix);
+        int n = snprintf(tmp, cap, "%.*s.%s.tmp-%s", (int)dir_len, path, slash ? slash + 1 : path, suffix);
+        if (n <= 0 || (size_t)n >= cap) {
+            sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: path too long", path);
+            return NULL;
+        }
+        int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+        if (fd < 0 && errno == EEXIST) continue;
+        if (fd < 0) {
+            sss_error_set(err, SSS_ERROR_IO, "%s: cannot write: %s", path, strerror(errno));
+            return NULL;
+        }
+        FILE *f = fdopen(fd, "wb");
+        if (!f) {
+            sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: cannot write: %s", path, strerror(errno));
+            close(fd);
+            remove(tmp);
+        }
+        return f;
+    }
+    sss_error_set(err, SSS_ERROR_IO, "%s: cannot create a temporary file beside it", path);
+    return NULL;
+}
+
+static char *dup_string(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d) memcpy(d, s, n);
+    return d;
+}
+
+static sss_result staging_failed(sss_outputs *t, const char *tmp, const char *path, sss_error *err)
+{
+    remove(tmp);
+    t->failure = SSS_ERROR_OUT_OF_MEMORY;
+    return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+}
+
+/* Adds (tmp, path) to the active transaction; a path staged before is replaced by the newer file. */
+static sss_result stage(sss_outputs *t, const char *tmp, const char *path, sss_error *err)
+{
+    char *name = dup_string(tmp);
+    if (!name) return staging_failed(t, tmp, path, err);
+    for (size_t i = 0; i < t->count; i++)
+        if (strcmp(t->items[i].path, path) == 0) {
+            remove(t->items[i].tmp);
+            free(t->items[i].tmp);
+            t->items[i].tmp = name;
+            return SSS_OK;
+        }
+    if (t->count == t->capacity) {
+        size_t cap = t->capacity ? 2 * t->capacity : 8;
+        sss_staged_output *items = realloc(t->items, cap * sizeof *items);
+        if (items) {
+            t->items = items;
+            t->capacity = cap;
+        }
+    }
+    char *target = t->count < t->capacity ? dup_string(path) : NULL;
+    if (!target) {
+        free(name);
+        return staging_failed(t, tmp, path, err);
+    }
+    t->items[t->count++] = (sss_staged_output){name, target};
+    return SSS_OK;
 }
 
 sss_result sss_commit_temp(const char *tmp, const char *path, sss_error *err)
 {
+    if (active_outputs) return stage(active_outputs, tmp, path, err);
     if (rename(tmp, path) != 0) {
         int e = errno;
         remove(tmp);
@@ -71,17 +197,6 @@ sss_result sss_commit_temp(const char *tmp, const char *path, sss_error *err)
 
 void sss_discard_temp(const char *tmp) { remove(tmp); }
 
-FILE *sss_atomic_open(const char *path, char *tmp, size_t cap, sss_error *err)
-{
-    if (!sss_temp_path(path, tmp, cap)) {
-        sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: path too long", path);
-        return NULL;
-    }
-    FILE *f = fopen(tmp, "wb");
-    if (!f) sss_error_set(err, SSS_ERROR_IO, "%s: cannot write: %s", path, strerror(errno));
-    return f;
-}
-
 sss_result sss_atomic_close(FILE *f, const char *tmp, const char *path, sss_error *err)
 {
     int bad = ferror(f);
@@ -91,6 +206,64 @@ sss_result sss_atomic_close(FILE *f, const char *tmp, const char *path, sss_erro
         return sss_error_set(err, SSS_ERROR_IO, "%s: write error (disk full?)", path);
     }
     return sss_commit_temp(tmp, path, err);
+}
+
+void sss_outputs_begin(sss_outputs *t)
+{
+    memset(t, 0, sizeof *t);
+    t->outer = active_outputs;
+    active_outputs = t;
+}
+
+/* Renames every staged file, after checking every target first, so that a folder in the way fails
+ * before any output is replaced (renames within one folder fail for no other ordinary reason). */
+static sss_result rename_all(sss_outputs *t, sss_error *err)
+{
+    struct stat st;
+    for (size_t i = 0; i < t->count; i++)
+        if (stat(t->items[i].path, &st) == 0 && S_ISDIR(st.st_mode))
+            return sss_error_set(err, SSS_ERROR_IO, "%s: cannot write: is a folder", t->items[i].path);
+    for (size_t i = 0; i < t->count; i++) {
+        if (rename(t->items[i].tmp, t->items[i].path) != 0)
+            return sss_error_set(err, SSS_ERROR_IO, "%s: cannot write: %s", t->items[i].path, strerror(errno));
+        t->items[i].tmp[0] = '\0'; /* renamed: nothing to remove */
+    }
+    return SSS_OK;
+}
+
+sss_result sss_outputs_end(sss_outputs *t, int commit, sss_error *err)
+{
+    if (active_outputs == t) active_outputs = t->outer;
+    sss_result r = commit ? t->failure : SSS_OK;
+    if (r != SSS_OK) sss_error_set(err, r, "out of memory staging the outputs");
+    /* Nested: the outer transaction takes the files over. */
+    for (size_t i = 0; commit && r == SSS_OK && t->outer && i < t->count; i++) {
+        r = stage(t->outer, t->items[i].tmp, t->items[i].path, err);
+        t->items[i].tmp[0] = '\0';
+    }
+    if (commit && r == SSS_OK && !t->outer) r = rename_all(t, err);
+    for (size_t i = 0; i < t->count; i++) {
+        if (t->items[i].tmp[0]) remove(t->items[i].tmp);
+        free(t->items[i].tmp);
+        free(t->items[i].path);
+    }
+    free(t->items);
+    t->items = NULL;
+    t->count = t->capacity = 0;
+    return r;
+}
+
+sss_result sss_check_output_not_input(const char *output, const char *const *inputs, size_t input_count,
+                                      sss_error *err)
+{
+    struct stat out, in;
+    if (!output || stat(output, &out) != 0) return SSS_OK;
+    for (size_t i = 0; i < input_count; i++)
+        if (inputs[i] && stat(inputs[i], &in) == 0 && in.st_dev == out.st_dev && in.st_ino == out.st_ino)
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                                 "%s: is the same file as the input %s; refusing to overwrite an input", output,
+                                 inputs[i]);
+    return SSS_OK;
 }
 
 void sss_path_extension(const char *path, char *out, size_t cap)

@@ -1,32 +1,69 @@
 /* core/file_util.h — file helpers shared by the modules (internal, not public API).
  *
- * Atomic writes: write to sss_temp_path(path) in the same folder, then sss_commit_temp() renames it
- * over path (or sss_discard_temp() removes it on failure), so an interrupted run never leaves a
- * truncated output file behind.
+ * Reading: every reader opens its input with sss_open_input (or sss_fopen_input, sss_read_file),
+ * which never blocks: a FIFO, folder or device is refused as "PATH: not a regular file" before a
+ * single byte is read, and the size is checked against the reader's limit before anything is
+ * allocated.
+ *
+ * Writing: every writer goes through sss_atomic_open / sss_atomic_close (or sss_commit_temp): the
+ * bytes go to a temporary file created exclusively (O_CREAT|O_EXCL|O_NOFOLLOW, a fresh random name) in
+ * the output's folder, so a planted symlink is never followed, and are renamed over the output only
+ * when complete. Inside an output transaction (sss_outputs_begin on the calling thread) the renames
+ * wait for sss_outputs_end: a command with several outputs leaves all of them or none.
  */
 #ifndef SSS_CORE_FILE_UTIL_H
 #define SSS_CORE_FILE_UTIL_H
 
+#include <stdint.h>
 #include <stdio.h>
 
 #include "sss/common.h"
 
-/* Reads a whole file. Fails with SSS_ERROR_LIMIT (before allocating) when it is larger than
- * max_size bytes, SSS_ERROR_IO when it cannot be opened or read. *data is NUL-terminated (one byte
- * beyond *size) and must be released with free(). Messages name the path. */
+/* No size limit of the reader's own (it checks that the header is backed by data instead). */
+#define SSS_FILE_ANY_SIZE UINT64_MAX
+
+/* Opens path read-only without blocking (O_NONBLOCK|O_NOCTTY|O_CLOEXEC), refuses anything but a
+ * regular file and a file larger than max_size (SSS_ERROR_LIMIT), then returns the descriptor in
+ * blocking mode with *size (may be NULL) set; -1 with err set on failure. Messages name the path. */
+int sss_open_input(const char *path, uint64_t max_size, uint64_t *size, sss_error *err);
+/* The same as a stdio stream ("rb"); NULL on failure. */
+FILE *sss_fopen_input(const char *path, uint64_t max_size, uint64_t *size, sss_error *err);
+
+/* Reads a whole file through sss_open_input. *data is NUL-terminated (one byte beyond *size) and
+ * must be released with free(). */
 sss_result sss_read_file(const char *path, size_t max_size, char **data, size_t *size, sss_error *err);
 
-/* Fills tmp (capacity cap) with "<dir>/.<name>.tmp-<pid>"; returns 0 if it does not fit. */
-int sss_temp_path(const char *path, char *tmp, size_t cap);
-/* Renames tmp to path; on failure removes tmp and reports an error naming path. */
+/* Opens a new temporary file for an atomic write of path ("wb"); tmp (cap >= 4096 recommended)
+ * receives its name. Refuses a path that is a folder. Close the FILE yourself, then commit or discard,
+ * or use sss_atomic_close. */
+FILE *sss_atomic_open(const char *path, char *tmp, size_t cap, sss_error *err);
+/* Renames tmp to path (inside an output transaction: at its end); on failure removes tmp and reports
+ * an error naming path. */
 sss_result sss_commit_temp(const char *tmp, const char *path, sss_error *err);
 void sss_discard_temp(const char *tmp);
-
-/* Opens a temporary file for an atomic write of path ("wb"). tmp receives its name (cap >= 4096
- * recommended). Close the FILE yourself, then commit or discard. */
-FILE *sss_atomic_open(const char *path, char *tmp, size_t cap, sss_error *err);
 /* fclose(f), checking for write errors, then sss_commit_temp (or discard on any error). */
 sss_result sss_atomic_close(FILE *f, const char *tmp, const char *path, sss_error *err);
+
+/* An output transaction: the files committed on this thread between begin and end are staged, and
+ * end renames all of them (commit != 0) or removes all of them. A transaction begun inside another
+ * hands its files to the outer one on commit (a library call with several outputs inside a command). */
+typedef struct sss_staged_output {
+    char *tmp, *path;
+} sss_staged_output;
+typedef struct sss_outputs {
+    sss_staged_output *items;
+    size_t count, capacity;
+    sss_result failure; /* a staging step that failed (out of memory): end does not commit */
+    struct sss_outputs *outer;
+} sss_outputs;
+void sss_outputs_begin(sss_outputs *t);
+sss_result sss_outputs_end(sss_outputs *t, int commit, sss_error *err);
+
+/* Refuses (SSS_ERROR_INVALID_ARGUMENT) an output that is the same file (device and inode: also
+ * through other spellings, symlinks or hard links) as one of the inputs; NULL inputs are skipped.
+ * An output that does not exist yet is fine. */
+sss_result sss_check_output_not_input(const char *output, const char *const *inputs, size_t input_count,
+                                      sss_error *err);
 
 /* The extension of path in lower case without the dot ("" when there is none); out has cap bytes. */
 void sss_path_extension(const char *path, char *out, size_t cap);

@@ -7,6 +7,7 @@
 
 #include <sys/stat.h>
 
+#include "core/file_util.h"
 #include "eval/eval_internal.h"
 
 const char *sss_eval_kind_name(sss_eval_kind kind)
@@ -139,7 +140,7 @@ void eval_default_reference_dir(const char *scene_path, char *out, size_t cap)
 
 uint64_t eval_file_hash(const char *path)
 {
-    FILE *f = fopen(path, "rb");
+    FILE *f = sss_fopen_input(path, SSS_FILE_ANY_SIZE, NULL, NULL);
     if (!f) return 0;
     uint64_t h = 1469598103934665603ull; /* FNV-1a 64 */
     unsigned char buf[8192];

@@ -215,10 +215,11 @@ sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *d
             return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: path too long", out_path);
     }
 
-    /* Meshes first (each atomic); remember them so a later failure removes them all. */
+    /* The meshes and the .pbrt file are one transaction: all of them or none. */
     char (*mesh_paths)[PATH_CAP] = calloc(scene->object_count ? scene->object_count : 1, PATH_CAP);
     if (!mesh_paths) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", out_path);
-    size_t written = 0;
+    sss_outputs outputs;
+    sss_outputs_begin(&outputs);
     sss_result res = SSS_OK;
     for (size_t i = 0; i < scene->object_count && res == SSS_OK; i++) {
         char suffix[64];
@@ -236,7 +237,6 @@ sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *d
         }
         if (res == SSS_OK) res = sss_mesh_write_ply(mesh_paths[i], &world, err);
         sss_mesh_free(&world);
-        if (res == SSS_OK) written++;
     }
 
     char tmp[PATH_CAP];
@@ -261,8 +261,8 @@ sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *d
         fprintf(f, "WorldEnd\n");
         res = sss_atomic_close(f, tmp, out_path, err);
     }
-    if (res != SSS_OK)
-        for (size_t i = 0; i < written; i++) remove(mesh_paths[i]);
+    sss_result ended = sss_outputs_end(&outputs, res == SSS_OK, err);
+    if (res == SSS_OK) res = ended;
     free(mesh_paths);
     return res;
 }

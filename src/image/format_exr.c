@@ -11,6 +11,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <openexr.h>
 
@@ -190,7 +192,8 @@ static sss_result check_chunks(exr_context_t ctx, const char *path, const exr_gr
 }
 
 /* Reads the first part of an open context into out; file_size (or -1) bounds the header's claims. */
-static sss_result read_context(exr_context_t ctx, const char *path, long long file_size, sss_image *out, sss_error *err)
+static sss_result read_context(exr_context_t ctx, const char *path, long long file_size, int size_only, sss_image *out,
+                               sss_error *err)
 {
     sss_result r = SSS_OK;
     exr_result_t rv = EXR_ERR_SUCCESS;
@@ -224,6 +227,11 @@ static sss_result read_context(exr_context_t ctx, const char *path, long long fi
         g.ny = (h + g.lines - 1) / g.lines;
     }
     if ((r = check_chunks(ctx, path, &g, &dw, file_size, err)) != SSS_OK) return r;
+    if (size_only) {
+        out->width = (int)w;
+        out->height = (int)h;
+        return SSS_OK;
+    }
     if ((r = sss_image_create(out, (int)w, (int)h, err)) != SSS_OK) {
         sss_error_prefix(err, path);
         return r;
@@ -255,10 +263,10 @@ static sss_result read_context(exr_context_t ctx, const char *path, long long fi
 
 static const unsigned char exr_magic[4] = {0x76, 0x2f, 0x31, 0x01};
 
-/* Opens with init (the file path, or a custom reader and path as the name), reads, and always
- * finishes the context. */
-static sss_result read_with(const char *path, exr_context_initializer_t *init, long long file_size, sss_image *out,
-                            sss_error *err)
+/* Opens with init (a custom reader, path only names the input), reads, and always finishes the
+ * context. */
+static sss_result read_with(const char *path, exr_context_initializer_t *init, long long file_size, int size_only,
+                            sss_image *out, sss_error *err)
 {
     exr_context_t ctx = NULL;
     exr_result_t rv = exr_start_read(&ctx, path, init);
@@ -267,26 +275,66 @@ static sss_result read_with(const char *path, exr_context_initializer_t *init, l
         r = sss_error_set(err, rv == EXR_ERR_FILE_ACCESS ? SSS_ERROR_IO : SSS_ERROR_PARSE,
                           "%s: cannot read OpenEXR header: %s", path, exr_detail(rv));
     else
-        r = read_context(ctx, path, file_size, out, err);
+        r = read_context(ctx, path, file_size, size_only, out, err);
     exr_finish(&ctx);
     return r;
 }
 
-sss_result sss_exr_read_(const char *path, sss_image *out, sss_error *err)
+/* The library's custom I/O on the descriptor of sss_open_input (pread: no shared file position). */
+static int64_t fd_read(exr_const_context_t ctxt, void *user, void *buffer, uint64_t sz, uint64_t offset,
+                       exr_stream_error_func_ptr_t error_cb)
 {
-    /* Open it ourselves first for a plain "cannot open" message and a signature check. */
-    FILE *f = fopen(path, "rb");
-    if (!f) return sss_error_set(err, SSS_ERROR_IO, "%s: cannot open: %s", path, strerror(errno));
+    (void)ctxt;
+    (void)error_cb;
+    uint64_t done = 0;
+    while (done < sz) {
+        ssize_t n = pread(*(const int *)user, (char *)buffer + done, (size_t)(sz - done), (off_t)(offset + done));
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) return -1;
+        if (n == 0) break;
+        done += (uint64_t)n;
+    }
+    return (int64_t)done;
+}
+
+static int64_t fd_size(exr_const_context_t ctxt, void *user)
+{
+    (void)ctxt;
+    struct stat st;
+    return fstat(*(const int *)user, &st) == 0 ? (int64_t)st.st_size : -1;
+}
+
+static int64_t fd_write(exr_const_context_t ctxt, void *user, const void *buffer, uint64_t sz, uint64_t offset,
+                        exr_stream_error_func_ptr_t error_cb)
+{
+    (void)ctxt;
+    (void)error_cb;
+    uint64_t done = 0;
+    while (done < sz) {
+        ssize_t n = pwrite(*(const int *)user, (const char *)buffer + done, (size_t)(sz - done), (off_t)(offset + done));
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return -1;
+        done += (uint64_t)n;
+    }
+    return (int64_t)done;
+}
+
+sss_result sss_exr_read_(int fd, uint64_t file_size, const char *path, int size_only, sss_image *out, sss_error *err)
+{
     unsigned char magic[4];
-    size_t got = fread(magic, 1, 4, f);
-    long long size = got == 4 ? sss_image_stream_remaining_(f) : -1;
-    if (size >= 0) size += 4;
-    fclose(f);
-    if (got != 4 || memcmp(magic, exr_magic, 4) != 0)
-        return sss_error_set(err, SSS_ERROR_PARSE, "%s: not an OpenEXR file (%s)", path,
-                             got == 0 ? "empty" : "bad signature");
-    exr_context_initializer_t init = exr_init();
-    return read_with(path, &init, size, out, err);
+    ssize_t got = pread(fd, magic, 4, 0);
+    sss_result r;
+    if (got != 4 || memcmp(magic, exr_magic, 4) != 0) {
+        r = sss_error_set(err, SSS_ERROR_PARSE, "%s: not an OpenEXR file (%s)", path, got == 0 ? "empty" : "bad signature");
+    } else {
+        exr_context_initializer_t init = exr_init();
+        init.user_data = &fd;
+        init.read_fn = fd_read;
+        init.size_fn = fd_size;
+        r = read_with(path, &init, (long long)file_size, size_only, out, err);
+    }
+    close(fd);
+    return r;
 }
 
 /* The library's custom I/O on a memory buffer (pread semantics: short reads at the end). */
@@ -323,7 +371,7 @@ sss_result sss_exr_decode_(const void *data, size_t size, const char *name, sss_
     init.user_data = &m;
     init.read_fn = memory_read;
     init.size_fn = memory_size;
-    return read_with(name, &init, (long long)size, out, err);
+    return read_with(name, &init, (long long)size, 0, out, err);
 }
 
 /* IEEE 754 binary16 of f, rounded to nearest even; returns 0 when |f| overflows the half range
@@ -368,16 +416,18 @@ sss_result sss_image_write_exr(const char *path, const sss_image *img, int half,
                                  over);
         }
     }
-    /* Create the temporary file ourselves first: a missing folder or a permission problem then gets
-     * a plain message naming path, not the temporary name. The library reopens (truncates) it. */
+    /* The library writes through fd_write into the temporary file of sss_atomic_open (created
+     * exclusively), never reopening a name. */
     char tmp[4096];
-    FILE *probe = sss_atomic_open(path, tmp, sizeof tmp, err);
-    if (!probe) {
+    FILE *file = sss_atomic_open(path, tmp, sizeof tmp, err);
+    if (!file) {
         free(halves);
         return err ? err->code : SSS_ERROR_IO;
     }
-    fclose(probe);
+    int fd = fileno(file);
     exr_context_initializer_t init = exr_init();
+    init.user_data = &fd;
+    init.write_fn = fd_write;
     exr_context_t ctx = NULL;
     exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
     int have_enc = 0, part = 0;
@@ -423,8 +473,9 @@ sss_result sss_image_write_exr(const char *path, const sss_image *img, int half,
         r = sss_error_set(err, SSS_ERROR_IO, "%s: cannot finish OpenEXR: %s", path, exr_detail(fin));
     free(halves);
     if (r != SSS_OK) {
+        fclose(file);
         sss_discard_temp(tmp);
         return r;
     }
-    return sss_commit_temp(tmp, path, err);
+    return sss_atomic_close(file, tmp, path, err);
 }

@@ -88,7 +88,7 @@ static int read_scanline(FILE *f, int w, unsigned char *scan)
     return 0;
 }
 
-sss_result sss_hdr_read_(FILE *f, const char *path, sss_image *out, sss_error *err)
+sss_result sss_hdr_read_(FILE *f, const char *path, int size_only, sss_image *out, sss_error *err)
 {
     char line[HDR_LINE_MAX];
     int overlong = 0;
@@ -126,6 +126,11 @@ sss_result sss_hdr_read_(FILE *f, const char *path, sss_image *out, sss_error *e
     if (have >= 0 && have / h < min_scan)
         return sss_error_set(err, SSS_ERROR_PARSE, "%s: truncated: %lld bytes of pixel data cannot hold %ldx%ld pixels",
                              path, have, w, h);
+    if (size_only) {
+        out->width = (int)w;
+        out->height = (int)h;
+        return SSS_OK;
+    }
     unsigned char *scan = malloc((size_t)w * 4);
     if (!scan) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     r = sss_image_create(out, (int)w, (int)h, err);

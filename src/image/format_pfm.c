@@ -43,7 +43,7 @@ static int parse_int(const char *s, long *out)
     return 1;
 }
 
-sss_result sss_pfm_read_(FILE *f, const char *path, sss_image *out, sss_error *err)
+sss_result sss_pfm_read_(FILE *f, const char *path, int size_only, sss_image *out, sss_error *err)
 {
     char magic[4], tw[32], th[32], ts[64];
     long w = 0, h = 0;
@@ -66,6 +66,11 @@ sss_result sss_pfm_read_(FILE *f, const char *path, sss_image *out, sss_error *e
     if (have >= 0 && (uint64_t)have < (uint64_t)need)
         return sss_error_set(err, SSS_ERROR_PARSE, "%s: truncated: %lld bytes of pixel data for %ldx%ld, expected %zu",
                              path, have, w, h, need);
+    if (size_only) {
+        out->width = (int)w;
+        out->height = (int)h;
+        return SSS_OK;
+    }
     unsigned char *row = malloc(row_bytes);
     if (!row) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     r = sss_image_create(out, (int)w, (int)h, err);

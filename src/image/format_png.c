@@ -37,61 +37,128 @@ static uint32_t be32(const unsigned char *b)
  * inflate buffer from the header's size, so a 100-byte file cannot claim 32768 x 32768 pixels. */
 #define DEFLATE_MAX_RATIO 1032.0
 
-/* Walks the chunk list (f just past the signature) for IHDR's size and the total IDAT length.
- * Returns 0 when it cannot tell (no IHDR first, unknown colour type: stb then reports the error),
- * -1 when a chunk claims more bytes than the file holds (stb would allocate the claim first), else 1. */
-static int png_survey(FILE *f, uint32_t *w, uint32_t *h, double *raw_bytes, unsigned long long *idat)
+/* CRC-32 of PNG chunks (ISO 3309, the PNG specification's Annex D), which stb_image does not check.
+ * The table is built per file (2048 steps): no shared state between threads. */
+static void crc_table(uint32_t table[256])
 {
-    unsigned char hd[8], ihdr[13];
-    *idat = 0;
-    if (fread(hd, 1, 8, f) != 8 || memcmp(hd + 4, "IHDR", 4) != 0 || be32(hd) != 13 || fread(ihdr, 1, 13, f) != 13)
-        return 0;
-    *w = be32(ihdr);
-    *h = be32(ihdr + 4);
-    int depth = ihdr[8], type = ihdr[9];
-    int samples = type == 0 ? 1 : type == 2 ? 3 : type == 3 ? 1 : type == 4 ? 2 : type == 6 ? 4 : 0;
-    if (!samples || depth < 1 || depth > 16) return 0;
-    /* Non-interlaced size (interlacing only adds filter bytes): one filter byte per row. */
-    *raw_bytes = (double)*h * (1.0 + ceil((double)*w * samples * depth / 8.0));
-    /* Skip IHDR's CRC, then chunk by chunk. A seek past the end (which files allow and memory streams
-     * refuse) or a short read both mean: no more chunks. */
-    for (int more = fseek(f, 4, SEEK_CUR) == 0; more;) {
-        if (fread(hd, 1, 8, f) != 8) break; /* missing IEND: stb decides */
-        uint32_t len = be32(hd);
-        if (memcmp(hd + 4, "IEND", 4) == 0) break;
-        long long have = sss_image_stream_remaining_(f);
-        if (have >= 0 && (long long)len > have) return -1;
-        if (memcmp(hd + 4, "IDAT", 4) == 0) *idat += len;
-        more = len <= 0x7fffffffu && fseek(f, (long)len + 4, SEEK_CUR) == 0;
+    for (uint32_t k = 0; k < 256; k++) {
+        uint32_t c = k;
+        for (int j = 0; j < 8; j++) c = c & 1 ? 0xedb88320u ^ (c >> 1) : c >> 1;
+        table[k] = c;
     }
-    return 1;
 }
 
-sss_result sss_png_read_(FILE *f, const char *path, sss_image *out, sss_error *err)
+static uint32_t crc_update(const uint32_t table[256], uint32_t crc, const unsigned char *b, size_t n)
+{
+    for (size_t i = 0; i < n; i++) crc = table[(crc ^ b[i]) & 0xff] ^ (crc >> 8);
+    return crc;
+}
+
+/* Reads the rest of a chunk (len data bytes and the CRC) and checks the CRC over type and data;
+ * head holds the chunk's length and type. Returns 0 when it matches, 1 when the data is short, 2 on
+ * a CRC mismatch. */
+static int check_chunk(FILE *f, const uint32_t table[256], const unsigned char head[8], uint32_t len,
+                       const unsigned char *data)
+{
+    uint32_t crc = crc_update(table, 0xffffffffu, head + 4, 4);
+    unsigned char buf[8192];
+    for (uint32_t done = 0; done < len;) {
+        size_t n = len - done < sizeof buf ? len - done : sizeof buf;
+        if (data) memcpy(buf, data + done, n);
+        else if (fread(buf, 1, n, f) != n) return 1;
+        crc = crc_update(table, crc, buf, n);
+        done += (uint32_t)n;
+    }
+    unsigned char stored[4];
+    if (fread(stored, 1, 4, f) != 4) return 1;
+    return be32(stored) == (crc ^ 0xffffffffu) ? 0 : 2;
+}
+
+static sss_result chunk_error(const char *path, const unsigned char head[8], int status, sss_error *err)
+{
+    char type[5] = {0};
+    for (int i = 0; i < 4; i++) type[i] = head[4 + i] >= 0x20 && head[4 + i] < 0x7f ? (char)head[4 + i] : '?';
+    if (status == 1) return sss_error_set(err, SSS_ERROR_PARSE, "%s: truncated in chunk %s", path, type);
+    return sss_error_set(err, SSS_ERROR_PARSE, "%s: corrupt: chunk %s fails its CRC check", path, type);
+}
+
+/* The header's size against SSS_IMAGE_MAX_DIM per side and SSS_IMAGE_MAX_PNG_PIXELS in all. */
+static sss_result check_size(const char *path, long w, long h, sss_error *err)
+{
+    sss_result r = sss_image_check_dims_(path, w, h, err);
+    if (r == SSS_OK && (double)w * (double)h > (double)SSS_IMAGE_MAX_PNG_PIXELS)
+        r = sss_error_set(err, SSS_ERROR_LIMIT, "%s: PNG of %ldx%ld pixels exceeds the limit of %ld pixels decoded",
+                          path, w, h, (long)SSS_IMAGE_MAX_PNG_PIXELS);
+    return r;
+}
+
+/* Checks the header (f just past the signature) before anything is decoded: IHDR's CRC, the size
+ * against SSS_IMAGE_MAX_DIM and SSS_IMAGE_MAX_PNG_PIXELS; then (unless size_only) every chunk's CRC and
+ * that the IDAT bytes can hold the pixels (stb_image allocates its whole inflate buffer from the
+ * header). An image without IHDR first or of an unknown colour type is left to stb to report. */
+static sss_result png_check(FILE *f, const char *path, int size_only, uint32_t *w, uint32_t *h, sss_error *err)
+{
+    unsigned char hd[8], ihdr[13];
+    *w = *h = 0;
+    if (fread(hd, 1, 8, f) != 8 || memcmp(hd + 4, "IHDR", 4) != 0 || be32(hd) != 13 || fread(ihdr, 1, 13, f) != 13)
+        return SSS_OK;
+    uint32_t table[256];
+    crc_table(table);
+    int status = check_chunk(f, table, hd, 13, ihdr);
+    if (status) return chunk_error(path, hd, status, err);
+    *w = be32(ihdr);
+    *h = be32(ihdr + 4);
+    sss_result r = check_size(path, *w, *h, err);
+    if (r != SSS_OK || size_only) return r;
+    int depth = ihdr[8], type = ihdr[9];
+    int samples = type == 0 ? 1 : type == 2 ? 3 : type == 3 ? 1 : type == 4 ? 2 : type == 6 ? 4 : 0;
+    if (!samples || depth < 1 || depth > 16) return SSS_OK;
+    /* Non-interlaced size (interlacing only adds filter bytes): one filter byte per row. */
+    double raw = (double)*h * (1.0 + ceil((double)*w * samples * depth / 8.0));
+    unsigned long long idat = 0;
+    for (;;) {
+        if (fread(hd, 1, 8, f) != 8) break; /* missing IEND: stb decides */
+        uint32_t len = be32(hd);
+        long long have = sss_image_stream_remaining_(f);
+        if (len > 0x7fffffffu || (have >= 0 && (long long)len + 4 > have))
+            return sss_error_set(err, SSS_ERROR_PARSE, "%s: truncated (a chunk is longer than the rest of the file)",
+                                 path);
+        if ((status = check_chunk(f, table, hd, len, NULL)) != 0) return chunk_error(path, hd, status, err);
+        if (memcmp(hd + 4, "IDAT", 4) == 0) idat += len;
+        if (memcmp(hd + 4, "IEND", 4) == 0) break;
+    }
+    if ((double)idat * DEFLATE_MAX_RATIO + 64.0 < raw)
+        return sss_error_set(err, SSS_ERROR_PARSE,
+                             "%s: truncated or corrupt: %llu bytes of compressed pixel data cannot hold %ux%u pixels",
+                             path, idat, *w, *h);
+    return SSS_OK;
+}
+
+sss_result sss_png_read_(FILE *f, const char *path, int size_only, sss_image *out, sss_error *err)
 {
     unsigned char sig[8];
     size_t got = fread(sig, 1, sizeof sig, f);
     if (got != sizeof sig || memcmp(sig, png_signature, sizeof sig) != 0)
         return sss_error_set(err, SSS_ERROR_PARSE, "%s: not a PNG file (%s)", path, got == 0 ? "empty" : "bad signature");
     uint32_t sw = 0, sh = 0;
-    double raw = 0.0;
-    unsigned long long idat = 0;
-    int survey = png_survey(f, &sw, &sh, &raw, &idat);
-    if (survey < 0) return sss_error_set(err, SSS_ERROR_PARSE, "%s: truncated (a chunk is longer than the rest of the file)", path);
-    if (survey > 0) {
-        sss_result r = sss_image_check_dims_(path, sw, sh, err);
-        if (r != SSS_OK) return r;
-        if ((double)idat * DEFLATE_MAX_RATIO + 64.0 < raw)
-            return sss_error_set(err, SSS_ERROR_PARSE,
-                                 "%s: truncated or corrupt: %llu bytes of compressed pixel data cannot hold %ux%u pixels",
-                                 path, idat, sw, sh);
+    sss_result checked = png_check(f, path, size_only, &sw, &sh, err);
+    if (checked != SSS_OK) return checked;
+    if (size_only && sw > 0) {
+        out->width = (int)sw;
+        out->height = (int)sh;
+        return SSS_OK;
     }
     rewind(f);
     int w = 0, h = 0, comp = 0;
     if (!stbi_info_from_file(f, &w, &h, &comp))
         return sss_error_set(err, SSS_ERROR_PARSE, "%s: malformed PNG header (%s)", path, stb_reason());
-    sss_result r = sss_image_check_dims_(path, w, h, err);
+    sss_result r = check_size(path, w, h, err);
     if (r != SSS_OK) return r;
+    if (size_only) {
+        out->width = w;
+        out->height = h;
+        return SSS_OK;
+    }
     /* Another part of a program may have asked stb to flip images globally; rows stay top first here. */
     stbi_set_flip_vertically_on_load_thread(0);
     int is16 = stbi_is_16_bit_from_file(f);

@@ -6,7 +6,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
+#include <unistd.h>
 
 #include "core/file_util.h"
 
@@ -132,7 +132,7 @@ long long sss_image_stream_remaining_(FILE *f)
     return (long long)end - here;
 }
 
-typedef sss_result (*stream_reader)(FILE *f, const char *path, sss_image *out, sss_error *err);
+typedef sss_result (*stream_reader)(FILE *f, const char *path, int size_only, sss_image *out, sss_error *err);
 
 /* The stream reader of an extension (NULL for exr, which has its own I/O, and unknown ones). */
 static stream_reader reader_for(const char *ext)
@@ -149,22 +149,40 @@ static sss_result unknown_format(const char *path, sss_error *err)
                          "%s: unknown image format (expected the extension .png, .hdr, .pfm or .exr)", path);
 }
 
-sss_result sss_image_read(const char *path, sss_image *out, sss_error *err)
+/* Opens path with sss_open_input (a FIFO or folder fails at once) and runs the format's reader. */
+static sss_result read_file(const char *path, int size_only, sss_image *out, sss_error *err)
 {
     out->width = out->height = 0;
     out->pixels = NULL;
-    struct stat st;
-    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
-        return sss_error_set(err, SSS_ERROR_IO, "%s: is a folder, not an image file", path);
     char ext[8];
     sss_path_extension(path, ext, sizeof ext);
-    if (strcmp(ext, "exr") == 0) return sss_exr_read_(path, out, err);
     stream_reader read = reader_for(ext);
-    if (!read) return unknown_format(path, err);
-    FILE *f = fopen(path, "rb");
-    if (!f) return sss_error_set(err, SSS_ERROR_IO, "%s: cannot open: %s", path, strerror(errno));
-    sss_result r = read(f, path, out, err);
+    if (!read && strcmp(ext, "exr") != 0) return unknown_format(path, err);
+    uint64_t size = 0;
+    int fd = sss_open_input(path, SSS_FILE_ANY_SIZE, &size, err);
+    if (fd < 0) return err ? err->code : SSS_ERROR_IO;
+    if (!read) return sss_exr_read_(fd, size, path, size_only, out, err); /* closes fd */
+    FILE *f = fdopen(fd, "rb");
+    if (!f) {
+        close(fd);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: cannot open: %s", path, strerror(errno));
+    }
+    sss_result r = read(f, path, size_only, out, err);
     fclose(f);
+    return r;
+}
+
+sss_result sss_image_read(const char *path, sss_image *out, sss_error *err)
+{
+    return read_file(path, 0, out, err);
+}
+
+sss_result sss_image_read_size(const char *path, int *width, int *height, sss_error *err)
+{
+    sss_image header;
+    sss_result r = read_file(path, 1, &header, err);
+    *width = header.width;
+    *height = header.height;
     return r;
 }
 
@@ -185,7 +203,7 @@ sss_result sss_image_decode(const void *data, size_t size, const char *name, sss
     FILE *f = fmemopen(size ? (void *)data : (void *)empty, size ? size : 1, "rb");
     if (!f) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: cannot open a memory stream", name);
     if (size == 0) (void)getc(f); /* position at the end: the readers see an empty input */
-    sss_result r = read(f, name, out, err);
+    sss_result r = read(f, name, 0, out, err);
     fclose(f);
     return r;
 }

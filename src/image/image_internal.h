@@ -26,12 +26,14 @@ void sss_srgb8_decode_table_(float table[256]);
 long long sss_image_stream_remaining_(FILE *f);
 
 /* Format readers on an open stream positioned at the start of the data (a file, or fmemopen for
- * sss_image_decode); path names the input in every message. They do not close f. */
-sss_result sss_png_read_(FILE *f, const char *path, sss_image *out, sss_error *err);
-sss_result sss_hdr_read_(FILE *f, const char *path, sss_image *out, sss_error *err);
-sss_result sss_pfm_read_(FILE *f, const char *path, sss_image *out, sss_error *err);
-/* OpenEXR reads through the library's own I/O: from a file, or from memory (data, size). */
-sss_result sss_exr_read_(const char *path, sss_image *out, sss_error *err);
+ * sss_image_decode); path names the input in every message. They do not close f. With size_only they
+ * stop after the header's checks and set only out->width and out->height (no pixels). */
+sss_result sss_png_read_(FILE *f, const char *path, int size_only, sss_image *out, sss_error *err);
+sss_result sss_hdr_read_(FILE *f, const char *path, int size_only, sss_image *out, sss_error *err);
+sss_result sss_pfm_read_(FILE *f, const char *path, int size_only, sss_image *out, sss_error *err);
+/* OpenEXR reads through the library's own I/O: from a descriptor of sss_open_input (file_size bytes;
+ * always closed), or from memory (data, size). */
+sss_result sss_exr_read_(int fd, uint64_t file_size, const char *path, int size_only, sss_image *out, sss_error *err);
 sss_result sss_exr_decode_(const void *data, size_t size, const char *name, sss_image *out, sss_error *err);
 
 sss_result sss_png_write_(const char *path, const sss_image *img, double exposure, sss_error *err);

@@ -361,8 +361,9 @@ sss_result sss_sam_read(const char *path, sss_sam *out, sss_error *err)
 {
     if (out) memset(out, 0, sizeof *out);
     if (!path || !out) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sam: no file or output");
-    FILE *f = fopen(path, "rb");
-    if (!f) return sss_error_set(err, SSS_ERROR_IO, "%s: cannot open", path);
+    uint64_t size = 0;
+    FILE *f = sss_fopen_input(path, SSS_FILE_ANY_SIZE, &size, err);
+    if (!f) return err ? err->code : SSS_ERROR_IO;
     /* The header first: its sizes are checked against the file's before the body is allocated. */
     uint8_t head[HEADER_BYTES];
     size_t got = fread(head, 1, sizeof head, f);
@@ -374,15 +375,9 @@ sss_result sss_sam_read(const char *path, sss_sam *out, sss_error *err)
         fclose(f);
         return res;
     }
-    if (fseek(f, 0, SEEK_END) != 0) {
+    if (size != expect) {
         fclose(f);
-        return sss_error_set(err, SSS_ERROR_IO, "%s: cannot seek", path);
-    }
-    long size = ftell(f);
-    if (size < 0 || (uint64_t)size != expect) {
-        fclose(f);
-        return size < 0 ? sss_error_set(err, SSS_ERROR_IO, "%s: cannot tell its size", path)
-                        : size_error(path, (uint64_t)size, expect, err);
+        return size_error(path, size, expect, err);
     }
     uint8_t *data = malloc((size_t)expect);
     if (!data) {

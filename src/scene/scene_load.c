@@ -7,10 +7,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
+#include <unistd.h>
 
 #include "core/file_util.h"
 #include "core/text.h"
+#include "sss/image.h"
 #include "scene/scene_internal.h"
 
 char *scene_strdup(const char *s)
@@ -45,18 +46,18 @@ sss_result scene_file_field(scene_ctx *c, const cJSON *obj, const char *key, int
     char *path = join_path(c->base_dir, rel);
     if (!path) return jr_fail_key(r, key, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
     if (!(c->flags & SSS_SCENE_SKIP_FILE_CHECKS)) {
-        struct stat st;
-        FILE *f = NULL;
-        if (stat(path, &st) != 0 || !(f = fopen(path, "rb"))) {
-            int e = errno;
+        /* Opened as every reader opens it (a FIFO fails at once); the message names the file as the
+         * scene spells it, after the JSON path. */
+        sss_error open_err;
+        int fd = sss_open_input(path, SSS_FILE_ANY_SIZE, NULL, &open_err);
+        if (fd < 0) {
+            size_t n = strlen(path);
+            const char *why = strncmp(open_err.message, path, n) == 0 ? open_err.message + n : ": cannot open";
+            sss_result failed = jr_fail_key(r, key, open_err.code, "%s%s", rel, why);
             free(path);
-            return jr_fail_key(r, key, SSS_ERROR_IO, "%s: cannot open: %s", rel, strerror(e));
+            return failed;
         }
-        fclose(f);
-        if (!S_ISREG(st.st_mode)) {
-            free(path);
-            return jr_fail_key(r, key, SSS_ERROR_IO, "%s: not a regular file", rel);
-        }
+        close(fd);
     }
     *out = path;
     return SSS_OK;
@@ -281,6 +282,18 @@ static sss_result check_world_reach(jr *r, const sss_scene_object *o)
                        reach, reach > FLT_MAX ? " (not finite in single precision)" : "", SSS_SCENE_MAX_WORLD_COORD);
 }
 
+/* A texture is decoded once at load and refused as the real-time renderer would refuse it
+ * (unreadable, NaN or Inf), so that every command that loads the scene refuses the same files. */
+static sss_result check_texture(const char *path, sss_error *err)
+{
+    sss_image img;
+    sss_result res = sss_image_read(path, &img, err);
+    if (res == SSS_OK && sss_image_count_nonfinite(&img))
+        res = sss_error_set(err, SSS_ERROR_NUMERIC, "%s: albedo texture holds NaN or Inf", path);
+    sss_image_free(&img);
+    return res;
+}
+
 static sss_result load_object(scene_ctx *c, sss_scene *s, sss_scene_object *o)
 {
     jr *r = &c->r;
@@ -304,6 +317,12 @@ static sss_result load_object(scene_ctx *c, sss_scene *s, sss_scene_object *o)
         size_t mark = jr_enter_key(r, "material");
         res = jr_fail_key(r, "texture", SSS_ERROR_INVALID_ARGUMENT, "needs UVs, but the %s has none",
                           o->mesh_path ? "mesh file" : "procedural shape");
+        jr_leave(r, mark);
+        return res;
+    }
+    if (o->material.texture && (res = check_texture(o->material.texture, r->err)) != SSS_OK) {
+        size_t mark = jr_enter_key(r, "material");
+        res = jr_prefix(r, "texture", res);
         jr_leave(r, mark);
         return res;
     }

@@ -109,7 +109,7 @@ fail | compare @BAD@/png_bad_zlib.png @DATA@/images/base.png | png_bad_zlib\.png
 fail | compare @DATA@/images/base.png @BAD@/hdr_truncated.hdr | hdr_truncated\.hdr;truncated
 fail | compare @DATA@/images/base.png @BAD@/hdr_zero_size.hdr | hdr_zero_size\.hdr;0x0
 fail | compare @DATA@/images/base.png @BAD@/hdr_100000.hdr | hdr_100000\.hdr;100000
-fail | compare @DATA@/images/base.png @BAD@/hdr_bad_rle.hdr | hdr_bad_rle\.hdr;scanline 0
+fail | compare @BAD@/hdr_bad_rle.hdr @BAD@/hdr_bad_rle.hdr | hdr_bad_rle\.hdr;scanline 0
 fail | compare @DATA@/images/base.png @BAD@/hdr_xyze.hdr | hdr_xyze\.hdr;xyze
 fail | compare @DATA@/images/base.png @BAD@/hdr_no_signature.hdr | hdr_no_signature\.hdr
 fail | compare @DATA@/images/base.png @BAD@/hdr_bad_resolution.hdr | hdr_bad_resolution\.hdr;resolution

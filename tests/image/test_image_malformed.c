@@ -214,7 +214,18 @@ static void test_hdr_headers(const char *dir)
     sss_image_free(&img);
 }
 
-/* A PNG header alone (stb does not check CRCs), with a chosen size. */
+/* CRC-32 as the PNG specification's Annex D computes it, bit by bit. */
+static uint32_t png_crc(const unsigned char *p, size_t n)
+{
+    uint32_t c = 0xffffffffu;
+    for (size_t i = 0; i < n; i++) {
+        c ^= p[i];
+        for (int k = 0; k < 8; k++) c = c & 1 ? 0xedb88320u ^ (c >> 1) : c >> 1;
+    }
+    return c ^ 0xffffffffu;
+}
+
+/* A PNG header alone (IHDR with its CRC), with a chosen size. */
 static size_t png_header(unsigned char *b, uint32_t w, uint32_t h)
 {
     static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
@@ -226,6 +237,8 @@ static size_t png_header(unsigned char *b, uint32_t w, uint32_t h)
     }
     ihdr[16] = 8; /* bit depth */
     ihdr[17] = 2; /* RGB */
+    uint32_t crc = png_crc(ihdr + 4, 17);
+    for (int i = 0; i < 4; i++) ihdr[21 + i] = (unsigned char)(crc >> (24 - 8 * i));
     memcpy(b + 8, ihdr, sizeof ihdr);
     return 8 + sizeof ihdr;
 }
@@ -237,7 +250,36 @@ static void test_png_sizes(const char *dir)
     snprintf(path, sizeof path, "%s/h.png", dir);
     expect_bytes_fail(path, b, png_header(b, 40000, 10), SSS_ERROR_LIMIT, "PNG too wide");
     expect_bytes_fail(path, b, png_header(b, 10, 0), SSS_ERROR_PARSE, "PNG zero height");
-    expect_bytes_fail(path, b, png_header(b, 30000, 30000), SSS_ERROR_PARSE, "PNG without data");
+    /* Within the pixel budget of 2^27 (11585^2 = 134,212,225) a header without data is refused as
+     * such; one pixel row beyond it (11585 x 11586 = 134,223,810) by the budget, before any data. */
+    expect_bytes_fail(path, b, png_header(b, 11585, 11585), SSS_ERROR_PARSE, "PNG without data");
+    expect_bytes_fail(path, b, png_header(b, 11585, 11586), SSS_ERROR_LIMIT, "PNG beyond the pixel budget");
+    expect_bytes_fail(path, b, png_header(b, 16384, 16384), SSS_ERROR_LIMIT, "PNG of 16384^2");
+}
+
+/* A valid PNG with one bit of a stored chunk CRC flipped (stb_image decodes it regardless). */
+static void test_png_crc(const char *dir)
+{
+    size_t size = 0;
+    unsigned char *b = slurp(DATA "base.png", &size);
+    CHECK(b != NULL && size > 64);
+    if (!b) return;
+    char path[256];
+    snprintf(path, sizeof path, "%s/crc.png", dir);
+    b[32] ^= 1; /* the last byte of IHDR's CRC: signature 8, length and type 8, data 13 */
+    expect_bytes_fail(path, b, size, SSS_ERROR_PARSE, "PNG with a bad IHDR CRC");
+    b[32] ^= 1;
+    unsigned char *idat = NULL;
+    for (size_t i = 33; i + 4 <= size && !idat; i++)
+        if (memcmp(b + i, "IDAT", 4) == 0) idat = b + i;
+    CHECK(idat != NULL);
+    if (idat) {
+        size_t len = (size_t)idat[-4] << 24 | (size_t)idat[-3] << 16 | (size_t)idat[-2] << 8 | idat[-1];
+        CHECK((size_t)(idat - b) + 8 + len <= size);
+        idat[4 + len] ^= 0x80; /* the first byte of its CRC */
+        expect_bytes_fail(path, b, size, SSS_ERROR_PARSE, "PNG with a bad IDAT CRC");
+    }
+    free(b);
 }
 
 /* OpenEXR with its data window patched: too large, empty. */
@@ -313,6 +355,7 @@ int main(void)
     test_pfm_headers(dir);
     test_hdr_headers(dir);
     test_png_sizes(dir);
+    test_png_crc(dir);
     test_exr_sizes(dir);
     test_exr_channels(dir);
     remove_dir(dir);
