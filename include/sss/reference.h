@@ -46,15 +46,19 @@
  *    the sum of T A (per channel) and the T A-weighted centroid; desc.exact sums all samples instead.
  *
  * Bounces (ref_bounce.c), when desc.bounces != 1:
- *  - transport samples: every object with a surface takes part, with the cells of ref_points.c at a
- *    spacing of 2 pixel footprints (draft 4; objects no pixel centre sees and without a footprint:
- *    bounding box diagonal / 64), grown until all objects together have at most 1 M of them; a
- *    subsurface object's transport cells take the area-weighted mean direct T of its pixel-density
- *    samples inside them.
+ *  - transport samples: every object with a surface takes part. Transport spacing H = 2 pixel
+ *    footprints (draft 4; objects without a footprint, behind the camera: bounding box diagonal / 64),
+ *    grown until all objects together have at most 256 k transport samples. Diffuse objects (and
+ *    subsurface objects without a footprint) get the cells of ref_points.c at spacing H, with their
+ *    own direct E (T). A subsurface object's pixel-density samples are grouped into clusters of
+ *    diameter <= H (median splits; split by normal where normals differ by more than ~30 degrees, so
+ *    that a cluster stays on one side of a thin part), each with the area-weighted mean direct T of its
+ *    samples, placed at its first sample (position and normal on the surface).
  *  - links: from every transport sample, g x g gather rays (16 final, 4 draft; diffuse samples 64 and
  *    16), cosine-distributed about the triangle's geometric normal, stratified, seeded per (seed,
  *    object, sample), are traced once; a ray that hits an object links to the hit triangle's transport
- *    cell holding the hit (the value there is piecewise constant), with weight pi / g^2 times the
+ *    sample (cell, or the cluster of the pixel-density cell) holding the hit (the value there is
+ *    piecewise constant), with weight pi / g^2 times the
  *    entry factor 1 - F_r(cos theta) (subsurface) times the exit factor F_t(cos theta_hit) / (pi c)
  *    (subsurface hit) or 1 / pi (diffuse hit on its normal's side; from behind: no link). Rays that
  *    miss or reach a light link nowhere (that light is bounce 1). Geometric normals throughout.
@@ -73,7 +77,7 @@
  *  - error bounds (tests/reference/test_ref_bounce.c): inside a closed sphere of diffuse walls
  *    (reflectance rho) or subsurface walls lit by a point light at its centre, N bounces give
  *    single (1 - q^N) / (1 - q) with q = rho, or rho_eff 2 / c int_0^1 F_t(mu)^2 mu dmu: within 1%
- *    (diffuse) and 2% (subsurface) on the image mean, 3% and 5% per pixel; bounce k + 1 adds q
+ *    (diffuse) and 2% (subsurface) on the image mean, 3% and 6% per pixel; bounce k + 1 adds q
  *    times what bounce k adds (within 1%).
  *
  * Determinism: for a given seed the image is bit-identical for any thread count (per-pixel and per-

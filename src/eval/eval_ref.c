@@ -23,9 +23,11 @@ static int sidecar_path(const char *exr, char *out, size_t cap)
     return 1;
 }
 
-/* Reads the sidecar: 1 when it exists and parses; *hash 0 when absent in it. */
-static int read_sidecar(const char *exr, uint64_t *hash, char quality[8])
+/* Reads the sidecar: 1 when it exists and parses; *hash 0 when absent in it; *bounces 1 when absent
+ * (references from before interreflection are the single-event integral). */
+static int read_sidecar(const char *exr, uint64_t *hash, char quality[8], int *bounces)
 {
+    *bounces = 1;
     char path[1100];
     *hash = 0;
     snprintf(quality, 8, "unknown");
@@ -41,25 +43,28 @@ static int read_sidecar(const char *exr, uint64_t *hash, char quality[8])
     const cJSON *q = cJSON_GetObjectItemCaseSensitive(root, "quality");
     if (cJSON_IsString(q) && (strcmp(q->valuestring, "final") == 0 || strcmp(q->valuestring, "draft") == 0))
         snprintf(quality, 8, "%s", q->valuestring);
+    const cJSON *b = cJSON_GetObjectItemCaseSensitive(root, "bounces");
+    if (cJSON_IsNumber(b)) *bounces = b->valueint;
     cJSON_Delete(root);
     return 1;
 }
 
 static sss_result write_sidecar(const char *exr, const sss_eval_scene *es, int w, int h, const char *quality,
-                                double seconds, sss_error *err)
+                                int bounces, double seconds, sss_error *err)
 {
     char path[1100], tmp[4096];
     if (!sidecar_path(exr, path, sizeof path)) return sss_error_set(err, SSS_ERROR_LIMIT, "%s: path too long", exr);
     FILE *f = sss_atomic_open(path, tmp, sizeof tmp, err);
     if (!f) return err ? err->code : SSS_ERROR_IO;
     const char *slash = strrchr(es->path, '/');
-    char tflag[48] = "";
-    if (es->has_time) snprintf(tflag, sizeof tflag, " --time %g", es->time);
+    char tflag[80] = "";
+    int n = es->has_time ? snprintf(tflag, sizeof tflag, " --time %g", es->time) : 0;
+    if (bounces > 0) snprintf(tflag + n, sizeof tflag - (size_t)n, " --bounces %d", bounces);
     fprintf(f,
             "{\n  \"scene\": \"%s\",\n  \"scene_fnv1a64\": \"%016" PRIx64 "\",\n  \"width\": %d,\n  \"height\": %d,\n"
-            "  \"time\": %.17g,\n  \"quality\": \"%s\",\n  \"seconds\": %.3f,\n"
+            "  \"time\": %.17g,\n  \"quality\": \"%s\",\n  \"bounces\": %d,\n  \"seconds\": %.3f,\n"
             "  \"command\": \"sss reference %s%s -o OUT.exr --quality %s\"\n}\n",
-            slash ? slash + 1 : es->path, eval_file_hash(es->path), w, h, es->time, quality, seconds,
+            slash ? slash + 1 : es->path, eval_file_hash(es->path), w, h, es->time, quality, bounces, seconds,
             slash ? slash + 1 : es->path, tflag, quality);
     return sss_atomic_close(f, tmp, path, err);
 }
@@ -85,6 +90,7 @@ sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const
     ref->width = w;
     ref->height = h;
     ref->source = SSS_EVAL_REF_NONE;
+    ref->bounces = desc->reference_bounces;
     char dir[1024];
     if (desc->reference_dir) snprintf(dir, sizeof dir, "%s", desc->reference_dir);
     else eval_default_reference_dir(es->path, dir, sizeof dir);
@@ -94,11 +100,15 @@ sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const
         if (access(cached, R_OK) == 0) {
             uint64_t hash = 0;
             char quality[8];
-            int side = read_sidecar(cached, &hash, quality);
+            int bounces;
+            int side = read_sidecar(cached, &hash, quality, &bounces);
             uint64_t now = eval_file_hash(es->path);
             if (side && hash && hash != now) {
                 eval_note(prog, "%s: cached reference %s is stale (the scene file changed since it was rendered); "
                                 "rendering it", es->name, cached);
+            } else if (side && bounces != desc->reference_bounces) {
+                eval_note(prog, "%s: cached reference %s has bounces %d (0: full transport), not %d; rendering it",
+                          es->name, cached, bounces, desc->reference_bounces);
             } else {
                 double t0 = sss_time_seconds();
                 sss_error rerr = {0};
@@ -132,6 +142,7 @@ sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const
     rd.quality = desc->reference_quality;
     rd.threads = desc->reference_threads;
     rd.time = es->time;
+    rd.bounces = desc->reference_bounces;
     ref_fwd fwd;
     fwd.prog = prog;
     snprintf(fwd.prefix, sizeof fwd.prefix, "%s %dx%d: reference", es->name, w, h);
@@ -156,7 +167,7 @@ sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const
         /* Half floats keep the committed files small; a value beyond the half range falls back to float. */
         r = sss_image_write_exr(path, img, 1, err);
         if (r == SSS_ERROR_LIMIT) r = sss_image_write_exr(path, img, 0, err);
-        if (r == SSS_OK) r = write_sidecar(path, es, w, h, ref->quality, ref->seconds, err);
+        if (r == SSS_OK) r = write_sidecar(path, es, w, h, ref->quality, ref->bounces, ref->seconds, err);
         if (r != SSS_OK) return r;
         snprintf(ref->path, sizeof ref->path, "%s", path);
     }

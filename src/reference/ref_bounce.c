@@ -12,7 +12,7 @@
 
 #include "reference/ref_internal.h"
 
-#define TRANSPORT_BUDGET (1ull << 20)
+#define TRANSPORT_BUDGET (1ull << 18)
 /* The tolerance of the trees that evaluate M_{k-1} at the samples, relative to the lit level: the
  * gathers average many of those values, so the pixels' 1e-6 would be wasted here. */
 #define BOUNCE_TREE_ABS 1e-3
@@ -60,7 +60,7 @@ void ref_transport_spacing(ref_ctx *ctx)
  * ref_points.c: row i holds 2 (m - i) - 1 of them, up and down cells alternating); -1 if none. */
 static int64_t sample_index(const ref_object *o, unsigned prim, double u, double v)
 {
-    if (!o->bs || prim >= o->src->mesh->triangle_count) return -1;
+    if (!o->tri_offset || prim >= o->src->mesh->triangle_count) return -1;
     uint64_t b = o->tri_offset[prim], e = o->tri_offset[prim + 1];
     if (e == b) return -1;
     int64_t m = (int64_t)sqrt((double)(e - b) + 0.5);
@@ -74,92 +74,156 @@ static int64_t sample_index(const ref_object *o, unsigned prim, double u, double
     return (int64_t)b + 2 * m * i - i * i + 2 * j + down;
 }
 
-/* Barycentrics (of the 2nd and 3rd vertices) of the centroid of cell k of a triangle cut m x m. */
-static void cell_centroid(int64_t m, int64_t k, double *b1, double *b2)
+/* Clusters of an object's samples (ids[0, n), reordered in place): split at the median of the box's
+ * longest axis until a cluster fits in a sphere of diameter `size`, or, where the normals of its
+ * samples disagree (thin parts: both sides), of the normals' widest component, so that a cluster
+ * stays on one side. Writes the cluster index of every sample to cluster_of; returns the count. */
+typedef struct cluster_job {
+    uint32_t begin, end;
+} cluster_job;
+
+static int normal_axis(const ref_bsample *bs, const uint32_t *ids, uint32_t n, float *spread)
 {
-    int64_t i = 0;
-    while (i + 1 < m && 2 * m * (i + 1) - (i + 1) * (i + 1) <= k) i++;
-    int64_t r = k - (2 * m * i - i * i), j = r / 2, down = r % 2;
-    *b1 = ((double)i + (down ? 2.0 : 1.0) / 3.0) / (double)m;
-    *b2 = ((double)j + (down ? 2.0 : 1.0) / 3.0) / (double)m;
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++) lo[c] = fminf(lo[c], bs[ids[i]].ng[c]), hi[c] = fmaxf(hi[c], bs[ids[i]].ng[c]);
+    int axis = 0;
+    for (int c = 1; c < 3; c++)
+        if (hi[c] - lo[c] > hi[axis] - lo[axis]) axis = c;
+    *spread = hi[axis] - lo[axis];
+    return axis;
 }
 
-sss_result ref_transport_coarsen(ref_ctx *ctx, size_t o, sss_error *err)
+/* The sort key of sample id: a position or a normal component. */
+static inline float cluster_key(const ref_bsample *bs, uint32_t id, int axis, int normal)
+{
+    return normal ? bs[id].ng[axis] : bs[id].p[axis];
+}
+
+/* Partially sorts ids[0, n) by key so that ids[k] is the k-th smallest (Hoare quickselect with a
+ * median-of-three pivot: deterministic), as ref_tree.c's select_kth does for points. */
+static void select_ids(const ref_bsample *bs, uint32_t *ids, size_t n, size_t k, int axis, int normal)
+{
+    size_t lo = 0, hi = n - 1;
+#define KEY(i) cluster_key(bs, ids[i], axis, normal)
+#define SWAP(i, j) do { uint32_t t_ = ids[i]; ids[i] = ids[j]; ids[j] = t_; } while (0)
+    while (hi > lo) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (KEY(mid) < KEY(lo)) SWAP(mid, lo);
+        if (KEY(hi) < KEY(lo)) SWAP(hi, lo);
+        if (KEY(hi) < KEY(mid)) SWAP(hi, mid);
+        float pivot = KEY(mid);
+        size_t i = lo, j = hi;
+        for (;;) {
+            while (KEY(i) < pivot) i++;
+            while (KEY(j) > pivot) j--;
+            if (i >= j) break;
+            SWAP(i, j);
+            i++;
+            j--;
+        }
+        if (k <= j)
+            hi = j;
+        else
+            lo = j + 1;
+    }
+#undef KEY
+#undef SWAP
+}
+
+static uint32_t make_clusters(const ref_bsample *bs, uint32_t *ids, uint32_t n, double size, uint32_t *cluster_of,
+                              cluster_job *stack)
+{
+    uint32_t count = 0;
+    size_t top = 0;
+    stack[top++] = (cluster_job){0, n};
+    while (top > 0) {
+        cluster_job j = stack[--top];
+        uint32_t m = j.end - j.begin;
+        float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (uint32_t i = j.begin; i < j.end; i++)
+            for (int c = 0; c < 3; c++) lo[c] = fminf(lo[c], bs[ids[i]].p[c]), hi[c] = fmaxf(hi[c], bs[ids[i]].p[c]);
+        int axis = 0;
+        for (int c = 1; c < 3; c++)
+            if (hi[c] - lo[c] > hi[axis] - lo[axis]) axis = c;
+        double d2 = 0.0;
+        for (int c = 0; c < 3; c++) d2 += (double)(hi[c] - lo[c]) * (hi[c] - lo[c]);
+        float spread;
+        int naxis = normal_axis(bs, ids + j.begin, m, &spread);
+        int by_normal = spread > 0.5f; /* normals more than ~30 degrees apart */
+        if (m <= 1 || (d2 <= size * size && !by_normal)) {
+            for (uint32_t i = j.begin; i < j.end; i++) cluster_of[ids[i]] = count;
+            count++;
+            continue;
+        }
+        uint32_t mid = j.begin + m / 2;
+        select_ids(bs, ids + j.begin, m, mid - j.begin, by_normal ? naxis : axis, by_normal);
+        stack[top++] = (cluster_job){mid, j.end};
+        stack[top++] = (cluster_job){j.begin, mid};
+    }
+    return count;
+}
+
+sss_result ref_transport_cluster(ref_ctx *ctx, size_t o, sss_error *err)
 {
     ref_object *ro = &ctx->objects[o];
-    if (!ro->bs || !(ro->tspacing > ro->spacing)) return SSS_OK; /* already at the transport spacing */
-    const sss_mesh *mesh = ro->src->mesh;
-    uint32_t nt = mesh->triangle_count;
-    ref_object coarse; /* the new cells: only tri_offset, bs and src are used */
-    memset(&coarse, 0, sizeof coarse);
-    coarse.src = ro->src;
-    coarse.tri_offset = malloc(sizeof(uint64_t) * ((size_t)nt + 1));
-    if (!coarse.tri_offset) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (transport)");
-    coarse.tri_offset[0] = 0;
-    for (uint32_t t = 0; t < nt; t++) {
-        uint64_t m = ro->tri_offset[t + 1] > ro->tri_offset[t] ? ref_points_subdiv(mesh, t, ro->tspacing) : 0;
-        uint64_t n = m * m;
-        coarse.tri_offset[t + 1] = coarse.tri_offset[t] + n;
+    if (!ro->bs || !(ro->tspacing > ro->spacing) || ro->bs_count >= UINT32_MAX) return SSS_OK;
+    uint32_t n = (uint32_t)ro->bs_count;
+    uint32_t *ids = malloc(sizeof(uint32_t) * n), *cluster_of = malloc(sizeof(uint32_t) * n);
+    cluster_job *stack = malloc(sizeof(cluster_job) * 2 * 66);
+    if (!ids || !cluster_of || !stack) {
+        free(ids), free(cluster_of), free(stack);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (transport clusters)");
     }
-    size_t count = (size_t)coarse.tri_offset[nt];
-    coarse.bs = calloc(count ? count : 1, sizeof *coarse.bs);
-    double *weight = calloc(count ? count : 1, sizeof(double));
-    if (!coarse.bs || !weight) {
-        free(coarse.tri_offset), free(coarse.bs), free(weight);
-        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (%zu transport samples)", count);
+    for (uint32_t i = 0; i < n; i++) ids[i] = i;
+    uint32_t count = make_clusters(ro->bs, ids, n, ro->tspacing, cluster_of, stack);
+    free(stack);
+    ref_bsample *cs = calloc(count ? count : 1, sizeof *cs);
+    double *acc = calloc(4 * (size_t)(count ? count : 1), sizeof(double)); /* area, T A per channel */
+    if (!cs || !acc) {
+        free(ids), free(cluster_of), free(cs), free(acc);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (transport clusters)");
     }
-    for (uint32_t t = 0; t < nt; t++) {
-        uint64_t b = coarse.tri_offset[t], e = coarse.tri_offset[t + 1];
-        if (e == b) continue;
-        const uint32_t *idx = mesh->indices + 3 * (size_t)t;
-        const float *pa = mesh->positions + 3 * (size_t)idx[0], *pb = mesh->positions + 3 * (size_t)idx[1],
-                    *pc = mesh->positions + 3 * (size_t)idx[2];
-        const ref_bsample *any = &ro->bs[ro->tri_offset[t]];
-        int64_t mc = (int64_t)sqrt((double)(e - b) + 0.5);
-        float cell_area = 0.0f;
-        for (uint64_t k = ro->tri_offset[t]; k < ro->tri_offset[t + 1]; k++) cell_area += ro->bs[k].area;
-        cell_area /= (float)(e - b);
-        for (uint64_t k = b; k < e; k++) { /* positions and normals of the new cells */
-            double b1, b2;
-            cell_centroid(mc, (int64_t)(k - b), &b1, &b2);
-            ref_bsample *cs = &coarse.bs[k];
-            for (int c = 0; c < 3; c++) {
-                cs->p[c] = (float)((1.0 - b1 - b2) * pa[c] + b1 * pb[c] + b2 * pc[c]);
-                cs->ng[c] = any->ng[c];
-            }
-            cs->area = cell_area;
-        }
-        int64_t mf = (int64_t)sqrt((double)(ro->tri_offset[t + 1] - ro->tri_offset[t]) + 0.5);
-        for (uint64_t k = ro->tri_offset[t]; k < ro->tri_offset[t + 1]; k++) { /* T: area-weighted means */
-            double b1, b2;
-            cell_centroid(mf, (int64_t)(k - ro->tri_offset[t]), &b1, &b2);
-            int64_t ci = sample_index(&coarse, t, b1, b2);
-            if (ci < 0) continue;
-            const ref_bsample *fs = &ro->bs[k];
-            weight[ci] += fs->area;
-            for (int c = 0; c < 3; c++) coarse.bs[ci].direct[c] += fs->area * fs->direct[c];
-        }
+    for (uint32_t i = 0; i < n; i++) {
+        const ref_bsample *f = &ro->bs[i];
+        double *a = acc + 4 * (size_t)cluster_of[i];
+        a[0] += f->area;
+        for (int c = 0; c < 3; c++) a[1 + c] += (double)f->area * f->direct[c];
     }
-    for (size_t k = 0; k < count; k++)
-        for (int c = 0; c < 3; c++) {
-            float v = weight[k] > 0.0 ? (float)(coarse.bs[k].direct[c] / weight[k]) : 0.0f;
-            coarse.bs[k].direct[c] = coarse.bs[k].t[c] = v;
-        }
-    free(weight);
+    /* Each cluster sits at its first sample in generation order (on the surface, with its normal): the
+     * gathers start there and the exitance is evaluated there. */
+    for (uint32_t i = n; i-- > 0;) {
+        ref_bsample *c = &cs[cluster_of[i]];
+        memcpy(c->p, ro->bs[i].p, sizeof c->p);
+        memcpy(c->ng, ro->bs[i].ng, sizeof c->ng);
+    }
+    for (uint32_t k = 0; k < count; k++) {
+        const double *a = acc + 4 * (size_t)k;
+        cs[k].area = (float)a[0];
+        for (int c = 0; c < 3; c++) cs[k].direct[c] = cs[k].t[c] = a[0] > 0.0 ? (float)(a[1 + c] / a[0]) : 0.0f;
+    }
+    free(acc);
+    free(ids);
     free(ro->bs);
-    free(ro->tri_offset);
-    ro->bs = coarse.bs;
-    ro->tri_offset = coarse.tri_offset;
+    ro->bs = cs;
     ro->bs_count = count;
+    ro->cluster_of = cluster_of;
     (void)ctx;
     return SSS_OK;
+}
+
+/* The transport sample holding the point (u, v) of triangle prim of object o, or -1. */
+static int64_t transport_index(const ref_object *o, unsigned prim, double u, double v)
+{
+    int64_t k = sample_index(o, prim, u, v);
+    return k >= 0 && o->cluster_of ? (int64_t)o->cluster_of[k] : k;
 }
 
 void ref_indirect_at(const ref_ctx *ctx, size_t o, unsigned prim, double u, double v, const double facing[3],
                      double out[3])
 {
     const ref_object *ro = &ctx->objects[o];
-    int64_t k = ro->indirect ? sample_index(ro, prim, u, v) : -1;
+    int64_t k = ro->indirect ? transport_index(ro, prim, u, v) : -1;
     if (k >= 0 && facing && !ro->subsurface) {
         const float *n = ro->bs[k].ng;
         if (!(n[0] * facing[0] + n[1] * facing[1] + n[2] * facing[2] > 0.0)) k = -1;
@@ -177,7 +241,7 @@ static uint32_t trace_link(const ref_ctx *ctx, const double org[3], const double
     *factor = 0.0;
     if (!ref_intersect(ctx, org, dir, &rh) || rh.hit.geomID >= ctx->light_geom_base) return NO_LINK;
     const ref_object *ro = &ctx->objects[rh.hit.geomID];
-    int64_t k = sample_index(ro, rh.hit.primID, rh.hit.u, rh.hit.v);
+    int64_t k = transport_index(ro, rh.hit.primID, rh.hit.u, rh.hit.v);
     if (k < 0) return NO_LINK;
     const float *n = ro->bs[k].ng;
     double cos_out = -(dir[0] * n[0] + dir[1] * n[1] + dir[2] * n[2]);

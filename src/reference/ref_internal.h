@@ -225,6 +225,7 @@ typedef struct ref_object {
     /* Interreflection (ctx->transport): the samples in generation order (triangle t holds
      * [tri_offset[t], tri_offset[t + 1]), m^2 of them as ref_points.c enumerates them). */
     uint64_t *tri_offset;
+    uint32_t *cluster_of;  /* NULL, or per sample of tri_offset its transport sample (cluster) in bs */
     struct ref_bsample *bs;
     size_t bs_count;
     double tspacing;       /* spacing of the transport samples (>= spacing) */
@@ -332,10 +333,10 @@ uint64_t ref_points_count(const sss_mesh *mesh, double h);
 /* Transport spacing of every object (and the sample spacing of those the density rule leaves
  * without samples). */
 void ref_transport_spacing(ref_ctx *ctx);
-/* Replaces object o's samples (ref_points_generate's, in generation order) by the transport samples
- * at ro->tspacing: the same cells at the coarser spacing, T the area-weighted mean of the samples
- * whose centroids they hold. */
-sss_result ref_transport_coarsen(ref_ctx *ctx, size_t o, sss_error *err);
+/* Replaces object o's samples (ref_points_generate's, in generation order) by clusters of them of
+ * diameter <= ro->tspacing (on one side of thin parts), T the area-weighted mean; ro->cluster_of
+ * maps the samples to them. */
+sss_result ref_transport_cluster(ref_ctx *ctx, size_t o, sss_error *err);
 /* Sum over the transport samples of T_ind A S_far(|x - x_o|) (zero without them). */
 void ref_indirect_sum(const ref_ctx *ctx, size_t o, const float xo[3], double out[3], uint64_t *visits);
 /* Bounces 2..N at the samples of every object (after their direct T, E and trees exist); rebuilds

@@ -378,7 +378,6 @@ sss_result ref_prepare(ref_ctx *ctx, sss_error *err)
             double t1 = sss_time_seconds();
             if ((r = ref_points_generate(ctx, o, ro->spacing, err)) != SSS_OK) return r;
             ref_tree_free(&ro->tree);
-            if ((r = ref_transport_coarsen(ctx, o, err)) != SSS_OK) return r;
             ctx->stats.seconds_samples += sss_time_seconds() - t1;
             continue;
         }
@@ -397,7 +396,7 @@ sss_result ref_prepare(ref_ctx *ctx, sss_error *err)
         double hi = 0.02 + 0.28 * (total > 0.0 ? (done + n) / total : 1.0);
         ref_set_phase(ctx, lo, hi, "surface samples");
         if ((r = ref_points_generate(ctx, o, h, err)) != SSS_OK) return r;
-        if (ctx->transport && (r = ref_transport_coarsen(ctx, o, err)) != SSS_OK) return r;
+        if (ctx->transport && (r = ref_transport_cluster(ctx, o, err)) != SSS_OK) return r;
         done += n;
         double t2 = sss_time_seconds();
         if ((r = ref_tree_build(&ro->tree, err)) != SSS_OK) return r;
@@ -428,6 +427,7 @@ void ref_ctx_free(ref_ctx *ctx)
         ref_tree_free(&ctx->objects[o].tree);
         ref_tree_free(&ctx->objects[o].itree);
         free(ctx->objects[o].tri_offset);
+        free(ctx->objects[o].cluster_of);
         free(ctx->objects[o].bs);
         free(ctx->objects[o].indirect);
         free(ctx->objects[o].link_target);

@@ -148,7 +148,7 @@ static void test_subsurface_sphere(void)
         double worst = deviation(&img, expect, &mean_dev);
         printf("subsurface sphere, bounces %d (%u done): mean G %.5g, expected %.5g; worst pixel %.3g, mean %.3g\n",
                bounces, st.bounces, img_mean(&img, 1), expect[1], worst, mean_dev);
-        CHECK_MSG(mean_dev < 0.02 && worst < 0.05, "subsurface sphere, %d bounces: off by %.3g (mean %.3g)", n,
+        CHECK_MSG(mean_dev < 0.02 && worst < 0.06, "subsurface sphere, %d bounces: off by %.3g (mean %.3g)", n,
                   worst, mean_dev);
         sss_image_free(&img);
     }
