@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "core/file_util.h"
@@ -49,8 +50,14 @@ static int read_sidecar(const char *exr, uint64_t *hash, char quality[8], int *b
     return 1;
 }
 
+/* What the render measured, for the sidecar: CPU seconds (all threads) and the bounces' times. */
+typedef struct render_record {
+    double seconds, cpu_seconds;
+    sss_reference_stats stats;
+} render_record;
+
 static sss_result write_sidecar(const char *exr, const sss_eval_scene *es, int w, int h, const char *quality,
-                                int bounces, double seconds, sss_error *err)
+                                int bounces, const render_record *rec, sss_error *err)
 {
     char path[1100], tmp[4096];
     if (!sidecar_path(exr, path, sizeof path)) return sss_error_set(err, SSS_ERROR_LIMIT, "%s: path too long", exr);
@@ -63,9 +70,13 @@ static sss_result write_sidecar(const char *exr, const sss_eval_scene *es, int w
     fprintf(f,
             "{\n  \"scene\": \"%s\",\n  \"scene_fnv1a64\": \"%016" PRIx64 "\",\n  \"width\": %d,\n  \"height\": %d,\n"
             "  \"time\": %.17g,\n  \"quality\": \"%s\",\n  \"bounces\": %d,\n  \"seconds\": %.3f,\n"
-            "  \"command\": \"sss reference %s%s -o OUT.exr --quality %s\"\n}\n",
-            slash ? slash + 1 : es->path, eval_file_hash(es->path), w, h, es->time, quality, bounces, seconds,
-            slash ? slash + 1 : es->path, tflag, quality);
+            "  \"cpu_seconds\": %.3f,\n  \"bounces_done\": %u,\n  \"seconds_per_bounce\": [",
+            slash ? slash + 1 : es->path, eval_file_hash(es->path), w, h, es->time, quality, bounces, rec->seconds,
+            rec->cpu_seconds, rec->stats.bounces);
+    for (uint32_t k = 0; k < rec->stats.bounces && k < SSS_REFERENCE_MAX_BOUNCES; k++)
+        fprintf(f, "%s%.3f", k ? ", " : "", rec->stats.seconds_bounce[k]);
+    fprintf(f, "],\n  \"seconds_pixels\": %.3f,\n  \"command\": \"sss reference %s%s -o OUT.exr --quality %s\"\n}\n",
+            rec->stats.seconds_pixels, slash ? slash + 1 : es->path, tflag, quality);
     return sss_atomic_close(f, tmp, path, err);
 }
 
@@ -147,14 +158,18 @@ sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const
     fwd.prog = prog;
     snprintf(fwd.prefix, sizeof fwd.prefix, "%s %dx%d: reference", es->name, w, h);
     double t0 = sss_time_seconds();
+    clock_t c0 = clock();
     sss_error rerr = {0};
-    if (sss_reference_render(view, &rd, img, ref_progress, &fwd, NULL, &rerr) != SSS_OK) {
+    render_record rec;
+    memset(&rec, 0, sizeof rec);
+    if (sss_reference_render(view, &rd, img, ref_progress, &fwd, &rec.stats, &rerr) != SSS_OK) {
         snprintf(ref->error, sizeof ref->error, "%s", rerr.message);
         eval_note(prog, "%s: reference failed: %s", es->name, rerr.message);
         sss_image_free(img);
         return SSS_OK;
     }
-    ref->seconds = sss_time_seconds() - t0;
+    ref->seconds = rec.seconds = sss_time_seconds() - t0;
+    rec.cpu_seconds = (double)(clock() - c0) / CLOCKS_PER_SEC;
     ref->source = SSS_EVAL_REF_RENDERED;
     snprintf(ref->quality, sizeof ref->quality, "%s", quality_name(desc->reference_quality));
     if (desc->save_references_dir) {
@@ -167,7 +182,7 @@ sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const
         /* Half floats keep the committed files small; a value beyond the half range falls back to float. */
         r = sss_image_write_exr(path, img, 1, err);
         if (r == SSS_ERROR_LIMIT) r = sss_image_write_exr(path, img, 0, err);
-        if (r == SSS_OK) r = write_sidecar(path, es, w, h, ref->quality, ref->bounces, ref->seconds, err);
+        if (r == SSS_OK) r = write_sidecar(path, es, w, h, ref->quality, ref->bounces, &rec, err);
         if (r != SSS_OK) return r;
         snprintf(ref->path, sizeof ref->path, "%s", path);
     }
