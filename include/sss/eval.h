@@ -61,6 +61,9 @@ typedef struct sss_eval_desc {
     int supersample;                /* SSAA factor of every technique (sss_gl_renderer_desc.supersample,
                                        1..4; 0 -> 1: off); a spec's "supersample=K" overrides it for that
                                        spec ("maisch2020:supersample=2") */
+    int reference_bounces;          /* the truth compared against: sss_reference_desc.bounces (0: the full
+                                       transport, the default; 1: the single-event integral); a cached
+                                       reference is used only when its sidecar records the same */
 } sss_eval_desc;
 
 /* Progress: fraction in [0, 1] of the estimated work and a short description of the current step
@@ -124,6 +127,7 @@ typedef struct sss_eval_reference {
     char path[1024];                  /* the cached file read, or the file saved (may be empty) */
     double seconds;                   /* render (or read) time */
     char quality[8];                  /* "final" / "draft" (cached: from its sidecar, else "unknown") */
+    int bounces;                      /* its sss_reference_desc.bounces (0: full transport) */
     char error[SSS_ERROR_MESSAGE_SIZE]; /* SSS_EVAL_REF_NONE: why */
 } sss_eval_reference;
 
@@ -153,6 +157,7 @@ typedef struct sss_eval_results {
     int supersample;                  /* sss_eval_desc.supersample (1: off) */
     sss_reference_quality reference_quality;
     int cached_reference;
+    int reference_bounces;            /* sss_eval_desc.reference_bounces */
     int gl_ok;                        /* a GL context could be created */
     char gl_error[SSS_ERROR_MESSAGE_SIZE];
     char gl_platform[64], gl_renderer[160], gl_version[160], timing_method[64];

@@ -5,10 +5,12 @@
  * `kdsubsurface` / `matte` materials, world-space `plymesh` shapes written next to the .pbrt file
  * (posed at the given time, so animated objects match `sss reference --time`), and the lights of
  * docs/scene-format.md with their PBRT equivalents (area lights as a two-triangle `trianglemesh`, since PBRT-v3
- * has no bilinear patch). The integrator is `path` with maxdepth 1: the camera ray refracts, the
- * BSSRDF probe finds the entry point and direct light is gathered there, which is exactly the
- * single-bounce subsurface integral of docs/physics.md §1 that `sss reference` evaluates. Film scale carries
- * render.exposure (2^exposure).
+ * has no bilinear patch). The integrator is `path` with maxdepth N (desc.maxdepth, default 16): with
+ * maxdepth 1 the camera ray refracts, the BSSRDF probe finds the entry point and direct light is
+ * gathered there, which is exactly the single-event subsurface integral of docs/physics.md §1
+ * (`sss reference --bounces 1`); each further depth adds one more surface-to-surface bounce, so the
+ * default matches `sss reference`'s default (bounces until converged, at most 16). Film scale
+ * carries render.exposure (2^exposure).
  * Does not: textures (PBRT would need its own texture statements; a scene with a texture exports
  * without it and says so in a comment), the specular interface of `specular` (PBRT's subsurface
  * material always has its smooth dielectric interface; our reference leaves it out by default),
@@ -28,7 +30,12 @@ typedef struct sss_export_pbrt_desc {
     double time;        /* pose of animated objects (seconds); default 0 */
     int pixel_samples;  /* PBRT sampler's pixelsamples; 0 -> 256 */
     const char *image_name; /* Film filename; NULL -> "<stem of out_path>.exr" */
+    int maxdepth;       /* the path integrator's maxdepth, 1..SSS_EXPORT_PBRT_MAXDEPTH_MAX; 0 -> the default */
 } sss_export_pbrt_desc;
+
+/* The default maxdepth: sss reference's bounce cap (SSS_REFERENCE_MAX_BOUNCES); and the largest. */
+#define SSS_EXPORT_PBRT_MAXDEPTH_DEFAULT 16
+#define SSS_EXPORT_PBRT_MAXDEPTH_MAX 1024
 
 /* Writes out_path (e.g. "scene.pbrt") and one binary PLY per object beside it
  * ("<stem>_objN.ply"). All files are written atomically; on failure none is left behind. */

@@ -21,6 +21,7 @@ static void print_usage(FILE *f)
             "usage: sss eval SCENE.json[@T]... [--out DIR] [--techniques A,B:param=value,...]\n"
             "                [--resolutions WxH,...] [--timing-resolutions WxH,...] [--frames N] [--warmup W]\n"
             "                [--cached-reference] [--reference-dir DIR] [--reference-quality draft|final]\n"
+            "                [--reference-bounces N]\n"
             "                [--reference-threads N] [--sam-sweep | --no-sam-sweep] [--sam-counts 3,10,20,50]\n"
             "                [--supersample K] [--quiet]\n"
             "\n"
@@ -48,6 +49,9 @@ static void print_usage(FILE *f)
             "                        (and its .json sidecar matches the scene file), else render it\n"
             "  --reference-dir DIR   where cached references are looked up instead\n"
             "  --reference-quality Q final (default) or draft, for references that are rendered\n"
+            "  --reference-bounces N the truth: 1 = the single-event integral (`sss reference --bounces 1`,\n"
+            "                        what techniques that model one event converge to), N = N bounces;\n"
+            "                        default: the full transport (bounces until converged)\n"
             "  --reference-threads N threads of the reference renderer (default: all cores)\n"
             "  --sam-sweep           RMSE of `sam` against back-side samples n (Maisch & Ropinski 2017, Fig. 10) even when\n"
             "                        sam is not among the techniques; --no-sam-sweep never\n"
@@ -267,6 +271,14 @@ int sss_cmd_eval(int argc, char **argv)
             else if (strcmp(v, "draft") == 0) desc.reference_quality = SSS_REFERENCE_DRAFT;
             else {
                 cli_usage_error(CMD, "--reference-quality must be draft or final, got '%s'", v);
+                goto done;
+            }
+        } else if (strcmp(a, "--reference-bounces") == 0) {
+            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &desc.reference_bounces))
+                goto done;
+            if (desc.reference_bounces < 1 || desc.reference_bounces > SSS_REFERENCE_MAX_BOUNCES) {
+                cli_usage_error(CMD, "--reference-bounces must be in 1..%d, got %d", SSS_REFERENCE_MAX_BOUNCES,
+                                desc.reference_bounces);
                 goto done;
             }
         } else if (strcmp(a, "--reference-threads") == 0) {

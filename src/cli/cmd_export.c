@@ -1,4 +1,4 @@
-/* sss export pbrt SCENE.json -o OUT.pbrt [--time T] [--spp N] */
+/* sss export pbrt SCENE.json -o OUT.pbrt [--time T] [--spp N] [--maxdepth N] */
 #include <stdio.h>
 #include <string.h>
 
@@ -6,18 +6,20 @@
 #include "sss/export.h"
 
 static const char usage[] =
-    "usage: sss export pbrt SCENE.json -o OUT.pbrt [--time T] [--spp N]\n"
+    "usage: sss export pbrt SCENE.json -o OUT.pbrt [--time T] [--spp N] [--maxdepth N]\n"
     "\n"
     "Writes the scene for PBRT-v3: OUT.pbrt plus one binary PLY per object beside it\n"
     "(OUT_objN.ply, world space, posed at --time). Materials map to PBRT's subsurface\n"
     "(measured media and coefficients), kdsubsurface (reflectance + mfp) and matte;\n"
     "lights to point, spot, distant, diffuse area (two triangles) and infinite.\n"
-    "The integrator is path with maxdepth 1, the single-bounce subsurface integral that\n"
-    "`sss reference` computes. Render it with `pbrt OUT.pbrt`.\n"
+    "The integrator is path with maxdepth 16, the full transport that `sss reference` computes\n"
+    "by default; --maxdepth 1 is the single-event integral of `sss reference --bounces 1`, and\n"
+    "maxdepth N matches --bounces N. Render it with `pbrt OUT.pbrt`.\n"
     "\n"
     "  -o FILE      the .pbrt file to write (required)\n"
     "  --time T     pose of animated objects, seconds (default 0)\n"
-    "  --spp N      PBRT's pixel samples (default 256)\n";
+    "  --spp N      PBRT's pixel samples (default 256)\n"
+    "  --maxdepth N the path integrator's maxdepth, 1..1024 (default 16)\n";
 
 int sss_cmd_export(int argc, char **argv)
 {
@@ -42,6 +44,12 @@ int sss_cmd_export(int argc, char **argv)
             const char *v = cli_option_value(cmd, argc, argv, &i);
             if (!v || !cli_parse_int(cmd, "--spp", v, &desc.pixel_samples)) return CLI_EXIT_USAGE;
             if (desc.pixel_samples < 1) return cli_usage_error(cmd, "--spp must be at least 1");
+        } else if (strcmp(a, "--maxdepth") == 0) {
+            const char *v = cli_option_value(cmd, argc, argv, &i);
+            if (!v || !cli_parse_int(cmd, "--maxdepth", v, &desc.maxdepth)) return CLI_EXIT_USAGE;
+            if (desc.maxdepth < 1 || desc.maxdepth > SSS_EXPORT_PBRT_MAXDEPTH_MAX)
+                return cli_usage_error(cmd, "--maxdepth must be in 1..%d, got %d", SSS_EXPORT_PBRT_MAXDEPTH_MAX,
+                                       desc.maxdepth);
         } else if (a[0] == '-' && a[1] != '\0') {
             return cli_usage_error(cmd, "unknown option '%s'", a);
         } else if (!scene_path) {

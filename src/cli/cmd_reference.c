@@ -18,12 +18,13 @@ static void print_help(void)
 {
     printf("usage: sss reference SCENE.json -o OUT.png [--exr OUT.exr] [--pfm OUT.pfm]\n"
            "                     [--quality draft|final] [--threads N] [--time T] [--seed S] [--exact]\n"
-           "                     [--specular] [--spp N] [--density D] [--stats] [--quiet]\n"
+           "                     [--specular] [--spp N] [--density D] [--bounces N] [--stats] [--quiet]\n"
            "\n"
            "Renders the ground truth of a scene: the subsurface integral of docs/physics.md §1 as PBRT-v3's\n"
-           "`subsurface` material converges to it under direct lighting (Embree 3 rays, surface samples\n"
-           "with their irradiance, summed hierarchically). Diffuse objects are Lambertian; area lights are\n"
-           "visible; rays that miss see the environment map (black without one).\n"
+           "`subsurface` material converges to it (Embree 3 rays, surface samples with their irradiance,\n"
+           "summed hierarchically), with the light that scatters between surfaces bounce after bounce\n"
+           "(PBRT's path tracer; --bounces 1: direct light only, PBRT's maxdepth 1). Diffuse objects are\n"
+           "Lambertian; area lights are visible; rays that miss see the environment map (black without one).\n"
            "\n"
            "options:\n"
            "  -o OUT         the image: .png is tone-mapped with the scene's render.exposure\n"
@@ -42,12 +43,15 @@ static void print_help(void)
            "                 on subsurface objects (PBRT comparisons leave it out)\n"
            "  --spp N        base samples per pixel (rounded up to a square)\n"
            "  --density D    multiply the surface-sample density by D (> 0; 4 = half the spacing)\n"
+           "  --bounces N    surface-to-surface bounces, 1..%d: 1 = the single-event integral (direct\n"
+           "                 light only); default: until a bounce adds less than %g%% of bounce 1's light\n"
            "  --stats        print sample counts, tree statistics and timings to stdout\n"
            "  --quiet        no progress on stderr\n"
            "\n"
            "Progress goes to stderr: a bar with the time left when stderr is a terminal, otherwise a line\n"
            "'NN%%' every 10%%. Nothing is written when the scene or an option is invalid.\n"
-           "exit status: 0 done, 1 invalid scene or failed render or write, 2 usage error\n");
+           "exit status: 0 done, 1 invalid scene or failed render or write, 2 usage error\n",
+           SSS_REFERENCE_MAX_BOUNCES, 100.0 * SSS_REFERENCE_BOUNCE_STOP);
 }
 
 typedef struct progress_state {
@@ -147,6 +151,12 @@ int sss_cmd_reference(int argc, char **argv)
                 return CLI_EXIT_USAGE;
             if (!(desc.density > 0.0) || desc.density > 1024.0)
                 return cli_usage_error(CMD, "--density must be in (0, 1024], got %g", desc.density);
+        } else if (strcmp(a, "--bounces") == 0) {
+            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, "--bounces", v, &desc.bounces))
+                return CLI_EXIT_USAGE;
+            if (desc.bounces < 1 || desc.bounces > SSS_REFERENCE_MAX_BOUNCES)
+                return cli_usage_error(CMD, "--bounces must be in 1..%d, got %d", SSS_REFERENCE_MAX_BOUNCES,
+                                       desc.bounces);
         } else if (strcmp(a, "--exact") == 0) {
             desc.exact = 1;
         } else if (strcmp(a, "--specular") == 0) {
@@ -213,6 +223,10 @@ int sss_cmd_reference(int argc, char **argv)
                (unsigned long long)st.lookups, st.nodes_per_lookup);
         printf("seconds: setup=%.3f samples=%.3f tree=%.3f pixels=%.3f total=%.3f\n", st.seconds_setup,
                st.seconds_samples, st.seconds_tree, st.seconds_pixels, st.seconds_total);
+        printf("bounces=%u transport_samples=%llu\n", st.bounces, (unsigned long long)st.transport_samples);
+        for (uint32_t k = 0; k < st.bounces && k < SSS_REFERENCE_MAX_BOUNCES; k++)
+            printf("bounce %u: seconds=%.3f light=%.4f (of bounce 1)\n", k + 1, st.seconds_bounce[k],
+                   st.bounce_fraction[k]);
     }
 done:
     sss_image_free(&img);

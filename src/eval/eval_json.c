@@ -110,6 +110,7 @@ static cJSON *results_json(const sss_eval_results *res)
         cJSON_AddNumberToObject(set, "supersample", res->supersample > 0 ? res->supersample : 1);
         cJSON_AddStringToObject(set, "reference_quality", res->reference_quality == SSS_REFERENCE_DRAFT ? "draft" : "final");
         cJSON_AddBoolToObject(set, "cached_reference", res->cached_reference);
+        cJSON_AddNumberToObject(set, "reference_bounces", res->reference_bounces);
         cJSON *t = cJSON_AddArrayToObject(set, "techniques");
         for (int i = 0; t && i < res->label_count; i++) cJSON_AddItemToArray(t, cJSON_CreateString(res->labels[i]));
     }
@@ -134,6 +135,7 @@ static cJSON *results_json(const sss_eval_results *res)
             cJSON_AddNumberToObject(ro, "height", r->height);
             cJSON_AddStringToObject(ro, "source", ref_source(r->source));
             cJSON_AddStringToObject(ro, "quality", r->quality[0] ? r->quality : "unknown");
+            cJSON_AddNumberToObject(ro, "bounces", r->bounces);
             if (r->path[0]) cJSON_AddStringToObject(ro, "path", r->path);
             else cJSON_AddNullToObject(ro, "path");
             add_num(ro, "seconds", r->seconds);

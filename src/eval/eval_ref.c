@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "core/file_util.h"
@@ -24,9 +25,11 @@ static int sidecar_path(const char *exr, char *out, size_t cap)
     return 1;
 }
 
-/* Reads the sidecar: 1 when it exists and parses; *hash 0 when absent in it. */
-static int read_sidecar(const char *exr, uint64_t *hash, char quality[8])
+/* Reads the sidecar: 1 when it exists and parses; *hash 0 when absent in it; *bounces 1 when absent
+ * (references from before interreflection are the single-event integral). */
+static int read_sidecar(const char *exr, uint64_t *hash, char quality[8], int *bounces)
 {
+    *bounces = 1;
     char path[1100];
     *hash = 0;
     snprintf(quality, 8, "unknown");
@@ -44,26 +47,39 @@ static int read_sidecar(const char *exr, uint64_t *hash, char quality[8])
     const cJSON *q = cJSON_GetObjectItemCaseSensitive(root, "quality");
     if (cJSON_IsString(q) && (strcmp(q->valuestring, "final") == 0 || strcmp(q->valuestring, "draft") == 0))
         snprintf(quality, 8, "%s", q->valuestring);
+    const cJSON *b = cJSON_GetObjectItemCaseSensitive(root, "bounces");
+    if (cJSON_IsNumber(b)) *bounces = b->valueint;
     cJSON_Delete(root);
     return 1;
 }
 
+/* What the render measured, for the sidecar: CPU seconds (all threads) and the bounces' times. */
+typedef struct render_record {
+    double seconds, cpu_seconds;
+    sss_reference_stats stats;
+} render_record;
+
 static sss_result write_sidecar(const char *exr, const sss_eval_scene *es, int w, int h, const char *quality,
-                                double seconds, sss_error *err)
+                                int bounces, const render_record *rec, sss_error *err)
 {
     char path[1100], tmp[4096];
     if (!sidecar_path(exr, path, sizeof path)) return sss_error_set(err, SSS_ERROR_LIMIT, "%s: path too long", exr);
     FILE *f = sss_atomic_open(path, tmp, sizeof tmp, err);
     if (!f) return err ? err->code : SSS_ERROR_IO;
     const char *slash = strrchr(es->path, '/');
-    char tflag[48] = "";
-    if (es->has_time) snprintf(tflag, sizeof tflag, " --time %g", es->time);
+    char tflag[80] = "";
+    int n = es->has_time ? snprintf(tflag, sizeof tflag, " --time %g", es->time) : 0;
+    if (bounces > 0) snprintf(tflag + n, sizeof tflag - (size_t)n, " --bounces %d", bounces);
     fprintf(f,
             "{\n  \"scene\": \"%s\",\n  \"scene_fnv1a64\": \"%016" PRIx64 "\",\n  \"width\": %d,\n  \"height\": %d,\n"
-            "  \"time\": %.17g,\n  \"quality\": \"%s\",\n  \"seconds\": %.3f,\n"
-            "  \"command\": \"sss reference %s%s -o OUT.exr --quality %s\"\n}\n",
-            slash ? slash + 1 : es->path, eval_file_hash(es->path), w, h, es->time, quality, seconds,
-            slash ? slash + 1 : es->path, tflag, quality);
+            "  \"time\": %.17g,\n  \"quality\": \"%s\",\n  \"bounces\": %d,\n  \"seconds\": %.3f,\n"
+            "  \"cpu_seconds\": %.3f,\n  \"bounces_done\": %u,\n  \"seconds_per_bounce\": [",
+            slash ? slash + 1 : es->path, eval_file_hash(es->path), w, h, es->time, quality, bounces, rec->seconds,
+            rec->cpu_seconds, rec->stats.bounces);
+    for (uint32_t k = 0; k < rec->stats.bounces && k < SSS_REFERENCE_MAX_BOUNCES; k++)
+        fprintf(f, "%s%.3f", k ? ", " : "", rec->stats.seconds_bounce[k]);
+    fprintf(f, "],\n  \"seconds_pixels\": %.3f,\n  \"command\": \"sss reference %s%s -o OUT.exr --quality %s\"\n}\n",
+            rec->stats.seconds_pixels, slash ? slash + 1 : es->path, tflag, quality);
     return sss_atomic_close(f, tmp, path, err);
 }
 
@@ -88,6 +104,7 @@ sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const
     ref->width = w;
     ref->height = h;
     ref->source = SSS_EVAL_REF_NONE;
+    ref->bounces = desc->reference_bounces;
     char dir[1024];
     if (desc->reference_dir) snprintf(dir, sizeof dir, "%s", desc->reference_dir);
     else eval_default_reference_dir(es->path, dir, sizeof dir);
@@ -97,11 +114,15 @@ sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const
         if (access(cached, R_OK) == 0) {
             uint64_t hash = 0;
             char quality[8];
-            int side = read_sidecar(cached, &hash, quality);
+            int bounces;
+            int side = read_sidecar(cached, &hash, quality, &bounces);
             uint64_t now = eval_file_hash(es->path);
             if (side && hash && hash != now) {
                 eval_note(prog, "%s: cached reference %s is stale (the scene file changed since it was rendered); "
                                 "rendering it", es->name, cached);
+            } else if (side && bounces != desc->reference_bounces) {
+                eval_note(prog, "%s: cached reference %s has bounces %d (0: full transport), not %d; rendering it",
+                          es->name, cached, bounces, desc->reference_bounces);
             } else {
                 double t0 = sss_time_seconds();
                 sss_error rerr = {0};
@@ -135,18 +156,23 @@ sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const
     rd.quality = desc->reference_quality;
     rd.threads = desc->reference_threads;
     rd.time = es->time;
+    rd.bounces = desc->reference_bounces;
     ref_fwd fwd;
     fwd.prog = prog;
     snprintf(fwd.prefix, sizeof fwd.prefix, "%s %dx%d: reference", es->name, w, h);
     double t0 = sss_time_seconds();
+    clock_t c0 = clock();
     sss_error rerr = {0};
-    if (sss_reference_render(view, &rd, img, ref_progress, &fwd, NULL, &rerr) != SSS_OK) {
+    render_record rec;
+    memset(&rec, 0, sizeof rec);
+    if (sss_reference_render(view, &rd, img, ref_progress, &fwd, &rec.stats, &rerr) != SSS_OK) {
         snprintf(ref->error, sizeof ref->error, "%s", rerr.message);
         eval_note(prog, "%s: reference failed: %s", es->name, rerr.message);
         sss_image_free(img);
         return SSS_OK;
     }
-    ref->seconds = sss_time_seconds() - t0;
+    ref->seconds = rec.seconds = sss_time_seconds() - t0;
+    rec.cpu_seconds = (double)(clock() - c0) / CLOCKS_PER_SEC;
     ref->source = SSS_EVAL_REF_RENDERED;
     snprintf(ref->quality, sizeof ref->quality, "%s", quality_name(desc->reference_quality));
     if (desc->save_references_dir) {
@@ -159,7 +185,7 @@ sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const
         /* Half floats keep the committed files small; a value beyond the half range falls back to float. */
         r = sss_image_write_exr(path, img, 1, err);
         if (r == SSS_ERROR_LIMIT) r = sss_image_write_exr(path, img, 0, err);
-        if (r == SSS_OK) r = write_sidecar(path, es, w, h, ref->quality, ref->seconds, err);
+        if (r == SSS_OK) r = write_sidecar(path, es, w, h, ref->quality, ref->bounces, &rec, err);
         if (r != SSS_OK) return r;
         snprintf(ref->path, sizeof ref->path, "%s", path);
     }

@@ -196,9 +196,12 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
         sb_printf(b, "supersampled %d&times;%d (SSAA, every pass at %d&times; the size); ", res->supersample,
                   res->supersample, res->supersample);
     sb_esc(b, res->timing_method[0] ? res->timing_method : "no frames timed");
-    sb_printf(b, "</td></tr><tr><th class=\"l\">reference</th><td>sss reference (CPU), %s quality%s</td></tr>",
-              res->reference_quality == SSS_REFERENCE_DRAFT ? "draft" : "final",
-              res->cached_reference ? ", cached images used where present" : "");
+    sb_printf(b, "</td></tr><tr><th class=\"l\">reference</th><td>sss reference (CPU), %s quality, ",
+              res->reference_quality == SSS_REFERENCE_DRAFT ? "draft" : "final");
+    if (res->reference_bounces == 0) sb_puts(b, "full transport (bounces until converged)");
+    else if (res->reference_bounces == 1) sb_puts(b, "single-event integral (bounces 1)");
+    else sb_printf(b, "%d bounces", res->reference_bounces);
+    sb_printf(b, "%s</td></tr>", res->cached_reference ? ", cached images used where present" : "");
     sb_puts(b, "<tr><th class=\"l\">metrics</th><td>DSSIM = (1 &minus; SSIM)/2 (11&times;11 Gaussian window, "
                "&sigma; 1.5), PSNR and RMSE on the tone-mapped 8-bit sRGB images (docs/physics.md §5)</td></tr></table>\n");
 
@@ -257,8 +260,8 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
                 sb_esc(b, r->error);
                 sb_puts(b, "</span>");
             } else {
-                sb_printf(b, "%s, %s quality, %.1f s", r->source == SSS_EVAL_REF_CACHED ? "cached" : "rendered", r->quality,
-                          r->seconds);
+                sb_printf(b, "%s, %s quality, bounces %d%s, %.1f s", r->source == SSS_EVAL_REF_CACHED ? "cached" : "rendered",
+                          r->quality, r->bounces, r->bounces == 0 ? " (full transport)" : "", r->seconds);
                 if (r->path[0]) {
                     sb_puts(b, " (");
                     sb_esc(b, r->path);

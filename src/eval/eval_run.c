@@ -296,6 +296,9 @@ sss_result sss_eval_run(const char *const *scene_args, int scene_count, const ss
     sss_result r = validate(&desc, scene_count, err);
     if (r != SSS_OK) return r;
     if (!scene_args) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_eval_run: no scenes");
+    if (desc.reference_bounces < 0 || desc.reference_bounces > SSS_REFERENCE_MAX_BOUNCES)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_eval_run: reference_bounces must be in 0..%d, got %d",
+                             SSS_REFERENCE_MAX_BOUNCES, desc.reference_bounces);
     double t_start = sss_time_seconds();
     run_state st;
     memset(&st, 0, sizeof st);
@@ -311,6 +314,7 @@ sss_result sss_eval_run(const char *const *scene_args, int scene_count, const ss
     out->supersample = st.rc.supersample;
     out->reference_quality = desc.reference_quality;
     out->cached_reference = desc.cached_reference;
+    out->reference_bounces = desc.reference_bounces;
     utc_now(out->created);
 
     /* techniques: the given specs, or every registered one */

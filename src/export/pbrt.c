@@ -69,7 +69,7 @@ static void transform_directive(FILE *f, const double m[16])
     fprintf(f, " ]\n");
 }
 
-static void write_camera(FILE *f, const sss_scene *scene, const char *image_name, int spp)
+static void write_camera(FILE *f, const sss_scene *scene, const char *image_name, int spp, int maxdepth)
 {
     const sss_camera *c = &scene->camera;
     double exposure_scale = pow(2.0, scene->render.exposure);
@@ -84,8 +84,9 @@ static void write_camera(FILE *f, const sss_scene *scene, const char *image_name
     fprintf(f, "] \"float scale\" [%.9g]\n", exposure_scale);
     fprintf(f, "Sampler \"halton\" \"integer pixelsamples\" [%d]\n", spp);
     fprintf(f, "# maxdepth 1: refraction at the camera hit, BSSRDF probe, direct light at the entry point\n"
-               "# (the single-bounce subsurface integral that sss reference evaluates).\n");
-    fprintf(f, "Integrator \"path\" \"integer maxdepth\" [1]\n\n");
+               "# (the single-event subsurface integral: sss reference --bounces 1); each further depth adds\n"
+               "# one surface-to-surface bounce (sss reference --bounces N).\n");
+    fprintf(f, "Integrator \"path\" \"integer maxdepth\" [%d]\n\n", maxdepth);
 }
 
 static void write_material(FILE *f, const sss_scene_material *m)
@@ -205,6 +206,10 @@ sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *d
 {
     sss_export_pbrt_desc d = desc ? *desc : (sss_export_pbrt_desc){0};
     if (d.pixel_samples <= 0) d.pixel_samples = 256;
+    if (d.maxdepth == 0) d.maxdepth = SSS_EXPORT_PBRT_MAXDEPTH_DEFAULT;
+    if (d.maxdepth < 1 || d.maxdepth > SSS_EXPORT_PBRT_MAXDEPTH_MAX)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "export pbrt: maxdepth must be in 1..%d, got %d",
+                             SSS_EXPORT_PBRT_MAXDEPTH_MAX, d.maxdepth);
     if (!isfinite(d.time))
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: export time is not finite", out_path);
 
@@ -247,7 +252,7 @@ sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *d
         fprintf(f, "# Written by sss export pbrt from ");
         pbrt_string(f, scene->name ? scene->name : "a scene");
         fprintf(f, " (time %.9g s).\n", d.time);
-        write_camera(f, scene, image_name, d.pixel_samples);
+        write_camera(f, scene, image_name, d.pixel_samples, d.maxdepth);
         fprintf(f, "WorldBegin\n");
         for (size_t i = 0; i < scene->light_count; i++) write_light(f, &scene->lights[i]);
         for (size_t i = 0; i < scene->object_count; i++) {

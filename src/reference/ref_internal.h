@@ -164,6 +164,9 @@ void ref_tree_free(ref_tree *tree);
  * T A S (s / l)^2 / 40 is below it (see ref_abs_tolerance). */
 void ref_tree_sum(const ref_tree *tree, const ref_profile *prof, const float xo[3], const float abs_tol[3],
                   double out[3], uint64_t *visits);
+/* The same with the angle criterion size <= angle d_min in place of REF_TREE_ANGLE. */
+void ref_tree_sum_angle(const ref_tree *tree, const ref_profile *prof, const float xo[3], const float abs_tol[3],
+                        float angle, double out[3], uint64_t *visits);
 void ref_brute_sum(const ref_tree *tree, const ref_profile *prof, const float xo[3], double out[3],
                    uint64_t *visits);
 
@@ -219,7 +222,30 @@ typedef struct ref_object {
     double bounds_min[3], bounds_max[3];
     int visible;         /* seen by a pixel centre */
     uint64_t visible_pixels;
+    /* Interreflection (ctx->transport): the samples in generation order (triangle t holds
+     * [tri_offset[t], tri_offset[t + 1]), m^2 of them as ref_points.c enumerates them). */
+    uint64_t *tri_offset;
+    uint32_t *cluster_of;  /* NULL, or per sample of tri_offset its transport sample (cluster) in bs */
+    struct ref_bsample *bs;
+    size_t bs_count;
+    double tspacing;       /* spacing of the transport samples (>= spacing) */
+    float (*indirect)[3];  /* T (subsurface) or E (diffuse) of bounces 2..N */
+    ref_tree itree;        /* subsurface: the transport samples with their indirect T A, for the pixels */
+    float iabs_tol[3];
+    uint64_t base;         /* index of its first sample among all objects' */
+    int gather;            /* gather rays (links) per sample */
+    uint32_t *link_target; /* gather links: bs_count x gather, the hit sample (all objects') or UINT32_MAX */
+    float *link_weight;    /* what the hit's exitance (M or E) contributes to T (E) here */
 } ref_object;
+
+/* One surface sample as the bounces use it. */
+typedef struct ref_bsample {
+    float p[3], ng[3]; /* position, unit geometric normal of its triangle */
+    float area;
+    float direct[3];   /* T (E) of bounce 1 */
+    float t[3];        /* T (E) of the current bounce */
+    float exit[3];     /* M (E) of the previous bounce */
+} ref_bsample;
 
 typedef struct ref_camera {
     double origin[3], right[3], up[3], forward[3];
@@ -244,6 +270,8 @@ typedef struct ref_ctx {
     double eps;               /* ray offset scale (scene units) */
     int area_samples_point, area_samples_camera, env_samples_point, env_samples_camera;
     int near_probes;          /* probe rays per camera sample for the near part */
+    int transport;            /* bounces > 1 (ref_bounce.c) */
+    int gather_subsurface, gather_diffuse; /* gather rays per surface sample */
     /* progress: a phase maps its own fraction [0, 1] to [phase_lo, phase_hi] of the whole */
     sss_reference_progress_fn progress;
     void *user;
@@ -281,6 +309,8 @@ void ref_env_radiance(const ref_ctx *ctx, const double dir[3], double out[3]);
 /* Radiance of area light `light` seen from direction dir (unit, travelling towards the light). */
 void ref_area_radiance(const ref_ctx *ctx, unsigned light, const double dir[3], double out[3]);
 
+/* Closest hit of a ray from org along unit dir (ref_render.c); returns 0 on a miss. */
+int ref_intersect(const ref_ctx *ctx, const double org[3], const double dir[3], struct RTCRayHit *rh);
 /* True when the segment from p (already offset) along unit dir up to t_max is blocked. */
 int ref_occluded(const ref_ctx *ctx, const double p[3], const double dir[3], double t_max);
 
@@ -294,8 +324,29 @@ static inline void ref_offset(const ref_ctx *ctx, const double p[3], const doubl
 
 /* Surface samples of one object and their irradiance (ref_points.c). */
 sss_result ref_points_generate(ref_ctx *ctx, size_t object, double spacing, sss_error *err);
+/* Subdivisions m of triangle t for spacing h (it gets m^2 samples). */
+uint32_t ref_points_subdiv(const sss_mesh *mesh, uint32_t t, double h);
 /* Number of samples ref_points_generate makes for spacing h. */
 uint64_t ref_points_count(const sss_mesh *mesh, double h);
+
+/* Interreflection (ref_bounce.c). */
+/* Transport spacing of every object (and the sample spacing of those the density rule leaves
+ * without samples). */
+void ref_transport_spacing(ref_ctx *ctx);
+/* Replaces object o's samples (ref_points_generate's, in generation order) by clusters of them of
+ * diameter <= ro->tspacing (on one side of thin parts), T the area-weighted mean; ro->cluster_of
+ * maps the samples to them. */
+sss_result ref_transport_cluster(ref_ctx *ctx, size_t o, sss_error *err);
+/* Sum over the transport samples of T_ind A S_far(|x - x_o|) (zero without them). */
+void ref_indirect_sum(const ref_ctx *ctx, size_t o, const float xo[3], double out[3], uint64_t *visits);
+/* Bounces 2..N at the samples of every object (after their direct T, E and trees exist); rebuilds
+ * the subsurface trees with T_1 + T_2 + ... */
+sss_result ref_bounces_run(ref_ctx *ctx, sss_error *err);
+/* The indirect T (E) of bounces 2..N at a point of triangle prim of object o (barycentrics u, v of
+ * its 2nd and 3rd vertices); zero without samples, and for a diffuse object seen from the side
+ * `facing` (may be NULL) opposite to its normal. */
+void ref_indirect_at(const ref_ctx *ctx, size_t o, unsigned prim, double u, double v, const double facing[3],
+                     double out[3]);
 
 /* Reports the current phase's fraction (stage NULL: the phase's own); thread-safe, throttled to
  * ~10 calls per second unless force. */

@@ -32,6 +32,14 @@ static inline uint32_t triangle_subdiv(const float *a, const float *b, const flo
     return (uint32_t)m;
 }
 
+uint32_t ref_points_subdiv(const sss_mesh *mesh, uint32_t t, double h)
+{
+    const uint32_t *i = mesh->indices + 3 * (size_t)t;
+    double A;
+    return triangle_subdiv(mesh->positions + 3 * (size_t)i[0], mesh->positions + 3 * (size_t)i[1],
+                           mesh->positions + 3 * (size_t)i[2], h, &A);
+}
+
 uint64_t ref_points_count(const sss_mesh *mesh, double h)
 {
     uint64_t total = 0;
@@ -71,6 +79,16 @@ sss_result ref_points_generate(ref_ctx *ctx, size_t object, double h, sss_error 
         free(offset);
         return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY,
                              "reference: out of memory (%llu surface samples)", (unsigned long long)count);
+    }
+    ref_bsample *bs = NULL;
+    if (ctx->transport && count) {
+        bs = malloc(sizeof(ref_bsample) * (size_t)count);
+        if (!bs) {
+            free(offset);
+            free(pts);
+            return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY,
+                                 "reference: out of memory (%llu surface samples)", (unsigned long long)count);
+        }
     }
     const double eta = obj->eta;
     const uint64_t seed = ctx->desc.seed;
@@ -135,6 +153,17 @@ sss_result ref_points_generate(ref_ctx *ctx, size_t object, double h, sss_error 
                             double ta = T[q] * cell_area;
                             pt->ta[q] = isfinite(ta) && ta > 0.0 ? (float)ta : 0.0f;
                         }
+                        if (bs) { /* the bounces' copy, in generation order */
+                            ref_bsample *b = &bs[k];
+                            b->area = (float)cell_area;
+                            for (int q = 0; q < 3; q++) {
+                                b->p[q] = pt->p[q];
+                                b->ng[q] = (float)ng[q];
+                                b->t[q] = isfinite(T[q]) && T[q] > 0.0 ? (float)T[q] : 0.0f;
+                                b->direct[q] = b->t[q];
+                                b->exit[q] = 0.0f;
+                            }
+                        }
                         k++;
                     }
         }
@@ -160,7 +189,15 @@ sss_result ref_points_generate(ref_ctx *ctx, size_t object, double h, sss_error 
     }
     for (int c = 0; c < 3; c++)
         obj->abs_tol[c] = lit[c] > 0.0 ? (float)(REF_TREE_ABS * ta[c] / lit[c] * obj->prof.total[c]) : 0.0f;
-    free(offset);
+    if (bs) {
+        free(obj->tri_offset);
+        free(obj->bs);
+        obj->tri_offset = offset;
+        obj->bs = bs;
+        obj->bs_count = (size_t)count;
+    } else {
+        free(offset);
+    }
     free(obj->tree.points);
     obj->tree.points = pts;
     obj->tree.point_count = (size_t)count;

@@ -16,7 +16,7 @@ typedef struct shade_counters {
 } shade_counters;
 
 /* Closest hit of a ray; returns 0 on a miss. */
-static int intersect(const ref_ctx *ctx, const double org[3], const double dir[3], struct RTCRayHit *rh)
+int ref_intersect(const ref_ctx *ctx, const double org[3], const double dir[3], struct RTCRayHit *rh)
 {
     struct RTCIntersectContext ic;
     rtcInitIntersectContext(&ic);
@@ -37,7 +37,7 @@ static void mirror_radiance(const ref_ctx *ctx, const double org[3], const doubl
 {
     struct RTCRayHit rh;
     out[0] = out[1] = out[2] = 0.0;
-    if (!intersect(ctx, org, dir, &rh)) {
+    if (!ref_intersect(ctx, org, dir, &rh)) {
         ref_env_radiance(ctx, dir, out);
         return;
     }
@@ -47,7 +47,8 @@ static void mirror_radiance(const ref_ctx *ctx, const double org[3], const doubl
 
 /* A camera ray's hit on an object: position, geometric and shading normals facing the camera. */
 typedef struct surface_hit {
-    unsigned geom;
+    unsigned geom, prim;
+    double u, v; /* barycentrics of the triangle's 2nd and 3rd vertices */
     double p[3], ng[3], ns[3];
 } surface_hit;
 
@@ -57,6 +58,8 @@ static void decode_hit(const ref_ctx *ctx, unsigned g, const struct RTCRayHit *r
 {
     const double *wo = facing;
     hit->geom = g;
+    hit->prim = rh->hit.primID;
+    hit->u = rh->hit.u, hit->v = rh->hit.v;
     const sss_mesh *m = ctx->objects[g].src->mesh;
     const uint32_t *idx = m->indices + 3 * (size_t)rh->hit.primID;
     const float *fa = m->positions + 3 * (size_t)idx[0], *fb = m->positions + 3 * (size_t)idx[1],
@@ -89,7 +92,7 @@ static void decode_hit(const ref_ctx *ctx, unsigned g, const struct RTCRayHit *r
 static int trace_camera(const ref_ctx *ctx, const double dir[3], surface_hit *hit)
 {
     struct RTCRayHit rh;
-    if (!intersect(ctx, ctx->cam.origin, dir, &rh)) return 0;
+    if (!ref_intersect(ctx, ctx->cam.origin, dir, &rh)) return 0;
     unsigned g = rh.hit.geomID;
     hit->geom = g;
     if (g >= ctx->light_geom_base) return 2;
@@ -122,9 +125,27 @@ static int probe_irradiance(const ref_ctx *ctx, const ref_object *obj, const sur
     surface_hit y;
     decode_hit(ctx, x->geom, &rh, n, &y);
     ref_irradiance(ctx, y.p, y.ng, y.ns, obj->eta, area_n, env_n, 0, 1, rng, val);
+    if (ctx->transport) { /* bounces 2..N at the probe's point */
+        double ind[3];
+        ref_indirect_at(ctx, x->geom, y.prim, y.u, y.v, NULL, ind);
+        for (int c = 0; c < 3; c++) val[c] += ind[c];
+    }
     double jac = 1.0 / fmax(fabs(v3_dot(y.ng, n)), 0.1);
     for (int c = 0; c < 3; c++) val[c] *= jac;
     return 1;
+}
+
+/* T at x_o itself: direct, plus bounces 2..N. */
+static void irradiance_at_hit(const ref_ctx *ctx, const ref_object *obj, const surface_hit *x, ref_rng *rng,
+                              double T[3])
+{
+    ref_irradiance(ctx, x->p, x->ng, x->ns, obj->eta, ctx->area_samples_camera, ctx->env_samples_camera, 0, 1,
+                   rng, T);
+    if (ctx->transport) {
+        double ind[3];
+        ref_indirect_at(ctx, x->geom, x->prim, x->u, x->v, NULL, ind);
+        for (int c = 0; c < 3; c++) T[c] += ind[c];
+    }
 }
 
 /* Near part below R0 (docs/physics.md §1): int over the surface within R0 of S_near(|y - x_o|) T(y) dA, by
@@ -169,8 +190,7 @@ static void near_part(const ref_ctx *ctx, const ref_object *obj, const surface_h
         double val[3];
         if (!probe_irradiance(ctx, obj, x, t1, t2, r, ph, area_n, env_n, rng, val)) {
             if (!have_tx) {
-                ref_irradiance(ctx, x->p, x->ng, x->ns, obj->eta, ctx->area_samples_camera, ctx->env_samples_camera,
-                               0, 1, rng, Tx);
+                irradiance_at_hit(ctx, obj, x, rng, Tx);
                 have_tx = 1;
             }
             memcpy(val, Tx, sizeof val);
@@ -186,8 +206,7 @@ static void near_part(const ref_ctx *ctx, const ref_object *obj, const surface_h
             out[c] = pf->near[c] * num[c] / den[c];
         } else {
             if (!have_tx) {
-                ref_irradiance(ctx, x->p, x->ng, x->ns, obj->eta, ctx->area_samples_camera, ctx->env_samples_camera,
-                               0, 1, rng, Tx);
+                irradiance_at_hit(ctx, obj, x, rng, Tx);
                 have_tx = 1;
             }
             out[c] = pf->near[c] * Tx[c];
@@ -213,6 +232,11 @@ static void far_sum(const ref_ctx *ctx, const ref_object *obj, const double p[3]
         ref_brute_sum(&obj->tree, &obj->prof, xo, far, &cnt->visits);
     else
         ref_tree_sum(&obj->tree, &obj->prof, xo, obj->abs_tol, far, &cnt->visits);
+    if (ctx->transport) { /* bounces 2..N, from the transport samples */
+        double ind[3];
+        ref_indirect_sum(ctx, (size_t)(obj - ctx->objects), xo, ind, &cnt->visits);
+        for (int c = 0; c < 3; c++) far[c] += ind[c];
+    }
     cnt->lookups++;
 }
 
@@ -243,6 +267,11 @@ static void shade(const ref_ctx *ctx, const double dir[3], int stratum, int stra
         double E[3];
         ref_irradiance(ctx, p, ng, ns, 0.0, ctx->area_samples_camera, ctx->env_samples_camera, stratum, strata, rng,
                        E);
+        if (ctx->transport) {
+            double Ei[3];
+            ref_indirect_at(ctx, hit.geom, hit.prim, hit.u, hit.v, ng, Ei);
+            for (int c = 0; c < 3; c++) E[c] += Ei[c];
+        }
         for (int c = 0; c < 3; c++) L[c] = src->reflectance[c] / REF_PI * E[c];
         return;
     }
@@ -319,6 +348,9 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
         ctx.desc.light_samples < 0 || !isfinite(ctx.desc.time))
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
                              "reference: spp, threads, density and light_samples must be >= 0");
+    if (ctx.desc.bounces < 0 || ctx.desc.bounces > SSS_REFERENCE_MAX_BOUNCES)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "reference: bounces must be in 0..%d, got %d",
+                             SSS_REFERENCE_MAX_BOUNCES, ctx.desc.bounces);
     ctx.progress = progress;
     ctx.user = user;
     ctx.last_progress_time = -1e30;
@@ -336,6 +368,9 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
     ctx.env_samples_camera = ((draft ? 64 : 1024) * ls + nb - 1) / nb;
     ctx.near_probes = ((draft ? 16 : 128) + nb - 1) / nb;
     if (ctx.near_probes < 4) ctx.near_probes = 4;
+    ctx.transport = ctx.desc.bounces != 1;
+    ctx.gather_subsurface = draft ? 4 : 16;
+    ctx.gather_diffuse = draft ? 16 : 64;
     int saved_threads = omp_get_max_threads();
     if (ctx.desc.threads > 0) omp_set_num_threads(ctx.desc.threads);
 

@@ -360,6 +360,7 @@ sss_result ref_prepare(ref_ctx *ctx, sss_error *err)
     if ((r = build_scene(ctx, err)) != SSS_OK) return r;
     if ((r = find_footprints(ctx, err)) != SSS_OK) return r;
     choose_spacing(ctx);
+    if (ctx->transport) ref_transport_spacing(ctx);
     ctx->stats.seconds_setup = sss_time_seconds() - t0;
 
     /* Surface samples: progress in proportion to each object's sample count. */
@@ -371,7 +372,15 @@ sss_result ref_prepare(ref_ctx *ctx, sss_error *err)
     ctx->stats.split_radius_min = INFINITY;
     for (size_t o = 0; o < ctx->object_count; o++) {
         ref_object *ro = &ctx->objects[o];
-        if (!ro->subsurface || !(ro->spacing > 0.0)) continue;
+        if (!(ro->spacing > 0.0)) continue;
+        if (!ro->subsurface) {
+            /* Diffuse (ctx->transport only): E at the samples; the bounces keep their copy. */
+            double t1 = sss_time_seconds();
+            if ((r = ref_points_generate(ctx, o, ro->spacing, err)) != SSS_OK) return r;
+            ref_tree_free(&ro->tree);
+            ctx->stats.seconds_samples += sss_time_seconds() - t1;
+            continue;
+        }
         double h = ro->spacing, r0 = 4.0 * h;
         double d[3] = {ro->bounds_max[0] - ro->bounds_min[0], ro->bounds_max[1] - ro->bounds_min[1],
                        ro->bounds_max[2] - ro->bounds_min[2]};
@@ -387,6 +396,7 @@ sss_result ref_prepare(ref_ctx *ctx, sss_error *err)
         double hi = 0.02 + 0.28 * (total > 0.0 ? (done + n) / total : 1.0);
         ref_set_phase(ctx, lo, hi, "surface samples");
         if ((r = ref_points_generate(ctx, o, h, err)) != SSS_OK) return r;
+        if (ctx->transport && (r = ref_transport_cluster(ctx, o, err)) != SSS_OK) return r;
         done += n;
         double t2 = sss_time_seconds();
         if ((r = ref_tree_build(&ro->tree, err)) != SSS_OK) return r;
@@ -403,6 +413,10 @@ sss_result ref_prepare(ref_ctx *ctx, sss_error *err)
     }
     if (!isfinite(ctx->stats.spacing_min)) ctx->stats.spacing_min = 0.0;
     if (!isfinite(ctx->stats.split_radius_min)) ctx->stats.split_radius_min = 0.0;
+    ctx->stats.bounces = 1;
+    ctx->stats.seconds_bounce[0] = ctx->stats.seconds_samples;
+    ctx->stats.bounce_fraction[0] = 1.0;
+    if (ctx->transport) return ref_bounces_run(ctx, err);
     return SSS_OK;
 }
 
@@ -411,6 +425,13 @@ void ref_ctx_free(ref_ctx *ctx)
     for (size_t o = 0; ctx->objects && o < ctx->object_count; o++) {
         ref_profile_free(&ctx->objects[o].prof);
         ref_tree_free(&ctx->objects[o].tree);
+        ref_tree_free(&ctx->objects[o].itree);
+        free(ctx->objects[o].tri_offset);
+        free(ctx->objects[o].cluster_of);
+        free(ctx->objects[o].bs);
+        free(ctx->objects[o].indirect);
+        free(ctx->objects[o].link_target);
+        free(ctx->objects[o].link_weight);
         if (ctx->objects[o].probe_scene) rtcReleaseScene(ctx->objects[o].probe_scene);
     }
     free(ctx->objects);

@@ -175,6 +175,12 @@ static inline float dist3(const float a[3], const float b[3])
 void ref_tree_sum(const ref_tree *tree, const ref_profile *prof, const float xo[3], const float abs_tol[3],
                   double out[3], uint64_t *visits)
 {
+    ref_tree_sum_angle(tree, prof, xo, abs_tol, REF_TREE_ANGLE, out, visits);
+}
+
+void ref_tree_sum_angle(const ref_tree *tree, const ref_profile *prof, const float xo[3], const float abs_tol[3],
+                        float angle, double out[3], uint64_t *visits)
+{
     double acc[3] = {0, 0, 0};
     uint64_t v = 0;
     if (tree->node_count > 0) {
@@ -206,7 +212,7 @@ void ref_tree_sum(const ref_tree *tree, const ref_profile *prof, const float xo[
                 continue;
             }
             float size = 2.0f * nd->radius;
-            if (dmin > 0.0f && size <= REF_TREE_ANGLE * dmin) {
+            if (dmin > 0.0f && size <= angle * dmin) {
                 float len;
                 ref_profile_lookup(prof, dmin, s, &len);
                 /* Relative: the monopole error (size / l)^2 / 40 is small against the node itself;

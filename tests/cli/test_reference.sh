@@ -56,6 +56,16 @@ cmp -s "$TMP/out.pfm" "$TMP/one.pfm"
 check "1 and 2 threads give identical files" $?
 [ ! -s "$TMP/quiet.txt" ]
 check "--quiet prints nothing" $?
+# Interreflection: the default bounces (the sphere lights the floor and back), --stats times each.
+grep -q "^bounce 2: seconds=" "$TMP/stats.txt"
+check "--stats prints the time of bounce 2" $?
+"$SSS" reference "$TMP/good.json" -o "$TMP/b1.pfm" --quality draft --seed 7 --bounces 1 --stats > "$TMP/b1.txt" 2> /dev/null
+check "--bounces 1 renders" $?
+grep -q "^bounces=1 " "$TMP/b1.txt"
+check "--bounces 1 computes one bounce" $?
+cmp -s "$TMP/out.pfm" "$TMP/b1.pfm"
+[ $? -ne 0 ]
+check "--bounces 1 differs from the default" $?
 
 # Bad scenes: exit 1, the message names the field, and no output file appears.
 bad_scene() { # name, sed expression, expected text
@@ -94,6 +104,8 @@ usage "bad seed" "$TMP/good.json" -o "$TMP/x.png" --seed -3
 usage "bad output extension" "$TMP/good.json" -o "$TMP/x.jpg"
 usage "--exr needs .exr" "$TMP/good.json" -o "$TMP/x.png" --exr "$TMP/x.png2"
 usage "unknown option" "$TMP/good.json" -o "$TMP/x.png" --fast
+usage "bounces 0" "$TMP/good.json" -o "$TMP/x.png" --bounces 0
+usage "bounces 17" "$TMP/good.json" -o "$TMP/x.png" --bounces 17
 [ ! -e "$TMP/x.png" ] && [ ! -e "$TMP/x.jpg" ]
 check "usage errors write nothing" $?
 

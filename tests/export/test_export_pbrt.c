@@ -58,7 +58,9 @@ static void test_file_contents(const char *dir)
     CHECK(contains(text, "\"float fov\" [40]"));
     CHECK(contains(text, "\"integer xresolution\" [64] \"integer yresolution\" [32]"));
     CHECK(contains(text, "\"float scale\" [2]")); /* exposure 1 stop */
-    CHECK(contains(text, "Integrator \"path\" \"integer maxdepth\" [1]"));
+    /* The default depth matches sss reference's default (its bounce cap). */
+    CHECK(SSS_EXPORT_PBRT_MAXDEPTH_DEFAULT == SSS_REFERENCE_MAX_BOUNCES);
+    CHECK(contains(text, "Integrator \"path\" \"integer maxdepth\" [16]"));
     /* Materials, by their PBRT names and parameters. */
     CHECK(contains(text, "Material \"subsurface\" \"string name\" [\"Skin1\"] \"float scale\" [10] \"float eta\" [1.4]"));
     CHECK(contains(text, "\"rgb sigma_a\" [0.1 0.2 0.3] \"rgb sigma_s\" [1 2 3] \"float scale\" [1] \"float eta\" [1.33] \"float g\" [0.5]"));

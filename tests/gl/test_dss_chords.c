@@ -12,7 +12,7 @@
  *    2.5 mm, 3.7 blue mean free paths). Lit at normal incidence (E = 1) it must show
  *    c_o F_t E rho_eff of the plane (docs/physics.md §1), as test_dss's plane does: with 1.3-pixel surfels and
  *    splat_energy 1 within 1% (measured -0.2%, -0.3%, -0.4%; surfels on the chords: -56%, -83%, -96%).
- *  - The front-lit bust against its cached CPU reference (scenes/references/eval_front_384x384.exr):
+ *  - The front-lit bust against its cached single-event CPU reference (tests/data/gl/ref_eval_front_384x384.exr):
  *    smoothed over the surfel lattice (Gaussian, sigma 2 pixels), the blue/red ratio of dss divided by
  *    the reference's, over the bust's interior pixels: the fraction below 0.8 (the orange patches) was
  *    0.33 with the surfels on the chords, then 0.0075 (bound 0.05; with the default footprint of
@@ -186,7 +186,7 @@ static void test_bust(void)
     sss_scene scene;
     sss_image ref;
     char path[1024];
-    snprintf(path, sizeof path, "%s/scenes/references/eval_front_384x384.exr", SSS_SOURCE_DIR);
+    snprintf(path, sizeof path, "%s/gl/ref_eval_front_384x384.exr", SSS_TEST_DATA);
     sss_error err = {0};
     if (!gt_load("eval_front.json", &scene) || sss_image_read(path, &ref, &err) != SSS_OK) {
         fprintf(stderr, "%s\n", err.message);

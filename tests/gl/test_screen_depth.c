@@ -4,7 +4,7 @@
  * disc-integrated kernel sees a distance no surface point has: the lit chin's light appears on the
  * neck as a faint ghost. Mode 2 evaluates such texels each at its own mean position.
  *
- * Oracle: the cached CPU reference of the front-lit bust (scenes/references/eval_front_384x384.exr,
+ * Oracle: the cached single-event CPU reference of the front-lit bust (tests/data/gl/ref_eval_front_384x384.exr,
  * Maisch & Ropinski 2020, Fig. 6b), at its own size. With brightening off (where the kernel's energy is right, see
  * docs/maisch2020.md) mode 2 must be closer to the reference than mode 1 (measured: DSSIM 0.0156 vs
  * 0.0182), and in the neck region below the chin (a shadowed window where the ghost shows) its mean
@@ -32,7 +32,7 @@ int main(void)
     sss_scene scene;
     sss_image ref;
     char path[1024];
-    snprintf(path, sizeof path, "%s/scenes/references/eval_front_384x384.exr", SSS_SOURCE_DIR);
+    snprintf(path, sizeof path, "%s/gl/ref_eval_front_384x384.exr", SSS_TEST_DATA);
     sss_error err = {0};
     if (!gt_load("eval_front.json", &scene) || sss_image_read(path, &ref, &err) != SSS_OK) {
         fprintf(stderr, "%s\n", err.message);

@@ -1,5 +1,5 @@
 /* Supersampling antialiasing brings the techniques closer to the ground truth: the CPU reference
- * (scenes/references/, rendered with `sss reference --quality final`) integrates every pixel's
+ * (single-event copies of scenes/references/ in tests/data/gl/, `sss reference --bounces 1`) integrates every pixel's
  * footprint with stratified camera samples, so its silhouettes are antialiased, and at k = 1 every
  * technique's DSSIM against it includes the aliasing of its silhouettes, which has nothing to do with
  * subsurface scattering. With k = 2 the box filter integrates the same footprint with 4 samples: the
@@ -12,7 +12,7 @@ static void check_scene(const char *file, const char *ref_file, const char *tech
     sss_scene scene;
     sss_image ref;
     char path[1024];
-    snprintf(path, sizeof path, "%s/scenes/references/%s", SSS_SOURCE_DIR, ref_file);
+    snprintf(path, sizeof path, "%s/gl/ref_%s", SSS_TEST_DATA, ref_file);
     sss_error err = {0};
     if (!gt_load(file, &scene)) {
         CHECK(0);

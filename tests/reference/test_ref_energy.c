@@ -22,6 +22,7 @@ static void backlit_ratio(const char *medium, double scale, double ratio[3])
     w.objects = &o, w.object_count = 1, w.lights = &l, w.light_count = 1;
     sss_reference_desc d;
     memset(&d, 0, sizeof d);
+    d.bounces = 1; /* the single-event integral the closed forms describe */
     d.quality = SSS_REFERENCE_DRAFT;
     sss_image front, back;
     camera_set(&w.camera, 0, 0, 30, 0, 0, 0, 25, 24, 24);
@@ -90,6 +91,7 @@ static void test_linearity(void)
     w.objects = objs, w.object_count = 2, w.lights = lights, w.light_count = 3, w.environment_maps = maps;
     sss_reference_desc d;
     memset(&d, 0, sizeof d);
+    d.bounces = 1; /* the single-event integral the closed forms describe */
     d.quality = SSS_REFERENCE_DRAFT;
     d.no_adaptive = 1;
     d.seed = 42;

@@ -7,6 +7,7 @@ static void compare_modes(const char *label, sss_reference_world *w)
 {
     sss_reference_desc d;
     memset(&d, 0, sizeof d);
+    d.bounces = 1; /* the direct sums that the tree and brute force both evaluate */
     d.quality = SSS_REFERENCE_FINAL;
     d.spp = 1;
     d.no_adaptive = 1;

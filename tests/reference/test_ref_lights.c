@@ -38,6 +38,7 @@ static double check_plane(const sss_light *lights, size_t nl, irr_fn f, const vo
     w.environment_maps = env;
     sss_reference_desc d;
     memset(&d, 0, sizeof d);
+    d.bounces = 1; /* the single-event integral the closed forms describe */
     d.seed = 9;
     sss_image img;
     double worst = INFINITY;
@@ -197,6 +198,7 @@ int main(void)
         w.objects = &o, w.object_count = 1, w.lights = &l, w.light_count = 1;
         sss_reference_desc d;
         memset(&d, 0, sizeof d);
+        d.bounces = 1; /* the single-event integral the closed forms describe */
         d.quality = SSS_REFERENCE_DRAFT;
         sss_image img;
         if (render_or_die(&w, &d, &img, NULL)) {
@@ -252,6 +254,7 @@ int main(void)
         w.objects = &o, w.object_count = 1, w.lights = &l, w.light_count = 1, w.environment_maps = maps;
         sss_reference_desc d;
         memset(&d, 0, sizeof d);
+        d.bounces = 1; /* the single-event integral the closed forms describe */
         d.quality = SSS_REFERENCE_DRAFT;
         d.no_adaptive = 1;
         sss_image a, b;

@@ -1,0 +1,492 @@
+/* reference/ref_bounce.c — interreflection (sss/reference.h, "Bounces"): the light that leaves the
+ * surfaces after bounce k - 1 gathered at every surface sample as bounce k.
+ *
+ * The image is linear in T at the samples (and in E for diffuse objects), so the bounces only need
+ * T_k at the samples: they iterate there, the subsurface trees are rebuilt once with T_1 + ... + T_N,
+ * and the (expensive) pixel pass runs once. The gather rays depend on the geometry only, so they are
+ * traced once: each becomes a link (hit sample, weight) and a bounce is a sparse product
+ * T_k(x_i) = sum over its links of weight * M_{k-1}(hit) (radiosity's form factors, sampled); the
+ * exitance M_{k-1} is evaluated only at the samples some link reaches. */
+#include <omp.h>
+#include <stdlib.h>
+
+#include "reference/ref_internal.h"
+
+#define TRANSPORT_BUDGET (1ull << 18)
+/* The tolerance of the trees that evaluate M_{k-1} at the samples, relative to the lit level: the
+ * gathers average many of those values, so the pixels' 1e-6 would be wasted here. */
+#define BOUNCE_TREE_ABS 1e-3
+#define BOUNCE_TREE_ANGLE 1.0f
+#define NO_LINK UINT32_MAX
+
+static double luminance(const float v[3]) { return 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2]; }
+
+static double diagonal(const ref_object *ro)
+{
+    double d[3] = {ro->bounds_max[0] - ro->bounds_min[0], ro->bounds_max[1] - ro->bounds_min[1],
+                   ro->bounds_max[2] - ro->bounds_min[2]};
+    double l = v3_len(d);
+    return isfinite(l) ? l : 0.0;
+}
+
+/* The objects the pixel density rule leaves without samples: diffuse ones, and subsurface ones
+ * without a footprint; they get samples at their transport spacing. */
+static int needs_transport_spacing(const ref_object *ro)
+{
+    return !ro->subsurface || !(ro->footprint > 0.0);
+}
+
+void ref_transport_spacing(ref_ctx *ctx)
+{
+    double f = ctx->desc.quality == SSS_REFERENCE_DRAFT ? 4.0 : 2.0;
+    double g = 1.0, prev_total = INFINITY;
+    for (int it = 0; it < 200; it++) {
+        double total = 0.0;
+        for (size_t o = 0; o < ctx->object_count; o++) {
+            ref_object *ro = &ctx->objects[o];
+            double base = ro->footprint > 0.0 ? f * ro->footprint : diagonal(ro) / 64.0;
+            ro->tspacing = base > 0.0 ? base * g : 0.0;
+            if (needs_transport_spacing(ro)) ro->spacing = ro->tspacing;
+            ro->tspacing = fmax(ro->tspacing, ro->spacing);
+            if (ro->tspacing > 0.0) total += (double)ref_points_count(ro->src->mesh, ro->tspacing);
+        }
+        if (total <= (double)TRANSPORT_BUDGET || total >= prev_total * 0.999) break;
+        prev_total = total;
+        g *= 1.2;
+    }
+}
+
+/* The sample of object o whose sub-triangle holds the point (u, v) of triangle prim (the cells of
+ * ref_points.c: row i holds 2 (m - i) - 1 of them, up and down cells alternating); -1 if none. */
+static int64_t sample_index(const ref_object *o, unsigned prim, double u, double v)
+{
+    if (!o->tri_offset || prim >= o->src->mesh->triangle_count) return -1;
+    uint64_t b = o->tri_offset[prim], e = o->tri_offset[prim + 1];
+    if (e == b) return -1;
+    int64_t m = (int64_t)sqrt((double)(e - b) + 0.5);
+    double x = u * (double)m, y = v * (double)m;
+    int64_t i = (int64_t)floor(x), j = (int64_t)floor(y);
+    if (i < 0) i = 0;
+    if (i > m - 1) i = m - 1;
+    if (j < 0) j = 0;
+    if (j > m - 1 - i) j = m - 1 - i;
+    int down = (x - (double)i) + (y - (double)j) > 1.0 && i + j + 2 <= m;
+    return (int64_t)b + 2 * m * i - i * i + 2 * j + down;
+}
+
+/* Clusters of an object's samples (ids[0, n), reordered in place): split at the median of the box's
+ * longest axis until a cluster fits in a sphere of diameter `size`, or, where the normals of its
+ * samples disagree (thin parts: both sides), of the normals' widest component, so that a cluster
+ * stays on one side. Writes the cluster index of every sample to cluster_of; returns the count. */
+typedef struct cluster_job {
+    uint32_t begin, end;
+} cluster_job;
+
+static int normal_axis(const ref_bsample *bs, const uint32_t *ids, uint32_t n, float *spread)
+{
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++) lo[c] = fminf(lo[c], bs[ids[i]].ng[c]), hi[c] = fmaxf(hi[c], bs[ids[i]].ng[c]);
+    int axis = 0;
+    for (int c = 1; c < 3; c++)
+        if (hi[c] - lo[c] > hi[axis] - lo[axis]) axis = c;
+    *spread = hi[axis] - lo[axis];
+    return axis;
+}
+
+/* The sort key of sample id: a position or a normal component. */
+static inline float cluster_key(const ref_bsample *bs, uint32_t id, int axis, int normal)
+{
+    return normal ? bs[id].ng[axis] : bs[id].p[axis];
+}
+
+/* Partially sorts ids[0, n) by key so that ids[k] is the k-th smallest (Hoare quickselect with a
+ * median-of-three pivot: deterministic), as ref_tree.c's select_kth does for points. */
+static void select_ids(const ref_bsample *bs, uint32_t *ids, size_t n, size_t k, int axis, int normal)
+{
+    size_t lo = 0, hi = n - 1;
+#define KEY(i) cluster_key(bs, ids[i], axis, normal)
+#define SWAP(i, j) do { uint32_t t_ = ids[i]; ids[i] = ids[j]; ids[j] = t_; } while (0)
+    while (hi > lo) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (KEY(mid) < KEY(lo)) SWAP(mid, lo);
+        if (KEY(hi) < KEY(lo)) SWAP(hi, lo);
+        if (KEY(hi) < KEY(mid)) SWAP(hi, mid);
+        float pivot = KEY(mid);
+        size_t i = lo, j = hi;
+        for (;;) {
+            while (KEY(i) < pivot) i++;
+            while (KEY(j) > pivot) j--;
+            if (i >= j) break;
+            SWAP(i, j);
+            i++;
+            j--;
+        }
+        if (k <= j)
+            hi = j;
+        else
+            lo = j + 1;
+    }
+#undef KEY
+#undef SWAP
+}
+
+static uint32_t make_clusters(const ref_bsample *bs, uint32_t *ids, uint32_t n, double size, uint32_t *cluster_of,
+                              cluster_job *stack)
+{
+    uint32_t count = 0;
+    size_t top = 0;
+    stack[top++] = (cluster_job){0, n};
+    while (top > 0) {
+        cluster_job j = stack[--top];
+        uint32_t m = j.end - j.begin;
+        float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (uint32_t i = j.begin; i < j.end; i++)
+            for (int c = 0; c < 3; c++) lo[c] = fminf(lo[c], bs[ids[i]].p[c]), hi[c] = fmaxf(hi[c], bs[ids[i]].p[c]);
+        int axis = 0;
+        for (int c = 1; c < 3; c++)
+            if (hi[c] - lo[c] > hi[axis] - lo[axis]) axis = c;
+        double d2 = 0.0;
+        for (int c = 0; c < 3; c++) d2 += (double)(hi[c] - lo[c]) * (hi[c] - lo[c]);
+        float spread;
+        int naxis = normal_axis(bs, ids + j.begin, m, &spread);
+        int by_normal = spread > 0.5f; /* normals more than ~30 degrees apart */
+        if (m <= 1 || (d2 <= size * size && !by_normal)) {
+            for (uint32_t i = j.begin; i < j.end; i++) cluster_of[ids[i]] = count;
+            count++;
+            continue;
+        }
+        uint32_t mid = j.begin + m / 2;
+        select_ids(bs, ids + j.begin, m, mid - j.begin, by_normal ? naxis : axis, by_normal);
+        stack[top++] = (cluster_job){mid, j.end};
+        stack[top++] = (cluster_job){j.begin, mid};
+    }
+    return count;
+}
+
+sss_result ref_transport_cluster(ref_ctx *ctx, size_t o, sss_error *err)
+{
+    ref_object *ro = &ctx->objects[o];
+    if (!ro->bs || !(ro->tspacing > ro->spacing) || ro->bs_count >= UINT32_MAX) return SSS_OK;
+    uint32_t n = (uint32_t)ro->bs_count;
+    uint32_t *ids = malloc(sizeof(uint32_t) * n), *cluster_of = malloc(sizeof(uint32_t) * n);
+    cluster_job *stack = malloc(sizeof(cluster_job) * 2 * 66);
+    if (!ids || !cluster_of || !stack) {
+        free(ids), free(cluster_of), free(stack);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (transport clusters)");
+    }
+    for (uint32_t i = 0; i < n; i++) ids[i] = i;
+    uint32_t count = make_clusters(ro->bs, ids, n, ro->tspacing, cluster_of, stack);
+    free(stack);
+    ref_bsample *cs = calloc(count ? count : 1, sizeof *cs);
+    double *acc = calloc(4 * (size_t)(count ? count : 1), sizeof(double)); /* area, T A per channel */
+    if (!cs || !acc) {
+        free(ids), free(cluster_of), free(cs), free(acc);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (transport clusters)");
+    }
+    for (uint32_t i = 0; i < n; i++) {
+        const ref_bsample *f = &ro->bs[i];
+        double *a = acc + 4 * (size_t)cluster_of[i];
+        a[0] += f->area;
+        for (int c = 0; c < 3; c++) a[1 + c] += (double)f->area * f->direct[c];
+    }
+    /* Each cluster sits at its first sample in generation order (on the surface, with its normal): the
+     * gathers start there and the exitance is evaluated there. */
+    for (uint32_t i = n; i-- > 0;) {
+        ref_bsample *c = &cs[cluster_of[i]];
+        memcpy(c->p, ro->bs[i].p, sizeof c->p);
+        memcpy(c->ng, ro->bs[i].ng, sizeof c->ng);
+    }
+    for (uint32_t k = 0; k < count; k++) {
+        const double *a = acc + 4 * (size_t)k;
+        cs[k].area = (float)a[0];
+        for (int c = 0; c < 3; c++) cs[k].direct[c] = cs[k].t[c] = a[0] > 0.0 ? (float)(a[1 + c] / a[0]) : 0.0f;
+    }
+    free(acc);
+    free(ids);
+    free(ro->bs);
+    ro->bs = cs;
+    ro->bs_count = count;
+    ro->cluster_of = cluster_of;
+    (void)ctx;
+    return SSS_OK;
+}
+
+/* The transport sample holding the point (u, v) of triangle prim of object o, or -1. */
+static int64_t transport_index(const ref_object *o, unsigned prim, double u, double v)
+{
+    int64_t k = sample_index(o, prim, u, v);
+    return k >= 0 && o->cluster_of ? (int64_t)o->cluster_of[k] : k;
+}
+
+void ref_indirect_at(const ref_ctx *ctx, size_t o, unsigned prim, double u, double v, const double facing[3],
+                     double out[3])
+{
+    const ref_object *ro = &ctx->objects[o];
+    int64_t k = ro->indirect ? transport_index(ro, prim, u, v) : -1;
+    if (k >= 0 && facing && !ro->subsurface) {
+        const float *n = ro->bs[k].ng;
+        if (!(n[0] * facing[0] + n[1] * facing[1] + n[2] * facing[2] > 0.0)) k = -1;
+    }
+    for (int c = 0; c < 3; c++) out[c] = k >= 0 ? ro->indirect[k][c] : 0.0;
+}
+
+/* The link of one gather ray: the sample its first hit falls on, and the factor from that sample's
+ * exitance M (subsurface: the lobe F_t(cos theta) / (pi c)) or irradiance E (diffuse, its normal's
+ * side: 1 / pi; the reflectance is applied per channel in the bounces) to the radiance towards the
+ * ray's origin. Returns NO_LINK on a miss, a light, or the back of a diffuse triangle. */
+static uint32_t trace_link(const ref_ctx *ctx, const double org[3], const double dir[3], double *factor)
+{
+    struct RTCRayHit rh;
+    *factor = 0.0;
+    if (!ref_intersect(ctx, org, dir, &rh) || rh.hit.geomID >= ctx->light_geom_base) return NO_LINK;
+    const ref_object *ro = &ctx->objects[rh.hit.geomID];
+    int64_t k = transport_index(ro, rh.hit.primID, rh.hit.u, rh.hit.v);
+    if (k < 0) return NO_LINK;
+    const float *n = ro->bs[k].ng;
+    double cos_out = -(dir[0] * n[0] + dir[1] * n[1] + dir[2] * n[2]);
+    if (ro->subsurface)
+        *factor = (1.0 - sss_fresnel_dielectric(fabs(cos_out), 1.0, ro->eta)) / (REF_PI * ro->c_norm);
+    else if (cos_out > 0.0)
+        *factor = 1.0 / REF_PI;
+    else
+        return NO_LINK;
+    return (uint32_t)(ro->base + (uint64_t)k);
+}
+
+/* The links of sample i of object o: k x k gather rays cosine-distributed about its geometric
+ * normal (stratified), each weighted by pi / k^2 (the cosine-weighted estimate of int L cos dw) and,
+ * for subsurface samples, by the entry factor 1 - F_r(cos theta). */
+static void sample_links(const ref_ctx *ctx, size_t o, size_t i)
+{
+    const ref_object *ro = &ctx->objects[o];
+    const ref_bsample *s = &ro->bs[i];
+    int k = (int)lround(sqrt((double)ro->gather));
+    ref_rng rng;
+    ref_rng_seed(&rng, ctx->desc.seed, 0x424f554e00000000ull + (uint64_t)o, (uint64_t)i);
+    double ng[3] = {s->ng[0], s->ng[1], s->ng[2]}, p[3] = {s->p[0], s->p[1], s->p[2]};
+    double t1[3], t2[3], a[3] = {1, 0, 0}, po[3];
+    if (fabs(ng[0]) > 0.7) a[0] = 0, a[1] = 1;
+    v3_cross(ng, a, t1);
+    v3_normalize(t1);
+    v3_cross(ng, t1, t2);
+    ref_offset(ctx, p, ng, po);
+    uint32_t *target = ro->link_target + i * (size_t)ro->gather;
+    float *weight = ro->link_weight + i * (size_t)ro->gather;
+    for (int a1 = 0; a1 < k; a1++)
+        for (int a2 = 0; a2 < k; a2++) {
+            double u1 = (a1 + ref_rng_uniform(&rng)) / k, u2 = (a2 + ref_rng_uniform(&rng)) / k;
+            double r = sqrt(u1), ph = 2.0 * REF_PI * u2, cz = sqrt(fmax(0.0, 1.0 - u1)), dir[3];
+            for (int c = 0; c < 3; c++) dir[c] = r * cos(ph) * t1[c] + r * sin(ph) * t2[c] + cz * ng[c];
+            v3_normalize(dir);
+            double factor;
+            size_t l = (size_t)a1 * (size_t)k + (size_t)a2;
+            target[l] = trace_link(ctx, po, dir, &factor);
+            double entry = ro->subsurface ? 1.0 - sss_fresnel_dielectric(cz, 1.0, ro->eta) : 1.0;
+            weight[l] = (float)(REF_PI / (k * k) * entry * factor);
+        }
+}
+
+/* Tree points in generation order with T A from the samples: `which` 0 = the current bounce's T,
+ * 1 = the indirect sum. Sets abs_tol to `rel` times the lit level (ref_points.c). */
+static sss_result fill_tree(ref_object *ro, int which, double rel, ref_tree *tree, float abs_tol[3], sss_error *err)
+{
+    memset(tree, 0, sizeof *tree);
+    tree->points = malloc(sizeof(ref_point) * (ro->bs_count ? ro->bs_count : 1));
+    if (!tree->points) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (bounce tree)");
+    tree->point_count = ro->bs_count;
+    double ta_sum[3] = {0, 0, 0}, lit[3] = {0, 0, 0};
+    for (size_t i = 0; i < ro->bs_count; i++) {
+        const ref_bsample *s = &ro->bs[i];
+        ref_point *pt = &tree->points[i];
+        memcpy(pt->p, s->p, sizeof pt->p);
+        for (int c = 0; c < 3; c++) {
+            double T = which ? ro->indirect[i][c] : s->t[c];
+            double ta = T * s->area;
+            pt->ta[c] = isfinite(ta) && ta > 0.0 ? (float)ta : 0.0f;
+            if (pt->ta[c] > 0.0f) ta_sum[c] += pt->ta[c], lit[c] += s->area;
+        }
+    }
+    for (int c = 0; c < 3; c++)
+        abs_tol[c] = lit[c] > 0.0 ? (float)(rel * ta_sum[c] / lit[c] * ro->prof.total[c]) : 0.0f;
+    return ref_tree_build(tree, err);
+}
+
+/* exit = what the previous bounce's T (E) sends through the links, at the samples a link reaches
+ * (needed): subsurface the exitance M (tree sum of S_far plus the near part with T at the sample
+ * itself), diffuse reflectance * E. */
+static sss_result bounce_exit(ref_object *ro, const uint8_t *needed, sss_error *err)
+{
+    const int64_t n = (int64_t)ro->bs_count;
+    if (!ro->subsurface) {
+        for (int64_t i = 0; i < n; i++)
+            for (int c = 0; c < 3; c++) ro->bs[i].exit[c] = (float)(ro->src->reflectance[c] * ro->bs[i].t[c]);
+        return SSS_OK;
+    }
+    ref_tree tree;
+    float tol[3];
+    sss_result r = fill_tree(ro, 0, BOUNCE_TREE_ABS, &tree, tol, err);
+    if (r == SSS_OK) {
+#pragma omp parallel for schedule(dynamic, 256)
+        for (int64_t i = 0; i < n; i++) {
+            ref_bsample *s = &ro->bs[i];
+            double far[3] = {0, 0, 0};
+            if (needed[i]) ref_tree_sum_angle(&tree, &ro->prof, s->p, tol, BOUNCE_TREE_ANGLE, far, NULL);
+            for (int c = 0; c < 3; c++) s->exit[c] = needed[i] ? (float)(far[c] + ro->prof.near[c] * s->t[c]) : 0.0f;
+        }
+    }
+    ref_tree_free(&tree);
+    return r;
+}
+
+/* The sample with global index g. */
+static const ref_bsample *global_sample(const ref_ctx *ctx, uint32_t g)
+{
+    size_t lo = 0, hi = ctx->object_count - 1;
+    while (lo < hi) { /* the last object whose base <= g (objects without samples share bases) */
+        size_t mid = (lo + hi + 1) / 2;
+        if (ctx->objects[mid].base <= g)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    while (ctx->objects[lo].bs_count == 0 || g - ctx->objects[lo].base >= ctx->objects[lo].bs_count) lo--;
+    return &ctx->objects[lo].bs[g - ctx->objects[lo].base];
+}
+
+/* T_k (E_k) at every sample of object o into next, through its links; returns its light sum
+ * T A (luminance). */
+static double bounce_gather(const ref_ctx *ctx, size_t o, float (*next)[3])
+{
+    const ref_object *ro = &ctx->objects[o];
+    const int64_t n = (int64_t)ro->bs_count;
+#pragma omp parallel for schedule(dynamic, 256)
+    for (int64_t i = 0; i < n; i++) {
+        double T[3] = {0, 0, 0};
+        const uint32_t *target = ro->link_target + (size_t)i * (size_t)ro->gather;
+        const float *weight = ro->link_weight + (size_t)i * (size_t)ro->gather;
+        for (int l = 0; l < ro->gather; l++) {
+            if (target[l] == NO_LINK) continue;
+            const float *e = global_sample(ctx, target[l])->exit;
+            for (int c = 0; c < 3; c++) T[c] += (double)weight[l] * e[c];
+        }
+        for (int c = 0; c < 3; c++) next[i][c] = isfinite(T[c]) && T[c] > 0.0 ? (float)T[c] : 0.0f;
+    }
+    double sum = 0.0; /* sequentially: independent of the thread count */
+    for (int64_t i = 0; i < n; i++) sum += luminance(next[i]) * ro->bs[i].area;
+    return sum;
+}
+
+/* Traces every sample's gather rays once and marks the samples they reach (needed). */
+static sss_result build_links(ref_ctx *ctx, uint8_t **needed, sss_error *err)
+{
+    uint64_t total = 0;
+    for (size_t o = 0; o < ctx->object_count; o++) {
+        ref_object *ro = &ctx->objects[o];
+        ro->base = total;
+        total += ro->bs_count;
+        ro->gather = ro->subsurface ? ctx->gather_subsurface : ctx->gather_diffuse;
+    }
+    if (total >= NO_LINK) return sss_error_set(err, SSS_ERROR_LIMIT, "reference: too many samples for the bounces");
+    *needed = calloc(total + 1, 1);
+    if (!*needed) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (bounces)");
+    for (size_t o = 0; o < ctx->object_count; o++) {
+        ref_object *ro = &ctx->objects[o];
+        if (!ro->bs_count) continue;
+        size_t links = ro->bs_count * (size_t)ro->gather;
+        ro->indirect = calloc(ro->bs_count, sizeof *ro->indirect);
+        ro->link_target = malloc(sizeof(uint32_t) * links);
+        ro->link_weight = malloc(sizeof(float) * links);
+        if (!ro->indirect || !ro->link_target || !ro->link_weight)
+            return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (%zu bounce links)", links);
+        const int64_t n = (int64_t)ro->bs_count;
+#pragma omp parallel for schedule(dynamic, 64)
+        for (int64_t i = 0; i < n; i++) sample_links(ctx, o, (size_t)i);
+        for (size_t l = 0; l < links; l++)
+            if (ro->link_target[l] != NO_LINK) (*needed)[ro->link_target[l]] = 1;
+    }
+    return SSS_OK;
+}
+
+/* The indirect trees the pixels use: T_2 + ... + T_N at the transport samples. */
+static sss_result build_indirect_trees(ref_ctx *ctx, sss_error *err)
+{
+    for (size_t o = 0; o < ctx->object_count; o++) {
+        ref_object *ro = &ctx->objects[o];
+        if (!ro->subsurface || !ro->bs_count) continue;
+        sss_result r = fill_tree(ro, 1, BOUNCE_TREE_ABS, &ro->itree, ro->iabs_tol, err);
+        if (r != SSS_OK) return r;
+    }
+    return SSS_OK;
+}
+
+void ref_indirect_sum(const ref_ctx *ctx, size_t o, const float xo[3], double out[3], uint64_t *visits)
+{
+    const ref_object *ro = &ctx->objects[o];
+    out[0] = out[1] = out[2] = 0.0;
+    if (ro->itree.point_count)
+        ref_tree_sum_angle(&ro->itree, &ro->prof, xo, ro->iabs_tol, BOUNCE_TREE_ANGLE, out, visits);
+}
+
+/* Light of bounce k relative to bounce 1 (or 2 when larger: objects lit indirectly only), the largest
+ * over the objects a pixel centre sees. */
+static double bounce_fraction(const ref_ctx *ctx, const double *first, const double *second, const double *now)
+{
+    double f = 0.0;
+    for (size_t o = 0; o < ctx->object_count; o++) {
+        double ref = fmax(first[o], second[o]);
+        if (ctx->objects[o].visible && ref > 0.0) f = fmax(f, now[o] / ref);
+    }
+    return f;
+}
+
+sss_result ref_bounces_run(ref_ctx *ctx, sss_error *err)
+{
+    ref_set_phase(ctx, 0.3, 0.3, "bounces");
+    double t0 = sss_time_seconds();
+    uint8_t *needed = NULL;
+    size_t n_obj = ctx->object_count;
+    float(**next)[3] = calloc(n_obj + 1, sizeof *next);
+    double *light = calloc(3 * (n_obj + 1), sizeof(double)); /* per object: bounce 1, 2, now */
+    sss_result r = next && light ? build_links(ctx, &needed, err)
+                                 : sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (bounces)");
+    double *first = light, *second = light + n_obj + 1, *now = light + 2 * (n_obj + 1);
+    for (size_t o = 0; r == SSS_OK && o < n_obj; o++) {
+        const ref_object *ro = &ctx->objects[o];
+        ctx->stats.transport_samples += ro->bs_count;
+        for (size_t i = 0; i < ro->bs_count; i++) first[o] += luminance(ro->bs[i].t) * ro->bs[i].area;
+        if (ro->bs_count && !(next[o] = calloc(ro->bs_count, sizeof *next[o])))
+            r = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (bounces)");
+    }
+    double links_seconds = sss_time_seconds() - t0;
+    int cap = ctx->desc.bounces > 0 ? ctx->desc.bounces : SSS_REFERENCE_MAX_BOUNCES;
+    for (int k = 2; r == SSS_OK && k <= cap; k++) {
+        double t1 = sss_time_seconds();
+        for (size_t o = 0; r == SSS_OK && o < n_obj; o++)
+            if (ctx->objects[o].bs_count) r = bounce_exit(&ctx->objects[o], needed + ctx->objects[o].base, err);
+        if (r != SSS_OK) break;
+        for (size_t o = 0; o < n_obj; o++) now[o] = ctx->objects[o].bs_count ? bounce_gather(ctx, o, next[o]) : 0.0;
+        for (size_t o = 0; o < n_obj; o++) {
+            ref_object *ro = &ctx->objects[o];
+            for (size_t i = 0; i < ro->bs_count; i++)
+                for (int c = 0; c < 3; c++) {
+                    ro->bs[i].t[c] = next[o][i][c];
+                    ro->indirect[i][c] += next[o][i][c];
+                }
+            if (k == 2) second[o] = now[o];
+        }
+        double fraction = bounce_fraction(ctx, first, second, now);
+        ctx->stats.bounces = (uint32_t)k;
+        /* the links' ray tracing counts towards bounce 2 */
+        ctx->stats.seconds_bounce[k - 1] = sss_time_seconds() - t1 + (k == 2 ? links_seconds : 0.0);
+        ctx->stats.bounce_fraction[k - 1] = fraction;
+        ref_report_progress(ctx, 1.0, NULL, 1);
+        if (ctx->desc.bounces == 0 && !(fraction >= SSS_REFERENCE_BOUNCE_STOP)) break;
+    }
+    for (size_t o = 0; next && o < n_obj; o++) free(next[o]);
+    free(next);
+    free(light);
+    free(needed);
+    if (r == SSS_OK) r = build_indirect_trees(ctx, err);
+    return r;
+}

@@ -1,0 +1,237 @@
+/* Reference renderer, interreflection (sss/reference.h, "Bounces"): the inside of a closed sphere lit
+ * by a point light at its centre. The direct irradiance is uniform, and every chord meets the sphere
+ * at equal angles at both ends, so bounce k + 1 is bounce k times a constant q everywhere:
+ *  - diffuse walls of reflectance rho: q = rho (radiosity's closed enclosure);
+ *  - subsurface walls: the exitance rho_eff T leaves through F_t(cos) / (pi c) and enters the far wall
+ *    with F_t(cos), so q = rho_eff 2 / c int_0^1 F_t(mu)^2 mu dmu (F_t by independent quadrature).
+ * N bounces give single (1 - q^N) / (1 - q), the default single / (1 - q) (within what the stopping
+ * rule leaves out); each bounce adds less than the one before; bounces = 1 is the single-event image
+ * of the old renderer bit for bit (tests/data/reference/bounces1.pfm, rendered before interreflection
+ * existed; Embree's hits are the same on every x86-64 ISA it dispatches to for these rays). */
+#include "ref_test_util.h"
+
+#include "sss/scene.h"
+
+#define RADIUS 1.0
+#define INTENSITY 3.0
+
+/* The sphere with inward normals (the triangles face its centre). */
+static void surf_sphere_inside(const double *prm, double s, double t, double p[3], double n[3])
+{
+    surf_sphere(prm, s, t, p, n);
+    for (int c = 0; c < 3; c++) n[c] = -n[c];
+}
+
+static int render_sphere(const sss_reference_object *wall, int bounces, sss_reference_quality q, sss_image *img,
+                         sss_reference_stats *st)
+{
+    sss_light l = light_point(0, 0, 0, INTENSITY);
+    sss_reference_world w;
+    memset(&w, 0, sizeof w);
+    camera_set(&w.camera, 0, 0, 0, 0, 0.3, -1, 40, 16, 16);
+    w.objects = wall, w.object_count = 1, w.lights = &l, w.light_count = 1;
+    sss_reference_desc d;
+    memset(&d, 0, sizeof d);
+    d.quality = q;
+    d.bounces = bounces;
+    d.seed = 5;
+    return render_or_die(&w, &d, img, st);
+}
+
+static double img_mean(const sss_image *img, int ch)
+{
+    double s = 0.0;
+    for (int y = 0; y < img->height; y++)
+        for (int x = 0; x < img->width; x++) s += img_at(img, x, y, ch);
+    return s / ((double)img->width * img->height);
+}
+
+/* Worst relative deviation of every pixel from expect[ch] (and of the image mean, *mean_dev). */
+static double deviation(const sss_image *img, const double expect[3], double *mean_dev)
+{
+    double worst = 0.0, mean = 0.0;
+    for (int ch = 0; ch < 3; ch++) {
+        for (int y = 0; y < img->height; y++)
+            for (int x = 0; x < img->width; x++)
+                worst = fmax(worst, fabs(img_at(img, x, y, ch) - expect[ch]) / expect[ch]);
+        mean = fmax(mean, fabs(img_mean(img, ch) - expect[ch]) / expect[ch]);
+    }
+    *mean_dev = mean;
+    return worst;
+}
+
+static void test_diffuse_sphere(void)
+{
+    tmesh sphere = {0};
+    double prm[4] = {0, 0, 0, RADIUS};
+    tmesh_grid(&sphere, surf_sphere_inside, prm, 96, 48);
+    const double rho = 0.6;
+    sss_reference_object wall = object_diffuse(&sphere.m, rho);
+    double single = rho / T_PI * INTENSITY / (RADIUS * RADIUS);
+    /* N = 1, 2, 3 and the default: single (1 - q^N) / (1 - q). */
+    int counts[4] = {1, 2, 3, 0};
+    double prev_mean = 0.0, prev_step = INFINITY;
+    for (int k = 0; k < 4; k++) {
+        sss_image img;
+        sss_reference_stats st;
+        if (!render_sphere(&wall, counts[k], SSS_REFERENCE_DRAFT, &img, &st)) {
+            CHECK(0);
+            break;
+        }
+        int n = counts[k] ? counts[k] : (int)st.bounces;
+        double level = single * (1.0 - pow(rho, n)) / (1.0 - rho), expect[3] = {level, level, level}, mean_dev;
+        double worst = deviation(&img, expect, &mean_dev);
+        printf("diffuse sphere, bounces %d (%u done): mean %.5g, expected %.5g; worst pixel %.3g, mean %.3g\n",
+               counts[k], st.bounces, img_mean(&img, 1), level, worst, mean_dev);
+        CHECK_MSG(mean_dev < 0.01 && worst < 0.03, "diffuse sphere, %d bounces: off by %.3g (mean %.3g)", n, worst,
+                  mean_dev);
+        if (counts[k] == 0) {
+            /* The default stops at the first bounce below 1% of bounce 1: what is left is below
+             * rho^n / (1 - rho) of the single level. */
+            double full = single / (1.0 - rho);
+            CHECK_MSG(fabs(img_mean(&img, 1) - full) / full < 0.01 + pow(rho, n), "default: %.5g, want %.5g",
+                      img_mean(&img, 1), full);
+            CHECK_MSG(st.bounce_fraction[n - 1] < SSS_REFERENCE_BOUNCE_STOP, "stopped at %.3g", st.bounce_fraction[n - 1]);
+        } else {
+            /* Each bounce adds light, less than the one before (q = rho < 1). */
+            double step = img_mean(&img, 1) - prev_mean;
+            CHECK_MSG(step > 0.0 && step < prev_step, "bounce %d adds %.5g after %.5g", n, step, prev_step);
+            if (k > 0) CHECK_MSG(fabs(step / prev_step - rho) < 0.01, "bounce %d / bounce %d = %.4g, want %.4g", n,
+                                 n - 1, step / prev_step, rho);
+            prev_step = step;
+            prev_mean = img_mean(&img, 1);
+        }
+        sss_image_free(&img);
+    }
+    tmesh_free(&sphere);
+}
+
+static void test_subsurface_sphere(void)
+{
+    tmesh sphere = {0};
+    double prm[4] = {0, 0, 0, RADIUS};
+    tmesh_grid(&sphere, surf_sphere_inside, prm, 96, 48);
+    /* Diffusion lengths 1/sigma_tr of 0.015..0.04: short against the radius, so the wall is flat
+     * for the profile. */
+    sss_material mat = material_coeffs(1.0, 2.0, 4.0, 300.0, 250.0, 200.0, 1.33);
+    sss_pbd_table *table;
+    sss_reference_object wall = object_subsurface(&sphere.m, &mat, &table);
+    sss_profile phys;
+    sss_error err;
+    CHECK(sss_profile_init(&phys, SSS_PROFILE_PBD, &mat, table, &err) == SSS_OK);
+    double eta = mat.eta, c = 1.0 - 2.0 * sss_fresnel_moment1(1.0 / eta);
+    /* int_0^1 F_t(mu)^2 mu dmu by the midpoint rule */
+    double ft2 = 0.0;
+    const int steps = 100000;
+    for (int i = 0; i < steps; i++) {
+        double mu = (i + 0.5) / steps, ft = 1.0 - sss_fresnel_dielectric(mu, 1.0, eta);
+        ft2 += ft * ft * mu / steps;
+    }
+    double ft0 = 1.0 - sss_fresnel_dielectric(1.0, 1.0, eta);
+    for (int b = 0; b < 2; b++) {
+        int bounces = b ? 0 : 3;
+        sss_image img;
+        sss_reference_stats st;
+        if (!render_sphere(&wall, bounces, SSS_REFERENCE_FINAL, &img, &st)) {
+            CHECK(0);
+            break;
+        }
+        int n = (int)st.bounces;
+        double expect[3], mean_dev;
+        for (int ch = 0; ch < 3; ch++) {
+            double rho_eff = sss_profile_total(&phys, ch), q = rho_eff * 2.0 / c * ft2;
+            /* The camera at the centre sees the wall at normal incidence. */
+            double single = ft0 / (T_PI * c) * rho_eff * ft0 * INTENSITY / (RADIUS * RADIUS);
+            expect[ch] = single * (1.0 - pow(q, n)) / (1.0 - q);
+            if (ch == 0) printf("subsurface sphere: q = %.4f (rho_eff %.4f)\n", q, rho_eff);
+        }
+        double worst = deviation(&img, expect, &mean_dev);
+        printf("subsurface sphere, bounces %d (%u done): mean G %.5g, expected %.5g; worst pixel %.3g, mean %.3g\n",
+               bounces, st.bounces, img_mean(&img, 1), expect[1], worst, mean_dev);
+        CHECK_MSG(mean_dev < 0.02 && worst < 0.06, "subsurface sphere, %d bounces: off by %.3g (mean %.3g)", n,
+                  worst, mean_dev);
+        sss_image_free(&img);
+    }
+    free(table);
+    tmesh_free(&sphere);
+}
+
+/* bounces = 1 against the image the renderer made before interreflection existed (same scene file,
+ * seed and quality): bit for bit. */
+static void test_single_event_unchanged(void)
+{
+    sss_scene scene;
+    sss_error err;
+    if (sss_scene_load(SSS_TEST_DATA "/reference/bounces1.json", NULL, &scene, &err) != SSS_OK) {
+        CHECK_MSG(0, "%s", err.message);
+        return;
+    }
+    sss_image old, img;
+    CHECK(sss_image_read(SSS_TEST_DATA "/reference/bounces1.pfm", &old, &err) == SSS_OK);
+    sss_reference_desc d;
+    memset(&d, 0, sizeof d);
+    d.bounces = 1;
+    if (sss_reference_render(&scene, &d, &img, NULL, NULL, NULL, &err) != SSS_OK) {
+        CHECK_MSG(0, "%s", err.message);
+    } else {
+        CHECK(img.width == old.width && img.height == old.height);
+        size_t differ = 0;
+        double worst = 0.0;
+        for (size_t i = 0; i < 3 * (size_t)img.width * img.height; i++)
+            if (img.pixels[i] != old.pixels[i]) {
+                differ++;
+                worst = fmax(worst, fabs(img.pixels[i] - old.pixels[i]) / fmax(fabs(old.pixels[i]), 1e-30));
+            }
+        CHECK_MSG(differ == 0, "bounces 1: %zu values differ from the single-event image (worst relative %.3g)", differ,
+                  worst);
+        /* and the default differs: the torus lights itself and the floor */
+        sss_image full;
+        d.bounces = 0;
+        d.quality = SSS_REFERENCE_DRAFT;
+        sss_image draft1;
+        d.bounces = 1;
+        CHECK(sss_reference_render(&scene, &d, &draft1, NULL, NULL, NULL, &err) == SSS_OK);
+        d.bounces = 0;
+        CHECK(sss_reference_render(&scene, &d, &full, NULL, NULL, NULL, &err) == SSS_OK);
+        CHECK_MSG(img_mean(&full, 1) > 1.01 * img_mean(&draft1, 1), "interreflection adds %.4g to %.4g",
+                  img_mean(&full, 1), img_mean(&draft1, 1));
+        sss_image_free(&full);
+        sss_image_free(&draft1);
+        sss_image_free(&img);
+    }
+    sss_image_free(&old);
+    sss_scene_free(&scene);
+}
+
+static void test_bad_bounces(void)
+{
+    tmesh plane = {0};
+    tmesh_plane(&plane, 1.0, 0, 0, 0, 2, 0);
+    sss_reference_object o = object_diffuse(&plane.m, 0.5);
+    sss_reference_world w;
+    memset(&w, 0, sizeof w);
+    camera_set(&w.camera, 0, 2, 0, 0, 0, 0, 30, 8, 8);
+    w.objects = &o, w.object_count = 1;
+    sss_reference_desc d;
+    memset(&d, 0, sizeof d);
+    int bad[2] = {-1, SSS_REFERENCE_MAX_BOUNCES + 1};
+    for (int k = 0; k < 2; k++) {
+        d.bounces = bad[k];
+        sss_image img;
+        sss_error err;
+        memset(&err, 0, sizeof err);
+        CHECK(sss_reference_render_world(&w, &d, &img, NULL, NULL, NULL, &err) == SSS_ERROR_INVALID_ARGUMENT);
+        CHECK(strstr(err.message, "bounces") != NULL);
+        CHECK(img.pixels == NULL);
+    }
+    tmesh_free(&plane);
+}
+
+int main(void)
+{
+    test_bad_bounces();
+    test_diffuse_sphere();
+    test_subsurface_sphere();
+    test_single_event_unchanged();
+    return CHECK_DONE();
+}
