@@ -21,6 +21,7 @@ int sss_cmd_techniques(int argc, char **argv);
 int sss_cmd_eval(int argc, char **argv);
 int sss_cmd_view(int argc, char **argv);
 int sss_cmd_sam(int argc, char **argv);
+int sss_cmd_import(int argc, char **argv);
 
 /* Prints "sss CMD: message" and "Try 'sss CMD --help'." to stderr; returns CLI_EXIT_USAGE. */
 int cli_usage_error(const char *cmd, const char *fmt, ...)

@@ -22,6 +22,7 @@ static const command commands[] = {
     {"eval", sss_cmd_eval, "evaluate techniques against the reference: metrics, timings, sheets, plots, report"},
     {"view", sss_cmd_view, "show a scene in a window: orbit camera, techniques, DSSIM vs reference"},
     {"export", sss_cmd_export, "write a scene for another renderer (export pbrt)"},
+    {"import", sss_cmd_import, "import a glTF 2.0 asset (.gltf, .glb) as a scene"},
     {"sam", sss_cmd_sam, "build or inspect a Spatial Adjacency Map (seed 001) of a mesh"},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
