@@ -273,6 +273,50 @@ static void test_external_buffer(void)
     sss_gltf_scene_free(&s);
 }
 
+/* gltf_transform.glb, written by @gltf-transform (make_gltf_transform.cjs): interleaved vertex
+ * buffer (byteStride), 32-bit indices, a volume without scattering (-> diffuse), a scaled parent. */
+static void test_gltf_transform_asset(void)
+{
+    sss_gltf_scene s;
+    sss_error err = {0};
+    CHECK_MSG(sss_gltf_load(DATA "gltf_transform.glb", NULL, &s, &err) == SSS_OK, "%s", err.message);
+    CHECK(s.object_count == 1 && s.light_count == 1);
+    if (s.object_count != 1 || s.light_count != 1) return;
+    const sss_gltf_object *o = &s.objects[0];
+    CHECK(!o->material.subsurface);
+    for (int k = 0; k < 3; k++) CHECK_NEAR(o->material.albedo[k], (0.3 + 0.2 * k), 1e-7); /* float32 in JSON */
+    /* the box's corner i: x, y, z from bits 0, 1, 2 (make_gltf_transform.cjs) */
+    sss_mesh local = {.vertex_count = 8, .triangle_count = o->mesh.triangle_count, .indices = o->mesh.indices};
+    float corners[24], normals[24] = {0};
+    for (int i = 0; i < 8; i++) {
+        corners[3 * i] = i & 1 ? 0.5f : -0.5f;
+        corners[3 * i + 1] = i & 2 ? 1.0f : -1.0f;
+        corners[3 * i + 2] = i & 4 ? 0.5f : -0.5f;
+    }
+    local.positions = corners;
+    local.normals = normals;
+    CHECK(o->mesh.vertex_count == 8 && o->mesh.triangle_count == 12);
+    sss_mesh tmp = {0};
+    CHECK(sss_scene_mesh_copy(&local, &tmp, NULL) == SSS_OK && sss_mesh_compute_normals(&tmp, NULL) == SSS_OK);
+    /* root S 2, child T [0, 1, 0] R 45 degrees about z: world = R (2 p) + [0, 2, 0] */
+    char dir[] = "/tmp/sss_test_gltf_XXXXXX";
+    CHECK(mkdtemp(dir) != NULL);
+    sss_mesh world = {0};
+    CHECK(place_by_hand(dir, &tmp, "{\"translate\": [0, 2, 0], \"rotate\": [0, 0, 1, 45], \"scale\": 2}", &world));
+    check_same_mesh(&o->mesh, &world);
+    CHECK_NEAR(sss_mesh_signed_volume(&o->mesh), 8 * 2, 1e-4);
+    sss_mesh_free(&world);
+    sss_mesh_free(&tmp);
+    char path[600];
+    snprintf(path, sizeof path, "%s/local.ply", dir);
+    remove(path);
+    rmdir(dir);
+    CHECK_NEAR(s.camera.fov, 0.7 * 180 / PI, 1e-6);
+    CHECK(s.camera.width == 720 && s.camera.height == 540); /* aspectRatio 4/3 at the default height */
+    CHECK_NEAR(s.lights[0].intensity[1], 12 * 0.8, 1e-5);
+    sss_gltf_scene_free(&s);
+}
+
 static void check_bad(const char *file, sss_result code, const char *needle)
 {
     char path[512];
@@ -361,6 +405,7 @@ int main(void)
     test_lights();
     test_glb_equals_gltf();
     test_external_buffer();
+    test_gltf_transform_asset();
     test_bad_inputs();
     test_scene_load();
     return CHECK_DONE();
