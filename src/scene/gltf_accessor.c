@@ -92,7 +92,11 @@ sss_result gltf_accessor_get(gltf_ctx *c, long index, const char *use, int compo
     a->components = comps;
     a->component_type = (int)ctype;
     a->stride = (size_t)comps * (size_t)csize;
-    if (view < 0) return SSS_OK; /* no buffer view: zeros (glTF 2.0 spec 3.6.2.3) */
+    /* Without a buffer view an accessor is all zeros (spec 3.6.2.3), only useful with sparse data:
+     * refused, also because its count is backed by no bytes of the file. */
+    if (view < 0)
+        return gltf_fail(c, SSS_ERROR_UNSUPPORTED, "%s: no bufferView (zero-filled accessors are not supported)",
+                         path);
 
     const unsigned char *start = NULL;
     size_t length = 0;

@@ -207,12 +207,19 @@ static sss_result gltf_node_light(gltf_walk *w, long node, long light, const dou
         return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "nodes[%ld]: a light node with a degenerate transform", node);
     sss_light out = {0};
     transform_point(world, origin, out.position);
+    int moved = 0;
     for (int k = 0; k < 3; k++) {
         double v = color[k] * intensity * scale;
         out.intensity[k] = out.radiance[k] = v;
         out.direction[k] = dir[k];
         out.look_at[k] = out.position[k] + dir[k];
+        moved |= out.look_at[k] != out.position[k];
+        if (!isfinite(v) || !isfinite(out.look_at[k]))
+            return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "nodes[%ld]: light %ld is not finite (%s)", node, light,
+                             isfinite(v) ? "position" : "intensity x color x scale");
     }
+    if (!moved) /* a spot's look_at, one unit away, must differ from its position in doubles */
+        return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "nodes[%ld]: light %ld is too far from the origin", node, light);
     if (strcmp(type->valuestring, "point") == 0) {
         out.type = SSS_LIGHT_POINT;
     } else if (strcmp(type->valuestring, "directional") == 0) {
@@ -247,13 +254,14 @@ static void image_size(const sss_gltf_desc *d, double aspect, sss_camera *cam)
     int w = d->width, h = d->height;
     if (aspect > 0 && (!w || !h)) {
         if (!w && !h) h = SSS_GLTF_DEFAULT_HEIGHT;
-        if (!w) w = (int)lround(h * aspect);
-        else h = (int)lround(w / aspect);
+        if (!w) w = (int)fmin(lround(h * aspect), SSS_SCENE_MAX_IMAGE_SIZE);
+        else h = (int)fmin(lround(w / aspect), SSS_SCENE_MAX_IMAGE_SIZE);
     }
     cam->width = w ? w : SSS_GLTF_DEFAULT_WIDTH;
     cam->height = h ? h : SSS_GLTF_DEFAULT_HEIGHT;
-    if (cam->width < 1) cam->width = 1;
-    if (cam->height < 1) cam->height = 1;
+    /* an extreme aspect ratio is kept as far as the scene format's size limit allows */
+    cam->width = cam->width < 1 ? 1 : cam->width > SSS_SCENE_MAX_IMAGE_SIZE ? SSS_SCENE_MAX_IMAGE_SIZE : cam->width;
+    cam->height = cam->height < 1 ? 1 : cam->height > SSS_SCENE_MAX_IMAGE_SIZE ? SSS_SCENE_MAX_IMAGE_SIZE : cam->height;
 }
 
 static void scene_bounds(const sss_gltf_scene *s, double center[3], double *radius)
@@ -295,12 +303,17 @@ static sss_result asset_camera(gltf_ctx *c, gltf_walk *w, long index, sss_camera
         (res = gltf_number(c, persp, pp, "aspectRatio", 0.0, &aspect)) != SSS_OK)
         return res;
     if (!(yfov > 0 && yfov < M_PI)) return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.yfov: must be in (0, pi)", pp);
-    if (!(aspect >= 0)) return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.aspectRatio: must be > 0", pp);
+    if (!(aspect >= 0 && aspect <= SSS_SCENE_MAX_IMAGE_SIZE && (aspect == 0 || aspect >= 1.0 / SSS_SCENE_MAX_IMAGE_SIZE)))
+        return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.aspectRatio: must be in [1/%d, %d]", pp,
+                         SSS_SCENE_MAX_IMAGE_SIZE, SSS_SCENE_MAX_IMAGE_SIZE);
     image_size(&c->desc, aspect, cam);
     /* yfov is vertical; sss's fov is along the shorter image axis. */
     double half = yfov / 2;
     if (cam->height > cam->width) half = atan(tan(half) * cam->width / cam->height);
     cam->fov = 2 * half * 180.0 / M_PI;
+    if (!(cam->fov >= SSS_SCENE_FOV_MIN))
+        return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.yfov: %g gives a field of view below %g degrees", pp, yfov,
+                         SSS_SCENE_FOV_MIN);
     static const double origin[3] = {0, 0, 0};
     double fwd[3], center[3], radius;
     if (!node_forward(w->camera_world, fwd))
@@ -311,10 +324,23 @@ static sss_result asset_camera(gltf_ctx *c, gltf_walk *w, long index, sss_camera
     double depth = 0;
     for (int k = 0; k < 3; k++) depth += (center[k] - cam->position[k]) * fwd[k];
     if (!(depth > 1e-6 * radius)) depth = radius;
+    double side[3], up_len2 = 0, side_len2 = 0;
     for (int k = 0; k < 3; k++) {
         cam->look_at[k] = cam->position[k] + depth * fwd[k];
         cam->up[k] = w->camera_world[4 * k + 1]; /* the node's +y */
+        up_len2 += cam->up[k] * cam->up[k];
     }
+    for (int k = 0; k < 3; k++) {
+        side[k] = fwd[(k + 1) % 3] * cam->up[(k + 2) % 3] - fwd[(k + 2) % 3] * cam->up[(k + 1) % 3];
+        side_len2 += side[k] * side[k];
+    }
+    /* what sss_camera_basis_init needs: finite, look_at != position, up not along the view */
+    int finite = 1;
+    for (int k = 0; k < 3; k++) finite &= isfinite(cam->position[k]) && isfinite(cam->look_at[k]);
+    if (!finite || !(side_len2 > 1e-12 * up_len2) || !isfinite(up_len2) ||
+        (cam->look_at[0] == cam->position[0] && cam->look_at[1] == cam->position[1] && cam->look_at[2] == cam->position[2]))
+        return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "nodes[%ld]: a camera node with a degenerate transform",
+                         w->camera_node);
     return SSS_OK;
 }
 

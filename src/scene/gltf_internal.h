@@ -27,8 +27,7 @@ typedef struct gltf_ctx {
     sss_gltf_desc desc;
 } gltf_ctx;
 
-/* A validated accessor: element i, component k is at base + i * stride + k * component size
- * (base NULL: an accessor without bufferView, all zeros). */
+/* A validated accessor: element i, component k is at base + i * stride + k * component size. */
 typedef struct gltf_accessor {
     const unsigned char *base;
     size_t count, stride;

@@ -372,6 +372,7 @@ static void test_scene_load(void)
     CHECK(o->material.type == SSS_SCENE_MATERIAL_SUBSURFACE && o->mesh.triangle_count == 12);
     CHECK_REL(o->material.optical.sigma_a[0] + o->material.optical.sigma_s[0], -log(0.5) / 0.25, 1e-12);
     CHECK(o->bounds_max[1] > o->bounds_min[1]);
+    CHECK_MSG(o->mesh_path && strstr(o->mesh_path, "gltf/scatter.glb#meshes[0].primitives[0]"), "%s", o->mesh_path);
 
     sss_gltf_scene g;
     char dir[] = "/tmp/sss_test_gltf_XXXXXX", path[512];
