@@ -144,6 +144,8 @@ static sss_result read_vertices(gltf_ctx *c, const cJSON *attributes, const char
             /* glTF's UV origin is the image's top-left corner; sss's (OpenGL's) the bottom-left. */
             m->uvs[2 * i] = (float)gltf_accessor_float(&uv, i, 0);
             m->uvs[2 * i + 1] = (float)(1.0 - gltf_accessor_float(&uv, i, 1));
+            if (!isfinite(m->uvs[2 * i]) || !isfinite(m->uvs[2 * i + 1]))
+                return gltf_fail(c, SSS_ERROR_PARSE, "%s: TEXCOORD_0 of vertex %zu is not finite", path, i);
         }
     }
     return SSS_OK;
