@@ -21,7 +21,7 @@ static const command commands[] = {
     {"techniques", sss_cmd_techniques, "list the real-time techniques"},
     {"eval", sss_cmd_eval, "evaluate techniques against the reference: metrics, timings, sheets, plots, report"},
     {"view", sss_cmd_view, "show a scene in a window: orbit camera, techniques, DSSIM vs reference"},
-    {"export", sss_cmd_export, "write a scene for another renderer (export pbrt)"},
+    {"export", sss_cmd_export, "write a scene for another renderer or format (export pbrt, export gltf)"},
     {"import", sss_cmd_import, "import a glTF 2.0 asset (.gltf, .glb) as a scene"},
     {"sam", sss_cmd_sam, "build or inspect a Spatial Adjacency Map (seed 001) of a mesh"},
 };

@@ -31,6 +31,11 @@ out=$("$SSS" render "$data/bad/accessor_range.gltf" -o "$dir/bad.png" 2>&1); cod
 [ $code = 1 ] || err "render of a bad .gltf: exit $code"
 case "$out" in *"accessors[0]"*) ;; *) err "render: message does not name the accessor: $out";; esac
 ls "$dir" | grep -q '^bad' && err "a bad input left output"
+# export gltf, then import: the default scene comes back with its subsurface material.
+"$SSS" export gltf "$ROOT/scenes/default.json" -o "$dir/d.glb" >/dev/null || err "export gltf failed"
+"$SSS" import "$dir/d.glb" -o "$dir/d.json" >/dev/null || err "import of the export failed"
+grep -q '"subsurface"' "$dir/d.json" || err "the export lost the subsurface material"
+"$SSS" export gltf "$ROOT/scenes/default.json" >/dev/null 2>&1; [ $? = 2 ] || err "export gltf without -o is not a usage error"
 # Usage errors: exit 2.
 "$SSS" import "$data/scatter.glb" >/dev/null 2>&1; [ $? = 2 ] || err "missing -o is not a usage error"
 "$SSS" import "$data/scatter.glb" -o "$dir/x.json" --light-scale 0 >/dev/null 2>&1; [ $? = 2 ] || err "--light-scale 0 is not a usage error"
