@@ -317,6 +317,32 @@ static void test_gltf_transform_asset(void)
     sss_gltf_scene_free(&s);
 }
 
+/* exported.glb, written by `sss export gltf exported_source.json`: the coefficients given there. */
+static void test_exported_asset(void)
+{
+    sss_gltf_scene s;
+    sss_error err = {0};
+    CHECK_MSG(sss_gltf_load(DATA "exported.glb", NULL, &s, &err) == SSS_OK, "%s", err.message);
+    CHECK(s.object_count == 2 && s.light_count == 1 && s.camera_from_asset);
+    if (s.object_count != 2 || s.light_count != 1) return;
+    static const double sigma_a[3] = {0.5, 1.0, 2.0}, sigma_s[3] = {20, 15, 10};
+    const sss_gltf_material *m = &s.objects[0].material;
+    CHECK(m->subsurface && !s.objects[1].material.subsurface);
+    for (int k = 0; k < 3; k++) {
+        CHECK_REL(m->sigma_a[k], sigma_a[k], 1e-9);
+        CHECK_REL(m->sigma_s[k], sigma_s[k], 1e-9);
+        CHECK_NEAR(s.objects[1].material.albedo[k], 0.5, 0);
+        CHECK_NEAR(s.lights[0].intensity[k], 40, 1e-12);
+    }
+    CHECK_NEAR(m->g, 0.2, 1e-15);
+    CHECK_NEAR(m->eta, 1.35, 1e-15);
+    CHECK_NEAR(s.lights[0].cone_angle, 25, 1e-12);
+    CHECK_NEAR(s.lights[0].cone_delta, 5, 1e-12);
+    CHECK_NEAR(s.camera.fov, 35, 1e-12); /* landscape 4:3: yfov is the shorter axis' fov */
+    CHECK(s.camera.width == 720 && s.camera.height == 540);
+    sss_gltf_scene_free(&s);
+}
+
 static void check_bad(const char *file, sss_result code, const char *needle)
 {
     char path[512];
@@ -407,6 +433,7 @@ int main(void)
     test_glb_equals_gltf();
     test_external_buffer();
     test_gltf_transform_asset();
+    test_exported_asset();
     test_bad_inputs();
     test_scene_load();
     return CHECK_DONE();

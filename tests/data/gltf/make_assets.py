@@ -3,7 +3,8 @@
 
   scatter.gltf     the test scene, buffers as a base64 data: URI
   scatter.glb      the same scene as binary glTF (JSON chunk + BIN chunk)
-  external.gltf    a triangle whose buffer is the external file external.bin (URI with %20)
+  external.gltf    a triangle whose buffer is the external file "external data.bin" (URI with %20)
+  (exported.glb: written by `sss export gltf exported_source.json -o exported.glb`)
   bad/truncated.glb        scatter.glb cut inside its BIN chunk
   bad/accessor_range.gltf  an accessor reaching past its buffer view
   bad/missing_buffer.gltf  a buffer URI naming a file that does not exist
