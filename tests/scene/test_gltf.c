@@ -343,6 +343,30 @@ static void test_exported_asset(void)
     sss_gltf_scene_free(&s);
 }
 
+/* textured.gltf: baseColorTexture (an external PNG) becomes the subsurface texture, with an absolute
+ * path so that a scene written anywhere finds it; glTF's v (down the image) becomes 1 - v. */
+static void test_texture(void)
+{
+    sss_gltf_scene s;
+    sss_error err = {0};
+    CHECK_MSG(sss_gltf_load(DATA "textured.gltf", NULL, &s, &err) == SSS_OK, "%s", err.message);
+    CHECK(s.object_count == 1);
+    if (s.object_count != 1) return;
+    const char *tex = s.objects[0].material.texture;
+    CHECK_MSG(tex && tex[0] == '/' && strstr(tex, "gltf/albedo.png"), "%s", tex ? tex : "(none)");
+    const float *uv = s.objects[0].mesh.uvs;
+    CHECK(uv != NULL);
+    if (uv) { /* make_assets.py: corner 0 of a face has glTF uv (0, 1), corner 2 has (1, 0) */
+        CHECK(uv[0] == 0.0f && uv[1] == 0.0f && uv[4] == 1.0f && uv[5] == 1.0f);
+    }
+    sss_gltf_scene_free(&s);
+    sss_scene scene;
+    CHECK_MSG(sss_scene_load(DATA "textured.gltf", NULL, &scene, &err) == SSS_OK, "%s", err.message);
+    CHECK(scene.object_count == 1 && scene.objects[0].material.texture &&
+          strstr(scene.objects[0].material.texture, "gltf/albedo.png"));
+    sss_scene_free(&scene);
+}
+
 static void check_bad(const char *file, sss_result code, const char *needle)
 {
     char path[512];
@@ -434,6 +458,7 @@ int main(void)
     test_external_buffer();
     test_gltf_transform_asset();
     test_exported_asset();
+    test_texture();
     test_bad_inputs();
     test_scene_load();
     return CHECK_DONE();

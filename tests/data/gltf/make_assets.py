@@ -4,6 +4,7 @@
   scatter.gltf     the test scene, buffers as a base64 data: URI
   scatter.glb      the same scene as binary glTF (JSON chunk + BIN chunk)
   external.gltf    a triangle whose buffer is the external file "external data.bin" (URI with %20)
+  textured.gltf    the cube, subsurface, baseColorTexture = the external albedo.png (2x2)
   (exported.glb: written by `sss export gltf exported_source.json -o exported.glb`)
   bad/truncated.glb        scatter.glb cut inside its BIN chunk
   bad/accessor_range.gltf  an accessor reaching past its buffer view
@@ -157,6 +158,32 @@ def triangle_doc(uri):
             "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}]}, blob
 
 
+def png_2x2(path):
+    """A 2x2 RGB PNG: red, green / blue, white (top row first)."""
+    import zlib
+    rows = b"\0\xff\0\0\0\xff\0" + b"\0\0\0\xff\xff\xff\xff"
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff)
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 2, 2, 8, 2, 0, 0, 0)) +
+                chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
+
+
+def textured_doc():
+    """The cube with a subsurface material whose baseColorTexture is the external albedo.png."""
+    blob, views, accessors = pack_cube()
+    doc = {"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+           "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3,
+                                       "material": 0}]}],
+           "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}},
+                          "extensions": {"KHR_materials_volume": {"thicknessFactor": 1, "attenuationDistance": 1,
+                                                                  "attenuationColor": [0.5, 0.5, 0.5]},
+                                         "KHR_materials_volume_scatter": {"multiscatterColor": [0.8, 0.8, 0.8]}}}],
+           "textures": [{"source": 0}], "images": [{"uri": "albedo.png"}],
+           "buffers": [{"byteLength": len(blob)}], "bufferViews": views, "accessors": accessors}
+    return doc, blob
+
+
 def dump(path, doc):
     with open(path, "w") as f:
         json.dump(doc, f, indent=1)
@@ -170,6 +197,10 @@ def main():
     glb = glb_bytes(doc, blob)
     with open(os.path.join(OUT, "scatter.glb"), "wb") as f:
         f.write(glb)
+
+    doc, blob = textured_doc()
+    write_gltf(os.path.join(OUT, "textured.gltf"), doc, blob)
+    png_2x2(os.path.join(OUT, "albedo.png"))
 
     tri, tri_blob = triangle_doc("external%20data.bin")
     dump(os.path.join(OUT, "external.gltf"), tri)
