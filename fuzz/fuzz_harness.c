@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "gl/env_cut.h"
+#include "sss/gltf.h"
 #include "sss/image.h"
 #include "sss/material.h"
 #include "sss/mesh.h"
@@ -538,8 +539,49 @@ const char *sss_fuzz_env_cut(const uint8_t *data, size_t size)
     return bad;
 }
 
+/* ---- glTF import --------------------------------------------------------------------------------- */
+
+/* sss_gltf_parse from memory (external URIs resolve in the fixtures). On success every object mesh is
+ * well formed and the scene JSON it becomes loads as a valid scene of our format. */
+const char *sss_fuzz_gltf(const uint8_t *data, size_t size)
+{
+    static const char *const name = "fuzz.glb";
+    sss_gltf_scene g;
+    memset(&g, 0xa5, sizeof g);
+    sss_error err = {0};
+    sss_result r = sss_gltf_parse(data, size, fixtures_dir, name, NULL, &g, &err);
+    const char *bad = check_error(r, &err, name);
+    if (r != SSS_OK) {
+        if (g.objects || g.object_count || g.lights || g.light_count)
+            return bad ? bad : broken("failed (%s) but the import is not empty", err.message);
+        return bad;
+    }
+    char what[64], **names = calloc(g.object_count, sizeof *names), *json = NULL;
+    for (size_t i = 0; !bad && i < g.object_count; i++) {
+        snprintf(what, sizeof what, "gltf objects[%zu]", i);
+        bad = check_mesh(&g.objects[i].mesh, what, 1);
+        names[i] = "fixture.ply";
+    }
+    if (!bad && sss_gltf_scene_json(&g, (const char *const *)names, &json, &err) != SSS_OK)
+        bad = broken("scene JSON failed: %s", err.message);
+    sss_scene s;
+    sss_scene_load_desc desc = {SSS_SCENE_SKIP_MESHES | SSS_SCENE_SKIP_FILE_CHECKS};
+    double triangles = 0;
+    if (!bad && sss_scene_parse(json, strlen(json), fixtures_dir, "fuzz.json", &desc, &s, &err) != SSS_OK)
+        bad = broken("the imported scene does not load: %s", err.message);
+    else if (!bad) {
+        bad = check_scene(&s, 0, &triangles);
+        sss_scene_free(&s);
+    }
+    free(json);
+    free(names);
+    sss_gltf_scene_free(&g);
+    return bad;
+}
+
 const sss_fuzz_target sss_fuzz_targets[] = {
     {"ply", sss_fuzz_ply}, {"obj", sss_fuzz_obj}, {"scene", sss_fuzz_scene}, {"hdr", sss_fuzz_hdr},
     {"pfm", sss_fuzz_pfm}, {"exr", sss_fuzz_exr}, {"png", sss_fuzz_png}, {"sam", sss_fuzz_sam}, {"env_cut", sss_fuzz_env_cut},
+    {"gltf", sss_fuzz_gltf},
 };
 const size_t sss_fuzz_target_count = sizeof sss_fuzz_targets / sizeof sss_fuzz_targets[0];

@@ -42,6 +42,22 @@ typedef struct sss_export_pbrt_desc {
 sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *desc, const char *out_path,
                            sss_error *err);
 
+typedef struct sss_export_gltf_desc {
+    double time;        /* pose of animated objects (seconds); default 0 */
+    int skipped_lights; /* out: area and environment lights, which glTF's punctual lights cannot hold */
+} sss_export_gltf_desc;
+
+/* Writes the scene as one binary glTF 2.0 file (docs/gltf.md, "Export"): one node and mesh per object
+ * (world space, posed at desc->time), subsurface materials as KHR_materials_volume +
+ * KHR_materials_volume_scatter + KHR_materials_ior + KHR_materials_diffuse_transmission (the
+ * importer's mapping inverted: sss_gltf_load of the file gives back the coefficients), diffuse ones
+ * as baseColorFactor, the camera (yfov, aspectRatio), point, spot and directional lights as
+ * KHR_lights_punctual (intensities 1:1). Not written: textures, profiles other than PBD, the render
+ * settings, area and environment lights (counted in desc->skipped_lights). desc may be NULL. Written
+ * atomically. */
+sss_result sss_export_gltf(const sss_scene *scene, sss_export_gltf_desc *desc, const char *out_path,
+                           sss_error *err);
+
 /* The PBRT-v3 light-to-world matrix (row-major 4x4) of an environment light with the given rotate_y,
  * so that PBRT's infinite-light lookup (u = phi/2pi about +z, v = theta/pi from +z) shows the
  * equirectangular map where docs/scene-format.md puts it (+y up, u = 0.5 at -z, u growing towards +x...

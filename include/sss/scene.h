@@ -37,6 +37,9 @@
  *  - A negative scale (mirror) is allowed; sss_scene_object_world_mesh then flips the triangle winding
  *    so that triangles stay counter-clockwise seen from outside.
  *
+ *  - A .gltf or .glb path given to sss_scene_load is imported with sss_gltf_load's defaults
+ *    (sss/gltf.h): its meshes are kept in memory, in world space, with identity transforms.
+ *
  * Limits: scene file <= SSS_SCENE_MAX_FILE_SIZE bytes; width, height in 1..SSS_SCENE_MAX_IMAGE_SIZE;
  * at most SSS_SCENE_MAX_OBJECTS objects and SSS_SCENE_MAX_LIGHTS lights; technique names shorter than
  * SSS_SCENE_TECHNIQUE_SIZE; fov in [SSS_SCENE_FOV_MIN, 180); eta in [SSS_ETA_MIN, SSS_ETA_MAX]; g in (-1, 1);
@@ -263,7 +266,8 @@ typedef struct sss_procedural {
 } sss_procedural;
 
 typedef struct sss_scene_object {
-    char *mesh_path;           /* resolved path of `mesh`, NULL for procedural shapes */
+    char *mesh_path;           /* resolved path of `mesh`, NULL for procedural shapes; a scene loaded
+                                  from a glTF asset has "<asset>#meshes[m].primitives[p]" (in memory) */
     sss_procedural procedural; /* shape == SSS_SHAPE_MESH for mesh files */
     sss_mesh mesh;             /* object space; empty (zeroed) with SSS_SCENE_SKIP_MESHES */
     float bounds_min[3], bounds_max[3]; /* of mesh (zero when not loaded); the animation's box */

@@ -12,6 +12,7 @@
 #include "sss/image.h"
 #include "sss/mesh.h"
 #include "sss/scene.h"
+#include "sss/gltf.h"
 #include "sss/reference.h"
 #include "sss/export.h"
 #include "sss/gl.h"

@@ -21,6 +21,7 @@ int sss_cmd_techniques(int argc, char **argv);
 int sss_cmd_eval(int argc, char **argv);
 int sss_cmd_view(int argc, char **argv);
 int sss_cmd_sam(int argc, char **argv);
+int sss_cmd_import(int argc, char **argv);
 
 /* Prints "sss CMD: message" (cmd NULL: "sss: message") to stderr with the message's control characters
  * escaped (core/text.h): every diagnostic goes through it, since messages name files and scene

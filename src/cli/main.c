@@ -38,7 +38,8 @@ static const command commands[] = {
     {"version", cmd_version, "print the library's version (also 'sss --version')", 1},
     {"eval", sss_cmd_eval, "evaluate techniques against the reference: metrics, timings, sheets, plots, report", 0},
     {"view", sss_cmd_view, "show a scene in a window: orbit camera, techniques, DSSIM vs reference", 0},
-    {"export", sss_cmd_export, "write a scene for another renderer (export pbrt)", 1},
+    {"export", sss_cmd_export, "write a scene for another renderer or format (export pbrt, export gltf)", 1},
+    {"import", sss_cmd_import, "import a glTF 2.0 asset (.gltf, .glb) as a scene", 1},
     {"sam", sss_cmd_sam, "build or inspect a Spatial Adjacency Map (Maisch & Ropinski 2017) of a mesh", 1},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])

@@ -33,6 +33,9 @@ sss_result scene_parse_object(scene_ctx *c, const cJSON *item, sss_scene_object 
  * subsurface materials; NULL for diffuse). */
 sss_result scene_resolve_material(scene_ctx *c, sss_scene_material *m, const sss_pbd_table *table);
 
+/* sss_scene_load of a .gltf or .glb: imported with sss_gltf_load's defaults, meshes kept in memory. */
+sss_result scene_load_gltf(const char *path, const sss_scene_load_desc *desc, sss_scene *scene, sss_error *err);
+
 void scene_material_free(sss_scene_material *m);
 void scene_object_free(sss_scene_object *o);
 void scene_light_free(sss_light *l);

@@ -410,6 +410,9 @@ sss_result sss_scene_parse(const char *json_text, size_t size, const char *base_
 sss_result sss_scene_load(const char *path, const sss_scene_load_desc *desc, sss_scene *scene, sss_error *err)
 {
     memset(scene, 0, sizeof *scene);
+    char ext[8];
+    sss_path_extension(path, ext, sizeof ext);
+    if (strcmp(ext, "gltf") == 0 || strcmp(ext, "glb") == 0) return scene_load_gltf(path, desc, scene, err);
     char *text = NULL;
     size_t size = 0;
     sss_result res = sss_read_file(path, SSS_SCENE_MAX_FILE_SIZE, &text, &size, err);

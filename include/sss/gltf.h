@@ -1,0 +1,98 @@
+/* sss/gltf.h — glTF 2.0 import: a .gltf or .glb asset as the objects, materials, camera and lights of
+ * an sss scene (docs/gltf.md).
+ *
+ * Does: reads .gltf (JSON with external or data: URI buffers) and .glb (binary chunks) with cJSON;
+ * flattens the node hierarchy of the default scene (TRS or matrix) and bakes every triangle primitive
+ * into a WORLD-space mesh (positions, normals, TEXCOORD_0); maps materials (KHR_materials_volume +
+ * KHR_materials_volume_scatter [+ KHR_materials_ior, KHR_materials_diffuse_transmission] ->
+ * subsurface coefficients per world unit; everything else -> diffuse from baseColorFactor), the
+ * camera (a perspective camera node, or a framing camera) and KHR_lights_punctual lights.
+ * Does not: animations, skins, morph targets (the rest pose is imported), sparse accessors, points
+ * and lines, orthographic cameras, texture transforms, embedded images (only a baseColorTexture
+ * whose image is an external file is kept). Every file goes through sss_read_file (sizes checked
+ * before allocation). Messages name the file and the JSON path ("a.gltf: accessors[3].count: ...").
+ * Memory: sss_gltf_load fills an sss_gltf_scene; release it with sss_gltf_scene_free.
+ *
+ * Material mapping (world units; c = attenuationColor, d = attenuationDistance of
+ * KHR_materials_volume; rho = multiscatterColor, g = scatterAnisotropy of
+ * KHR_materials_volume_scatter; per channel):
+ *     sigma_t = -ln(c) / d                                   (KHR_materials_volume, "attenuation")
+ *     rho = (1 - s)(1 - 0.139 s) / (1 + 1.17 s),  s^2 = (1 - alpha) / (1 - g alpha)
+ *         solved for s (the root in [0, 1]), then alpha = (1 - s^2) / (1 - g s^2)
+ *                                                           (KHR_materials_volume_scatter, albedo)
+ *     sigma_s = alpha sigma_t,  sigma_a = sigma_t - sigma_s,  eta = KHR_materials_ior.ior (1.5).
+ * A material is subsurface when it has KHR_materials_volume with thicknessFactor > 0 and a finite
+ * attenuationDistance AND KHR_materials_volume_scatter; a volume without scattering is clear,
+ * absorbing glass in glTF, which no sss renderer draws: it becomes diffuse like any other material.
+ * Lights: intensity taken 1:1 (point, spot: candela as W/sr; directional: lux as irradiance) times
+ * color times light_scale; spot cone_angle = outerConeAngle, cone_delta = outer - inner (degrees);
+ * `range` is ignored (sss lights fall off with 1 / r^2 only).
+ */
+#ifndef SSS_GLTF_H
+#define SSS_GLTF_H
+
+#include "sss/common.h"
+#include "sss/mesh.h"
+#include "sss/scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SSS_GLTF_MAX_FILE_SIZE (1u << 30)      /* a .gltf, .glb or .bin file */
+#define SSS_GLTF_MAX_JSON_SIZE (64u << 20)     /* the JSON of a .gltf or a .glb's JSON chunk */
+#define SSS_GLTF_DEFAULT_WIDTH 960
+#define SSS_GLTF_DEFAULT_HEIGHT 540
+
+typedef struct sss_gltf_desc {
+    int width, height;  /* image size; 0 = from the camera's aspectRatio, else 960 x 540 */
+    int use_camera;     /* nonzero: take cameras[camera] (its first node) instead of the first camera node */
+    int camera;
+    double light_scale; /* multiplies every light's intensity; 0 = 1 */
+} sss_gltf_desc;
+
+typedef struct sss_gltf_material {
+    int subsurface;          /* 1: the coefficients below; 0: diffuse with reflectance albedo */
+    double albedo[3];        /* diffuse: baseColorFactor (linear rgb) */
+    double sigma_a[3], sigma_s[3]; /* subsurface: per world unit */
+    double g, eta;
+    char *texture;           /* subsurface: baseColorTexture's image file (resolved path) or NULL */
+} sss_gltf_material;
+
+typedef struct sss_gltf_object {
+    sss_mesh mesh;           /* WORLD space (the node's transform applied) */
+    sss_gltf_material material;
+    int node, mesh_index, primitive; /* where it came from, for messages */
+} sss_gltf_object;
+
+typedef struct sss_gltf_scene {
+    sss_gltf_object *objects;
+    size_t object_count;
+    sss_camera camera;       /* always set: the asset's camera or a framing one */
+    int camera_from_asset;   /* 1 when the asset had the camera */
+    sss_light *lights;       /* point, spot, directional */
+    size_t light_count;
+} sss_gltf_scene;
+
+/* Imports a .gltf or .glb (by content: a .glb starts with "glTF"). desc may be NULL. On failure *out
+ * is left empty and err names the file and the JSON path. */
+sss_result sss_gltf_load(const char *path, const sss_gltf_desc *desc, sss_gltf_scene *out, sss_error *err);
+/* The same from memory; base_dir resolves external URIs (NULL = "."), name is used in messages. */
+sss_result sss_gltf_parse(const void *data, size_t size, const char *base_dir, const char *name,
+                          const sss_gltf_desc *desc, sss_gltf_scene *out, sss_error *err);
+void sss_gltf_scene_free(sss_gltf_scene *scene);
+
+/* The scene as JSON text of our format (docs/scene-format.md): objects[i] gets "mesh": mesh_paths[i] and an
+ * identity transform (the meshes are in world space); texture paths are written as given in the
+ * materials. *json is malloc'd (NUL-terminated). */
+sss_result sss_gltf_scene_json(const sss_gltf_scene *scene, const char *const *mesh_paths, char **json,
+                               sss_error *err);
+
+/* Writes the scene as scene_path (JSON, written atomically) plus one binary PLY per object beside it
+ * (<stem>_objN.ply, world space, referenced by file name). On failure nothing is left behind. */
+sss_result sss_gltf_write_scene(const sss_gltf_scene *scene, const char *scene_path, sss_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,88 @@
+/* scene/gltf_internal.h — the parts of the glTF importer shared between its files (internal).
+ * Errors are "<file>: <JSON path>: <problem>"; the path is written by the caller into the message. */
+#ifndef SSS_SCENE_GLTF_INTERNAL_H
+#define SSS_SCENE_GLTF_INTERNAL_H
+
+#include <cjson/cJSON.h>
+#include <stdint.h>
+
+#include "sss/gltf.h"
+
+typedef struct gltf_buffer {
+    unsigned char *owned;      /* decoded data: URI or external file (freed), or NULL */
+    const unsigned char *data; /* owned, or the .glb's BIN chunk */
+    size_t size;
+    int loaded;
+} gltf_buffer;
+
+typedef struct gltf_ctx {
+    const char *name;     /* the asset's file name, for messages */
+    const char *base_dir; /* folder of external URIs */
+    sss_error *err;
+    cJSON *root;
+    const unsigned char *glb_bin; /* the .glb's BIN chunk, or NULL */
+    size_t glb_bin_size;
+    gltf_buffer *buffers;
+    size_t buffer_count;
+    sss_gltf_desc desc;
+} gltf_ctx;
+
+/* A validated accessor: element i, component k is at base + i * stride + k * component size. */
+typedef struct gltf_accessor {
+    const unsigned char *base;
+    size_t count, stride;
+    int components;     /* 1 (SCALAR), 2 (VEC2), 3 (VEC3), 4 (VEC4), 16 (MAT4) */
+    int component_type; /* 5120..5126 */
+    int normalized;
+} gltf_accessor;
+
+/* "<file>: " + the formatted rest; returns code. */
+sss_result gltf_fail(gltf_ctx *c, sss_result code, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* Typed members (path names the object for messages; absent and not required -> def). */
+const cJSON *gltf_get(const cJSON *obj, const char *key);
+sss_result gltf_int(gltf_ctx *c, const cJSON *obj, const char *path, const char *key, int required, long def,
+                    long min, long max, long *out);
+sss_result gltf_number(gltf_ctx *c, const cJSON *obj, const char *path, const char *key, double def,
+                       double *out);
+/* An array of exactly n finite numbers (absent -> def, which may be NULL to leave out untouched). */
+sss_result gltf_vec(gltf_ctx *c, const cJSON *obj, const char *path, const char *key, int n, const double *def,
+                    double *out);
+/* obj must be a JSON object (or absent when optional). */
+sss_result gltf_object(gltf_ctx *c, const cJSON *obj, const char *path);
+/* The root array `key` (absent -> NULL and count 0); fails when it is not an array. */
+sss_result gltf_array(gltf_ctx *c, const char *key, const cJSON **arr, size_t *count);
+
+/* gltf_file.c: the container. Splits a .glb (or takes the text of a .gltf), parses the JSON into
+ * c->root, checks asset.version and extensionsRequired. */
+sss_result gltf_open(gltf_ctx *c, const unsigned char *data, size_t size);
+void gltf_close(gltf_ctx *c);
+/* base_dir + "/" + a percent-decoded relative URI (malloc'd), or NULL when the URI is absolute or
+ * malformed. */
+char *gltf_resolve_uri(const char *base_dir, const char *uri);
+/* The bytes of buffers[index] (loaded on first use: BIN chunk, data: URI or external file). */
+sss_result gltf_buffer_data(gltf_ctx *c, long index, const char *path, const unsigned char **data,
+                            size_t *size);
+
+/* gltf_accessor.c. accessors[index], used as `use` (a JSON path for messages, e.g.
+ * "meshes[0].primitives[1].attributes.POSITION"); components: the required element size. */
+sss_result gltf_accessor_get(gltf_ctx *c, long index, const char *use, int components, gltf_accessor *a);
+/* Component k of element i as a float (normalized integers mapped to [0, 1] or [-1, 1]). */
+double gltf_accessor_float(const gltf_accessor *a, size_t i, int k);
+/* Element i of an unsigned integer accessor (indices). */
+uint32_t gltf_accessor_uint(const gltf_accessor *a, size_t i);
+
+/* gltf_material.c: materials[index] (index -1: the glTF default material). */
+sss_result gltf_material(gltf_ctx *c, long index, sss_gltf_material *m);
+void gltf_material_free(sss_gltf_material *m);
+
+/* gltf_mesh.c: primitive `prim` of meshes[mesh_index] baked into world space with the row-major
+ * matrix world (p' = world p). */
+sss_result gltf_primitive_mesh(gltf_ctx *c, long mesh_index, long prim, const cJSON *primitive,
+                               const double world[16], sss_mesh *out, int *has_uvs);
+
+#endif

@@ -1,0 +1,185 @@
+/* glTF mesh primitives (glTF 2.0 spec, section 3.7.2) baked into world-space sss meshes. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene/gltf_internal.h"
+
+enum { MODE_TRIANGLES = 4, MODE_TRIANGLE_STRIP = 5, MODE_TRIANGLE_FAN = 6 };
+
+/* Triangle t of a primitive of the given mode as positions in the index list (strips alternate
+ * their winding so that every triangle keeps the first one's orientation; spec 3.7.2.1). */
+static void triangle_corners(int mode, size_t t, size_t corner[3])
+{
+    if (mode == MODE_TRIANGLES) {
+        corner[0] = 3 * t, corner[1] = 3 * t + 1, corner[2] = 3 * t + 2;
+    } else if (mode == MODE_TRIANGLE_STRIP) {
+        corner[0] = t + (t & 1), corner[1] = t + 1 - (t & 1), corner[2] = t + 2;
+    } else {
+        corner[0] = t + 1, corner[1] = t + 2, corner[2] = 0;
+    }
+}
+
+static sss_result read_indices(gltf_ctx *c, const cJSON *primitive, const char *path, int mode, size_t vertex_count,
+                               sss_mesh *m)
+{
+    gltf_accessor idx = {0};
+    size_t corners = vertex_count;
+    long index_accessor = -1;
+    sss_result res = gltf_int(c, primitive, path, "indices", 0, -1, 0, 1L << 30, &index_accessor);
+    if (res != SSS_OK) return res;
+    char use[192];
+    snprintf(use, sizeof use, "%s.indices", path);
+    if (index_accessor >= 0) {
+        if ((res = gltf_accessor_get(c, index_accessor, use, 1, &idx)) != SSS_OK) return res;
+        if (idx.component_type != 5121 && idx.component_type != 5123 && idx.component_type != 5125)
+            return gltf_fail(c, SSS_ERROR_PARSE, "%s: accessors[%ld] must hold unsigned integers", use, index_accessor);
+        corners = idx.count;
+    }
+    if (mode == MODE_TRIANGLES && corners % 3 != 0)
+        return gltf_fail(c, SSS_ERROR_PARSE, "%s: %zu indices, not a multiple of 3", path, corners);
+    size_t tris = mode == MODE_TRIANGLES ? corners / 3 : corners >= 3 ? corners - 2 : 0;
+    if (tris == 0) return gltf_fail(c, SSS_ERROR_PARSE, "%s: no triangles", path);
+    if (tris > SSS_MESH_MAX_TRIANGLES)
+        return gltf_fail(c, SSS_ERROR_LIMIT, "%s: %zu triangles, more than the %u accepted", path, tris,
+                         (unsigned)SSS_MESH_MAX_TRIANGLES);
+    if (!(m->indices = malloc(3 * tris * sizeof *m->indices)))
+        return gltf_fail(c, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    m->triangle_count = (uint32_t)tris;
+    for (size_t t = 0; t < tris; t++) {
+        size_t corner[3];
+        triangle_corners(mode, t, corner);
+        for (int k = 0; k < 3; k++) {
+            uint32_t v = index_accessor >= 0 ? gltf_accessor_uint(&idx, corner[k]) : (uint32_t)corner[k];
+            if (v >= vertex_count)
+                return gltf_fail(c, SSS_ERROR_PARSE, "%s: accessors[%ld][%zu] = %u is out of range (%zu vertices)",
+                                 use, index_accessor, corner[k], v, vertex_count);
+            m->indices[3 * t + (size_t)k] = v;
+        }
+    }
+    return SSS_OK;
+}
+
+/* The cofactor matrix of the upper 3x3 of a row-major 4x4: normals transform with it (it is
+ * det(M) M^-T, defined also for singular M). */
+static void cofactor3(const double m[16], double cof[9])
+{
+#define A(r, c) m[4 * (r) + (c)]
+    for (int r = 0; r < 3; r++)
+        for (int col = 0; col < 3; col++) {
+            int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (col + 1) % 3, c2 = (col + 2) % 3;
+            cof[3 * r + col] = A(r1, c1) * A(r2, c2) - A(r1, c2) * A(r2, c1);
+        }
+#undef A
+}
+
+static double det3(const double m[16])
+{
+    return m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
+           m[2] * (m[4] * m[9] - m[5] * m[8]);
+}
+
+/* POSITION, NORMAL, TEXCOORD_0 of the primitive into m (world space); *normals_ok = 0 when the file
+ * has no normals or one of them vanishes (they are then computed from the triangles). */
+static sss_result read_vertices(gltf_ctx *c, const cJSON *attributes, const char *path, const double world[16],
+                                sss_mesh *m, int *normals_ok)
+{
+    char use[192];
+    long index = 0;
+    gltf_accessor pos, nrm, uv;
+    snprintf(use, sizeof use, "%s.attributes", path);
+    sss_result res = gltf_int(c, attributes, use, "POSITION", 1, 0, 0, 1L << 30, &index);
+    snprintf(use, sizeof use, "%s.attributes.POSITION", path);
+    if (res != SSS_OK || (res = gltf_accessor_get(c, index, use, 3, &pos)) != SSS_OK) return res;
+    if (pos.component_type != 5126) return gltf_fail(c, SSS_ERROR_UNSUPPORTED, "%s: positions must be floats", use);
+    if (pos.count > SSS_MESH_MAX_VERTICES)
+        return gltf_fail(c, SSS_ERROR_LIMIT, "%s: %zu vertices, more than the %u accepted", use, pos.count,
+                         (unsigned)SSS_MESH_MAX_VERTICES);
+    size_t n = pos.count;
+    int has_normals = gltf_get(attributes, "NORMAL") != NULL, has_uvs = gltf_get(attributes, "TEXCOORD_0") != NULL;
+    if (has_normals) {
+        snprintf(use, sizeof use, "%s.attributes.NORMAL", path);
+        if ((res = gltf_int(c, attributes, path, "NORMAL", 1, 0, 0, 1L << 30, &index)) != SSS_OK ||
+            (res = gltf_accessor_get(c, index, use, 3, &nrm)) != SSS_OK)
+            return res;
+        if (nrm.count != n) return gltf_fail(c, SSS_ERROR_PARSE, "%s: %zu normals for %zu positions", use, nrm.count, n);
+    }
+    if (has_uvs) {
+        snprintf(use, sizeof use, "%s.attributes.TEXCOORD_0", path);
+        if ((res = gltf_int(c, attributes, path, "TEXCOORD_0", 1, 0, 0, 1L << 30, &index)) != SSS_OK ||
+            (res = gltf_accessor_get(c, index, use, 2, &uv)) != SSS_OK)
+            return res;
+        if (uv.count != n) return gltf_fail(c, SSS_ERROR_PARSE, "%s: %zu UVs for %zu positions", use, uv.count, n);
+    }
+    m->vertex_count = (uint32_t)n;
+    m->positions = malloc(3 * n * sizeof *m->positions);
+    m->normals = malloc(3 * n * sizeof *m->normals);
+    m->uvs = has_uvs ? malloc(2 * n * sizeof *m->uvs) : NULL;
+    if (!m->positions || !m->normals || (has_uvs && !m->uvs))
+        return gltf_fail(c, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory for %zu vertices", path, n);
+    double cof[9];
+    cofactor3(world, cof);
+    double sign = det3(world) < 0 ? -1.0 : 1.0; /* cof = det(M) M^-T: undo a negative det's flip */
+    *normals_ok = has_normals;
+    for (size_t i = 0; i < n; i++) {
+        for (int r = 0; r < 3; r++) {
+            double p = world[4 * r + 3];
+            for (int k = 0; k < 3; k++) p += world[4 * r + k] * gltf_accessor_float(&pos, i, k);
+            if (!isfinite((float)p))
+                return gltf_fail(c, SSS_ERROR_PARSE, "%s: vertex %zu is not finite in world space", path, i);
+            m->positions[3 * i + (size_t)r] = (float)p;
+        }
+        if (has_normals) {
+            double w[3], len2 = 0;
+            for (int r = 0; r < 3; r++) {
+                w[r] = 0;
+                for (int k = 0; k < 3; k++) w[r] += sign * cof[3 * r + k] * gltf_accessor_float(&nrm, i, k);
+                len2 += w[r] * w[r];
+            }
+            if (!(len2 > 0) || !isfinite(len2)) *normals_ok = 0;
+            for (int r = 0; r < 3; r++) m->normals[3 * i + (size_t)r] = *normals_ok ? (float)(w[r] / sqrt(len2)) : 0.0f;
+        }
+        if (has_uvs) {
+            /* glTF's UV origin is the image's top-left corner; sss's (OpenGL's) the bottom-left. */
+            m->uvs[2 * i] = (float)gltf_accessor_float(&uv, i, 0);
+            m->uvs[2 * i + 1] = (float)(1.0 - gltf_accessor_float(&uv, i, 1));
+            if (!isfinite(m->uvs[2 * i]) || !isfinite(m->uvs[2 * i + 1]))
+                return gltf_fail(c, SSS_ERROR_PARSE, "%s: TEXCOORD_0 of vertex %zu is not finite", path, i);
+        }
+    }
+    return SSS_OK;
+}
+
+sss_result gltf_primitive_mesh(gltf_ctx *c, long mesh_index, long prim, const cJSON *primitive,
+                               const double world[16], sss_mesh *out, int *has_uvs)
+{
+    char path[96];
+    snprintf(path, sizeof path, "meshes[%ld].primitives[%ld]", mesh_index, prim);
+    memset(out, 0, sizeof *out);
+    long mode = MODE_TRIANGLES;
+    sss_result res = gltf_object(c, primitive, path);
+    if (res == SSS_OK) res = gltf_int(c, primitive, path, "mode", 0, MODE_TRIANGLES, 0, 6, &mode);
+    if (res == SSS_OK && mode < MODE_TRIANGLES)
+        res = gltf_fail(c, SSS_ERROR_UNSUPPORTED, "%s.mode: %ld (points or lines) is not supported", path, mode);
+    const cJSON *attributes = gltf_get(primitive, "attributes");
+    if (res == SSS_OK && !cJSON_IsObject(attributes))
+        res = gltf_fail(c, SSS_ERROR_PARSE, "%s.attributes: expected an object", path);
+    int normals_ok = 0;
+    if (res == SSS_OK) res = read_vertices(c, attributes, path, world, out, &normals_ok);
+    if (res == SSS_OK) res = read_indices(c, primitive, path, (int)mode, out->vertex_count, out);
+    if (res == SSS_OK && det3(world) < 0) /* a mirroring transform turns counter-clockwise into clockwise */
+        for (uint32_t t = 0; t < out->triangle_count; t++) {
+            uint32_t tmp = out->indices[3 * t + 1];
+            out->indices[3 * t + 1] = out->indices[3 * t + 2];
+            out->indices[3 * t + 2] = tmp;
+        }
+    if (res == SSS_OK && !normals_ok) res = sss_mesh_compute_normals(out, c->err);
+    if (res != SSS_OK) {
+        sss_mesh_free(out);
+        return res;
+    }
+    out->source_flags = (normals_ok ? SSS_MESH_FROM_FILE_NORMALS : 0u) | (out->uvs ? SSS_MESH_FROM_FILE_UVS : 0u);
+    *has_uvs = out->uvs != NULL;
+    return SSS_OK;
+}

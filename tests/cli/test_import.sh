@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# sss import: a .glb becomes a scene + PLYs that `sss export pbrt` (any scene consumer) loads; bad
+# input exits 1 naming the file and leaves nothing; usage errors exit 2. A .glb given directly as a
+# scene (imported in memory) exports to the same PBRT scene as its imported scene file.
+SSS=$1; ROOT=$2
+fail=0
+err() { echo "FAIL: $*"; fail=1; }
+dir=$(mktemp -d); trap 'rm -rf "$dir"' EXIT
+data="$ROOT/tests/data/gltf"
+
+"$SSS" import "$data/scatter.glb" -o "$dir/s.json" >/dev/null || err "import failed"
+n_ply=$(ls "$dir"/s_obj*.ply 2>/dev/null | wc -l)
+[ "$n_ply" = 6 ] || err "expected 6 PLY files, got $n_ply"
+grep -q '"subsurface"' "$dir/s.json" || err "no subsurface material"
+
+# The same scene, through the import and directly: identical PBRT scenes and meshes.
+mkdir "$dir/a" "$dir/b"
+"$SSS" export pbrt "$dir/s.json" -o "$dir/a/x.pbrt" >/dev/null || err "the imported scene does not load"
+"$SSS" export pbrt "$data/scatter.glb" -o "$dir/b/x.pbrt" >/dev/null || err "the .glb does not load as a scene"
+# (line 1 names the input)
+diff <(sed 1d "$dir/a/x.pbrt") <(sed 1d "$dir/b/x.pbrt") >/dev/null || err "the .glb and its imported scene export differently"
+for i in 0 1 2 3 4 5; do cmp -s "$dir/a/x_obj$i.ply" "$dir/b/x_obj$i.ply" || err "object $i differs"; done
+
+# Bad inputs: exit 1, the file and the JSON path named, nothing written.
+for bad in truncated.glb accessor_range.gltf missing_buffer.gltf required_ext.gltf index_range.gltf; do
+    out=$("$SSS" import "$data/bad/$bad" -o "$dir/bad.json" 2>&1); code=$?
+    [ $code = 1 ] || err "$bad: exit $code"
+    case "$out" in *"$bad"*) ;; *) err "$bad: message does not name the file: $out";; esac
+done
+out=$("$SSS" render "$data/bad/accessor_range.gltf" -o "$dir/bad.png" 2>&1); code=$?
+[ $code = 1 ] || err "render of a bad .gltf: exit $code"
+case "$out" in *"accessors[0]"*) ;; *) err "render: message does not name the accessor: $out";; esac
+ls "$dir" | grep -q '^bad' && err "a bad input left output"
+# export gltf, then import: the default scene comes back with its subsurface material.
+"$SSS" export gltf "$ROOT/scenes/default.json" -o "$dir/d.glb" >/dev/null || err "export gltf failed"
+"$SSS" import "$dir/d.glb" -o "$dir/d.json" >/dev/null || err "import of the export failed"
+grep -q '"subsurface"' "$dir/d.json" || err "the export lost the subsurface material"
+"$SSS" export gltf "$ROOT/scenes/default.json" >/dev/null 2>&1; [ $? = 2 ] || err "export gltf without -o is not a usage error"
+# Usage errors: exit 2.
+"$SSS" import "$data/scatter.glb" >/dev/null 2>&1; [ $? = 2 ] || err "missing -o is not a usage error"
+"$SSS" import "$data/scatter.glb" -o "$dir/x.json" --light-scale 0 >/dev/null 2>&1; [ $? = 2 ] || err "--light-scale 0 is not a usage error"
+"$SSS" import "$data/scatter.glb" -o "$dir/x.json" --camera -1 >/dev/null 2>&1; [ $? = 2 ] || err "--camera -1 is not a usage error"
+exit $fail

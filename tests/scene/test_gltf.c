@@ -1,0 +1,465 @@
+/* glTF 2.0 import (sss/gltf.h) on the assets of tests/data/gltf (written by make_assets.py):
+ * material coefficients against the extension formulas evaluated here (the albedo inversion by
+ * bisection of the forward formula, not the importer's closed-form root), node transforms against
+ * the same object placed by hand in our scene format, cameras, lights, .glb = .gltf, bad inputs. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "sss/gltf.h"
+#include "sss/scene.h"
+
+#define DATA SSS_TEST_DATA "/gltf/"
+
+static const double PI = 3.14159265358979323846;
+
+static const sss_gltf_object *find_node(const sss_gltf_scene *s, int node)
+{
+    for (size_t i = 0; i < s->object_count; i++)
+        if (s->objects[i].node == node) return &s->objects[i];
+    return NULL;
+}
+
+/* KHR_materials_volume_scatter's forward formula: the multiple-scattering albedo of alpha. */
+static double multiscatter_albedo(double alpha, double g)
+{
+    double s = sqrt((1 - alpha) / (1 - g * alpha));
+    return (1 - s) * (1 - 0.139 * s) / (1 + 1.17 * s);
+}
+
+/* alpha with multiscatter_albedo(alpha) = rho, by bisection (the function increases with alpha). */
+static double albedo_by_bisection(double rho, double g)
+{
+    double lo = 0, hi = 1;
+    for (int i = 0; i < 200; i++) {
+        double mid = 0.5 * (lo + hi);
+        if (multiscatter_albedo(mid, g) < rho) lo = mid;
+        else hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+static void check_subsurface(const sss_gltf_material *m, const double color[3], double distance,
+                             const double rho[3], double g, double eta)
+{
+    CHECK(m->subsurface);
+    CHECK_NEAR(m->g, g, 0);
+    CHECK_NEAR(m->eta, eta, 0);
+    for (int k = 0; k < 3; k++) {
+        double sigma_t = -log(color[k]) / distance;
+        double alpha = albedo_by_bisection(rho[k], g);
+        CHECK_REL(m->sigma_s[k], alpha * sigma_t, 1e-9);
+        CHECK_REL(m->sigma_a[k], (1 - alpha) * sigma_t, 1e-9);
+        CHECK_REL(m->sigma_a[k] + m->sigma_s[k], sigma_t, 1e-12); /* attenuationColor after d: exp(-sigma_t d) */
+    }
+}
+
+static void test_materials(void)
+{
+    sss_gltf_scene s;
+    sss_error err = {0};
+    CHECK_MSG(sss_gltf_load(DATA "scatter.gltf", NULL, &s, &err) == SSS_OK, "%s", err.message);
+    CHECK(s.object_count == 6);
+    const sss_gltf_object *scatter = find_node(&s, 1), *diffuse = find_node(&s, 2), *glass = find_node(&s, 3),
+                          *defaults = find_node(&s, 4);
+    CHECK(scatter && diffuse && glass && defaults);
+    if (!scatter || !diffuse || !glass || !defaults) return;
+    /* materials[0]: volume (d = 0.25, c = [0.5, 0.25, 0.125]) + scatter (rho, g 0.3) + ior 1.4 */
+    check_subsurface(&scatter->material, (double[]){0.5, 0.25, 0.125}, 0.25, (double[]){0.9, 0.6, 0.3}, 0.3, 1.4);
+    /* materials[3]: no ior (1.5), no scatterAnisotropy (0) */
+    check_subsurface(&defaults->material, (double[]){0.1, 0.2, 0.4}, 2, (double[]){0.95, 0.5, 0.05}, 0, 1.5);
+    /* materials[1]: plain PBR -> diffuse baseColor; materials[2]: volume without scattering -> diffuse */
+    CHECK(!diffuse->material.subsurface && !glass->material.subsurface);
+    for (int k = 0; k < 3; k++) {
+        CHECK_NEAR(diffuse->material.albedo[k], 0.2 * (k + 1), 1e-15);
+        CHECK_NEAR(glass->material.albedo[k], 0.7, 1e-15);
+    }
+    sss_gltf_scene_free(&s);
+}
+
+/* Writes mesh as a PLY in dir and loads a scene that places it with our transform; returns the
+ * world mesh of that object (sss_scene_object_world_mesh). */
+static int place_by_hand(const char *dir, const sss_mesh *local, const char *transform_json, sss_mesh *world)
+{
+    char ply[512], json[1024];
+    snprintf(ply, sizeof ply, "%s/local.ply", dir);
+    if (sss_mesh_write_ply(ply, local, NULL) != SSS_OK) return 0;
+    int n = snprintf(json, sizeof json,
+                     "{\"camera\": {\"position\": [0, 0, 10], \"look_at\": [0, 0, 0]}, \"objects\": [{\"mesh\": "
+                     "\"local.ply\", \"transform\": %s, \"material\": {\"type\": \"diffuse\", \"reflectance\": [0.5, 0.5, 0.5]}}]}",
+                     transform_json);
+    sss_scene scene;
+    sss_error err = {0};
+    if (sss_scene_parse(json, (size_t)n, dir, "by-hand", NULL, &scene, &err) != SSS_OK) {
+        fprintf(stderr, "%s\n", err.message);
+        return 0;
+    }
+    sss_result res = sss_scene_object_world_mesh(&scene.objects[0], 0, world, &err);
+    sss_scene_free(&scene);
+    return res == SSS_OK;
+}
+
+static void check_same_mesh(const sss_mesh *a, const sss_mesh *b)
+{
+    CHECK(a->vertex_count == b->vertex_count && a->triangle_count == b->triangle_count);
+    if (a->vertex_count != b->vertex_count || a->triangle_count != b->triangle_count) return;
+    double dp = 0, dn = 0;
+    for (size_t i = 0; i < 3 * (size_t)a->vertex_count; i++) {
+        dp = fmax(dp, fabs((double)a->positions[i] - b->positions[i]));
+        dn = fmax(dn, fabs((double)a->normals[i] - b->normals[i]));
+    }
+    CHECK_NEAR(dp, 0, 2e-6);
+    CHECK_NEAR(dn, 0, 2e-6);
+    CHECK(memcmp(a->indices, b->indices, 3 * sizeof *a->indices * a->triangle_count) == 0);
+}
+
+static void test_node_transforms(void)
+{
+    sss_gltf_scene s;
+    sss_error err = {0};
+    CHECK_MSG(sss_gltf_load(DATA "scatter.gltf", NULL, &s, &err) == SSS_OK, "%s", err.message);
+    const sss_gltf_object *local = find_node(&s, 10), *child = find_node(&s, 1), *matrix = find_node(&s, 2),
+                          *mirror = find_node(&s, 11);
+    CHECK(local && child && matrix && mirror);
+    if (!local || !child || !matrix || !mirror) return;
+    char dir[] = "/tmp/sss_test_gltf_XXXXXX";
+    CHECK(mkdtemp(dir) != NULL);
+    sss_mesh world = {0};
+    /* nodes[1] (T [0, 0.5, 0], R 60 degrees about (1, 1, 0), S [2, 1, 0.5]) under nodes[0] (T [1, 0, 0]) */
+    CHECK(place_by_hand(dir, &local->mesh, "{\"translate\": [1, 0.5, 0], \"rotate\": [1, 1, 0, 60], \"scale\": [2, 1, 0.5]}",
+                        &world));
+    check_same_mesh(&child->mesh, &world);
+    sss_mesh_free(&world);
+    /* nodes[2]: `matrix` (column-major) = T [-2, 0, 0] R 30 degrees about y, S 1.5 */
+    CHECK(place_by_hand(dir, &local->mesh, "{\"translate\": [-2, 0, 0], \"rotate\": [0, 1, 0, 30], \"scale\": 1.5}",
+                        &world));
+    check_same_mesh(&matrix->mesh, &world);
+    sss_mesh_free(&world);
+    /* nodes[11]: a mirror (S [-1, 1, 1]); both flip the winding so the cube stays outward-facing */
+    CHECK(place_by_hand(dir, &local->mesh, "{\"translate\": [0, -3, 0], \"scale\": [-1, 1, 1]}", &world));
+    check_same_mesh(&mirror->mesh, &world);
+    sss_mesh_free(&world);
+    for (size_t i = 0; i < s.object_count; i++) CHECK(sss_mesh_signed_volume(&s.objects[i].mesh) > 0);
+    CHECK_NEAR(sss_mesh_signed_volume(&child->mesh), 2 * 1 * 0.5, 1e-5); /* det of the scale */
+    char path[600];
+    snprintf(path, sizeof path, "%s/local.ply", dir);
+    remove(path);
+    rmdir(dir);
+    sss_gltf_scene_free(&s);
+}
+
+static void rotate_x(double degrees, const double v[3], double out[3])
+{
+    double c = cos(degrees * PI / 180), sn = sin(degrees * PI / 180);
+    out[0] = v[0];
+    out[1] = c * v[1] - sn * v[2];
+    out[2] = sn * v[1] + c * v[2];
+}
+
+static void check_direction(const double from[3], const double to[3], const double expected[3])
+{
+    double d[3] = {to[0] - from[0], to[1] - from[1], to[2] - from[2]};
+    double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (int k = 0; k < 3; k++) CHECK_NEAR(d[k] / len, expected[k], 1e-12);
+}
+
+static void test_cameras(void)
+{
+    sss_gltf_scene s;
+    sss_error err = {0};
+    static const double zero[3] = {0, 0, 0}, minus_z[3] = {0, 0, -1}, plus_y[3] = {0, 1, 0};
+    double fwd[3], up[3];
+    /* nodes[5]: cameras[0] (yfov 0.6, aspect 1.5) at [0, 1, 8] turned -7 degrees about x */
+    CHECK_MSG(sss_gltf_load(DATA "scatter.glb", NULL, &s, &err) == SSS_OK, "%s", err.message);
+    CHECK(s.camera_from_asset);
+    CHECK(s.camera.width == 810 && s.camera.height == 540);
+    CHECK_NEAR(s.camera.fov, 0.6 * 180 / PI, 1e-12); /* landscape: yfov is the shorter axis */
+    static const double camera0[3] = {0, 1, 8};
+    for (int k = 0; k < 3; k++) CHECK_NEAR(s.camera.position[k], camera0[k], 1e-12);
+    rotate_x(-7, minus_z, fwd);
+    rotate_x(-7, plus_y, up);
+    check_direction(s.camera.position, s.camera.look_at, fwd);
+    check_direction(zero, s.camera.up, up);
+    sss_gltf_scene_free(&s);
+
+    /* --camera 1 (yfov 0.8, no aspect) at [8, 0, 0] turned 90 degrees about y: looks down -x; a
+     * portrait image makes the width the shorter axis: fov = 2 atan(tan(yfov / 2) W / H). */
+    sss_gltf_desc desc = {.use_camera = 1, .camera = 1, .width = 400, .height = 800};
+    CHECK_MSG(sss_gltf_load(DATA "scatter.glb", &desc, &s, &err) == SSS_OK, "%s", err.message);
+    CHECK(s.camera.width == 400 && s.camera.height == 800);
+    CHECK_NEAR(s.camera.fov, 2 * atan(tan(0.4) * 0.5) * 180 / PI, 1e-12);
+    check_direction(s.camera.position, s.camera.look_at, (double[]){-1, 0, 0});
+    CHECK_NEAR(s.camera.position[0], 8, 1e-12);
+    sss_gltf_scene_free(&s);
+
+    desc.camera = 5;
+    CHECK(sss_gltf_load(DATA "scatter.glb", &desc, &s, &err) == SSS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(strstr(err.message, "cameras[5]") != NULL, "%s", err.message);
+
+    /* no camera: a framing camera sees every vertex */
+    CHECK_MSG(sss_gltf_load(DATA "external.gltf", NULL, &s, &err) == SSS_OK, "%s", err.message);
+    CHECK(!s.camera_from_asset);
+    sss_camera_basis basis;
+    CHECK(sss_camera_basis_init(&s.camera, &basis, NULL) == SSS_OK);
+    const sss_mesh *m = &s.objects[0].mesh;
+    for (uint32_t i = 0; i < m->vertex_count; i++) {
+        double p[3] = {m->positions[3 * i], m->positions[3 * i + 1], m->positions[3 * i + 2]}, raster[2];
+        CHECK(sss_camera_project(&basis, p, raster, NULL));
+        CHECK(raster[0] > 0 && raster[0] < s.camera.width && raster[1] > 0 && raster[1] < s.camera.height);
+    }
+    sss_gltf_scene_free(&s);
+}
+
+static void test_lights(void)
+{
+    sss_gltf_desc desc = {.light_scale = 2.5};
+    sss_gltf_scene s;
+    sss_error err = {0};
+    CHECK_MSG(sss_gltf_load(DATA "scatter.gltf", &desc, &s, &err) == SSS_OK, "%s", err.message);
+    CHECK(s.light_count == 3);
+    if (s.light_count != 3) return;
+    const sss_light *point = &s.lights[0], *spot = &s.lights[1], *sun = &s.lights[2];
+    static const double minus_z[3] = {0, 0, -1};
+    static const double point_at[3] = {2, 3, 4}, point_color[3] = {1, 0.5, 0.25};
+    double down45[3];
+    rotate_x(-45, minus_z, down45);
+    CHECK(point->type == SSS_LIGHT_POINT && spot->type == SSS_LIGHT_SPOT && sun->type == SSS_LIGHT_DIRECTIONAL);
+    for (int k = 0; k < 3; k++) {
+        CHECK_NEAR(point->position[k], point_at[k], 1e-12);
+        CHECK_NEAR(point->intensity[k], 2.5 * 20 * point_color[k], 1e-12); /* candela as W/sr */
+        CHECK_NEAR(spot->intensity[k], 2.5 * 30, 1e-12);
+        CHECK_NEAR(sun->radiance[k], 2.5 * 3, 1e-12); /* lux as irradiance */
+        CHECK_NEAR(sun->direction[k], down45[k], 1e-12);
+    }
+    check_direction(spot->position, spot->look_at, (double[]){0, -1, 0});
+    CHECK_NEAR(spot->cone_angle, 0.5 * 180 / PI, 1e-12);
+    CHECK_NEAR(spot->cone_delta, (0.5 - 0.2) * 180 / PI, 1e-12);
+    sss_gltf_scene_free(&s);
+}
+
+/* The .glb holds the same JSON and bytes as the .gltf's data: URI: identical imports. */
+static void test_glb_equals_gltf(void)
+{
+    sss_gltf_scene a, b;
+    sss_error err = {0};
+    CHECK_MSG(sss_gltf_load(DATA "scatter.gltf", NULL, &a, &err) == SSS_OK, "%s", err.message);
+    CHECK_MSG(sss_gltf_load(DATA "scatter.glb", NULL, &b, &err) == SSS_OK, "%s", err.message);
+    CHECK(a.object_count == b.object_count && a.object_count == 6);
+    for (size_t i = 0; i < a.object_count && i < b.object_count; i++) {
+        const sss_mesh *x = &a.objects[i].mesh, *y = &b.objects[i].mesh;
+        CHECK(x->vertex_count == y->vertex_count && x->vertex_count == 24 && x->triangle_count == 12);
+        CHECK(memcmp(x->positions, y->positions, 12 * (size_t)x->vertex_count) == 0);
+        CHECK(x->uvs && y->uvs && memcmp(x->uvs, y->uvs, 8 * (size_t)x->vertex_count) == 0);
+        CHECK(memcmp(a.objects[i].material.sigma_s, b.objects[i].material.sigma_s, sizeof(double[3])) == 0);
+    }
+    sss_gltf_scene_free(&a);
+    sss_gltf_scene_free(&b);
+}
+
+/* An external buffer whose URI needs percent-decoding ("external%20data.bin"), no normals. */
+static void test_external_buffer(void)
+{
+    sss_gltf_scene s;
+    sss_error err = {0};
+    CHECK_MSG(sss_gltf_load(DATA "external.gltf", NULL, &s, &err) == SSS_OK, "%s", err.message);
+    CHECK(s.object_count == 1 && s.objects[0].mesh.triangle_count == 1);
+    const sss_mesh *m = &s.objects[0].mesh;
+    CHECK(m->positions[3] == 1.0f && m->positions[7] == 1.0f);
+    CHECK_NEAR(m->normals[2], 1, 1e-6); /* computed: the triangle faces +z */
+    CHECK(!s.objects[0].material.subsurface && s.objects[0].material.albedo[0] == 1.0);
+    sss_gltf_scene_free(&s);
+}
+
+/* gltf_transform.glb, written by @gltf-transform (make_gltf_transform.cjs): interleaved vertex
+ * buffer (byteStride), 32-bit indices, a volume without scattering (-> diffuse), a scaled parent. */
+static void test_gltf_transform_asset(void)
+{
+    sss_gltf_scene s;
+    sss_error err = {0};
+    CHECK_MSG(sss_gltf_load(DATA "gltf_transform.glb", NULL, &s, &err) == SSS_OK, "%s", err.message);
+    CHECK(s.object_count == 1 && s.light_count == 1);
+    if (s.object_count != 1 || s.light_count != 1) return;
+    const sss_gltf_object *o = &s.objects[0];
+    CHECK(!o->material.subsurface);
+    for (int k = 0; k < 3; k++) CHECK_NEAR(o->material.albedo[k], (0.3 + 0.2 * k), 1e-7); /* float32 in JSON */
+    /* the box's corner i: x, y, z from bits 0, 1, 2 (make_gltf_transform.cjs) */
+    sss_mesh local = {.vertex_count = 8, .triangle_count = o->mesh.triangle_count, .indices = o->mesh.indices};
+    float corners[24], normals[24] = {0};
+    for (int i = 0; i < 8; i++) {
+        corners[3 * i] = i & 1 ? 0.5f : -0.5f;
+        corners[3 * i + 1] = i & 2 ? 1.0f : -1.0f;
+        corners[3 * i + 2] = i & 4 ? 0.5f : -0.5f;
+    }
+    local.positions = corners;
+    local.normals = normals;
+    CHECK(o->mesh.vertex_count == 8 && o->mesh.triangle_count == 12);
+    sss_mesh tmp = {0};
+    CHECK(sss_scene_mesh_copy(&local, &tmp, NULL) == SSS_OK && sss_mesh_compute_normals(&tmp, NULL) == SSS_OK);
+    /* root S 2, child T [0, 1, 0] R 45 degrees about z: world = R (2 p) + [0, 2, 0] */
+    char dir[] = "/tmp/sss_test_gltf_XXXXXX";
+    CHECK(mkdtemp(dir) != NULL);
+    sss_mesh world = {0};
+    CHECK(place_by_hand(dir, &tmp, "{\"translate\": [0, 2, 0], \"rotate\": [0, 0, 1, 45], \"scale\": 2}", &world));
+    check_same_mesh(&o->mesh, &world);
+    CHECK_NEAR(sss_mesh_signed_volume(&o->mesh), 8 * 2, 1e-4);
+    sss_mesh_free(&world);
+    sss_mesh_free(&tmp);
+    char path[600];
+    snprintf(path, sizeof path, "%s/local.ply", dir);
+    remove(path);
+    rmdir(dir);
+    CHECK_NEAR(s.camera.fov, 0.7 * 180 / PI, 1e-6);
+    CHECK(s.camera.width == 720 && s.camera.height == 540); /* aspectRatio 4/3 at the default height */
+    CHECK_NEAR(s.lights[0].intensity[1], 12 * 0.8, 1e-5);
+    sss_gltf_scene_free(&s);
+}
+
+/* exported.glb, written by `sss export gltf exported_source.json`: the coefficients given there. */
+static void test_exported_asset(void)
+{
+    sss_gltf_scene s;
+    sss_error err = {0};
+    CHECK_MSG(sss_gltf_load(DATA "exported.glb", NULL, &s, &err) == SSS_OK, "%s", err.message);
+    CHECK(s.object_count == 2 && s.light_count == 1 && s.camera_from_asset);
+    if (s.object_count != 2 || s.light_count != 1) return;
+    static const double sigma_a[3] = {0.5, 1.0, 2.0}, sigma_s[3] = {20, 15, 10};
+    const sss_gltf_material *m = &s.objects[0].material;
+    CHECK(m->subsurface && !s.objects[1].material.subsurface);
+    for (int k = 0; k < 3; k++) {
+        CHECK_REL(m->sigma_a[k], sigma_a[k], 1e-9);
+        CHECK_REL(m->sigma_s[k], sigma_s[k], 1e-9);
+        CHECK_NEAR(s.objects[1].material.albedo[k], 0.5, 0);
+        CHECK_NEAR(s.lights[0].intensity[k], 40, 1e-12);
+    }
+    CHECK_NEAR(m->g, 0.2, 1e-15);
+    CHECK_NEAR(m->eta, 1.35, 1e-15);
+    CHECK_NEAR(s.lights[0].cone_angle, 25, 1e-12);
+    CHECK_NEAR(s.lights[0].cone_delta, 5, 1e-12);
+    CHECK_NEAR(s.camera.fov, 35, 1e-12); /* landscape 4:3: yfov is the shorter axis' fov */
+    CHECK(s.camera.width == 720 && s.camera.height == 540);
+    sss_gltf_scene_free(&s);
+}
+
+/* textured.gltf: baseColorTexture (an external PNG) becomes the subsurface texture, with an absolute
+ * path so that a scene written anywhere finds it; glTF's v (down the image) becomes 1 - v. */
+static void test_texture(void)
+{
+    sss_gltf_scene s;
+    sss_error err = {0};
+    CHECK_MSG(sss_gltf_load(DATA "textured.gltf", NULL, &s, &err) == SSS_OK, "%s", err.message);
+    CHECK(s.object_count == 1);
+    if (s.object_count != 1) return;
+    const char *tex = s.objects[0].material.texture;
+    CHECK_MSG(tex && tex[0] == '/' && strstr(tex, "gltf/albedo.png"), "%s", tex ? tex : "(none)");
+    const float *uv = s.objects[0].mesh.uvs;
+    CHECK(uv != NULL);
+    if (uv) { /* make_assets.py: corner 0 of a face has glTF uv (0, 1), corner 2 has (1, 0) */
+        CHECK(uv[0] == 0.0f && uv[1] == 0.0f && uv[4] == 1.0f && uv[5] == 1.0f);
+    }
+    sss_gltf_scene_free(&s);
+    sss_scene scene;
+    CHECK_MSG(sss_scene_load(DATA "textured.gltf", NULL, &scene, &err) == SSS_OK, "%s", err.message);
+    CHECK(scene.object_count == 1 && scene.objects[0].material.texture &&
+          strstr(scene.objects[0].material.texture, "gltf/albedo.png"));
+    sss_scene_free(&scene);
+}
+
+static void check_bad(const char *file, sss_result code, const char *needle)
+{
+    char path[512];
+    snprintf(path, sizeof path, DATA "bad/%s", file);
+    sss_gltf_scene s;
+    sss_error err = {0};
+    sss_result res = sss_gltf_load(path, NULL, &s, &err);
+    CHECK_MSG(res == code, "%s: %s", file, err.message);
+    CHECK_MSG(strstr(err.message, file) && strstr(err.message, needle), "%s: %s", file, err.message);
+    CHECK(s.objects == NULL && s.object_count == 0);
+}
+
+static void test_bad_inputs(void)
+{
+    check_bad("truncated.glb", SSS_ERROR_PARSE, "truncated .glb");
+    check_bad("accessor_range.gltf", SSS_ERROR_PARSE, "accessors[0]: 4 elements");
+    check_bad("missing_buffer.gltf", SSS_ERROR_IO, "buffers[0].uri");
+    check_bad("required_ext.gltf", SSS_ERROR_UNSUPPORTED, "extensionsRequired[1]: \"KHR_draco_mesh_compression\"");
+    check_bad("index_range.gltf", SSS_ERROR_PARSE, "indices: accessors[1][2] = 3 is out of range");
+
+    /* a node that is its own child */
+    static const char cycle[] = "{\"asset\": {\"version\": \"2.0\"}, \"scenes\": [{\"nodes\": [0]}], "
+                                "\"nodes\": [{\"children\": [0]}]}";
+    sss_gltf_scene s;
+    sss_error err = {0};
+    CHECK(sss_gltf_parse(cycle, strlen(cycle), NULL, "cycle.gltf", NULL, &s, &err) == SSS_ERROR_PARSE);
+    CHECK_MSG(strstr(err.message, "cycle.gltf: nodes[0]: reached twice"), "%s", err.message);
+
+    /* every prefix of a valid .glb fails cleanly (or, for none of them, succeeds) */
+    FILE *f = fopen(DATA "scatter.glb", "rb");
+    CHECK(f != NULL);
+    if (!f) return;
+    unsigned char buf[8192];
+    size_t n = fread(buf, 1, sizeof buf, f);
+    fclose(f);
+    int failures = 0;
+    for (size_t len = 0; len < n; len++) {
+        if (sss_gltf_parse(buf, len, NULL, "prefix.glb", NULL, &s, &err) == SSS_OK) sss_gltf_scene_free(&s);
+        else failures++;
+    }
+    CHECK(failures == (int)n);
+}
+
+/* sss_scene_load of a .glb: the scene loader's materials and the imported meshes; a written import
+ * loads to the same meshes. */
+static void test_scene_load(void)
+{
+    sss_scene direct, written;
+    sss_error err = {0};
+    CHECK_MSG(sss_scene_load(DATA "scatter.glb", NULL, &direct, &err) == SSS_OK, "%s", err.message);
+    CHECK(direct.object_count == 6 && direct.light_count == 3);
+    const sss_scene_object *o = &direct.objects[0];
+    CHECK(o->material.type == SSS_SCENE_MATERIAL_SUBSURFACE && o->mesh.triangle_count == 12);
+    CHECK_REL(o->material.optical.sigma_a[0] + o->material.optical.sigma_s[0], -log(0.5) / 0.25, 1e-12);
+    CHECK(o->bounds_max[1] > o->bounds_min[1]);
+    CHECK_MSG(o->mesh_path && strstr(o->mesh_path, "gltf/scatter.glb#meshes[0].primitives[0]"), "%s", o->mesh_path);
+
+    sss_gltf_scene g;
+    char dir[] = "/tmp/sss_test_gltf_XXXXXX", path[512];
+    CHECK(mkdtemp(dir) != NULL);
+    snprintf(path, sizeof path, "%s/imported.json", dir);
+    CHECK(sss_gltf_load(DATA "scatter.glb", NULL, &g, &err) == SSS_OK);
+    CHECK_MSG(sss_gltf_write_scene(&g, path, &err) == SSS_OK, "%s", err.message);
+    sss_gltf_scene_free(&g);
+    CHECK_MSG(sss_scene_load(path, NULL, &written, &err) == SSS_OK, "%s", err.message);
+    CHECK(written.object_count == direct.object_count);
+    for (size_t i = 0; i < written.object_count && i < direct.object_count; i++) {
+        check_same_mesh(&written.objects[i].mesh, &direct.objects[i].mesh);
+        CHECK(memcmp(&written.objects[i].material.optical, &direct.objects[i].material.optical,
+                     sizeof(sss_material)) == 0);
+        char ply[600];
+        snprintf(ply, sizeof ply, "%s/imported_obj%zu.ply", dir, i);
+        remove(ply);
+    }
+    CHECK(memcmp(&written.camera, &direct.camera, sizeof(sss_camera)) == 0);
+    remove(path);
+    rmdir(dir);
+    sss_scene_free(&written);
+    sss_scene_free(&direct);
+}
+
+int main(void)
+{
+    test_materials();
+    test_node_transforms();
+    test_cameras();
+    test_lights();
+    test_glb_equals_gltf();
+    test_external_buffer();
+    test_gltf_transform_asset();
+    test_exported_asset();
+    test_texture();
+    test_bad_inputs();
+    test_scene_load();
+    return CHECK_DONE();
+}
