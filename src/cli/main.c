@@ -36,7 +36,7 @@ static const command commands[] = {
     {"render", sss_cmd_render, "render a scene in real time with OpenGL (headless) to an image", 1},
     {"techniques", sss_cmd_techniques, "list the real-time techniques", 1},
     {"version", cmd_version, "print the library's version (also 'sss --version')", 1},
-    {"eval", sss_cmd_eval, "evaluate techniques against the reference: metrics, timings, sheets, plots, report", 0},
+    {"eval", sss_cmd_eval, "evaluate techniques against the reference: metrics, timings, sheets, plots, report", 1},
     {"view", sss_cmd_view, "show a scene in a window: orbit camera, techniques, DSSIM vs reference", 0},
     {"export", sss_cmd_export, "write a scene for another renderer or format (export pbrt, export gltf)", 1},
     {"import", sss_cmd_import, "import a glTF 2.0 asset (.gltf, .glb) as a scene", 1},
@@ -90,8 +90,7 @@ int main(int argc, char **argv)
         return CLI_EXIT_USAGE;
     }
     if (!c->staged) return c->run(argc - 1, argv + 1);
-    /* eval reads back the files it wrote (sheets into the report) and view writes while it runs:
-     * they commit file by file. */
+    /* view writes screenshots while it runs: each is committed on its own. */
     sss_outputs outputs;
     sss_outputs_begin(&outputs);
     int status = c->run(argc - 1, argv + 1);

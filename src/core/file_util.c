@@ -231,6 +231,14 @@ static sss_result rename_all(sss_outputs *t, sss_error *err)
     return SSS_OK;
 }
 
+const char *sss_outputs_current_path(const char *path)
+{
+    for (const sss_outputs *t = active_outputs; t; t = t->outer)
+        for (size_t i = t->count; i-- > 0;)
+            if (strcmp(t->items[i].path, path) == 0) return t->items[i].tmp;
+    return path;
+}
+
 sss_result sss_outputs_end(sss_outputs *t, int commit, sss_error *err)
 {
     if (active_outputs == t) active_outputs = t->outer;

@@ -58,6 +58,10 @@ typedef struct sss_outputs {
 } sss_outputs;
 void sss_outputs_begin(sss_outputs *t);
 sss_result sss_outputs_end(sss_outputs *t, int commit, sss_error *err);
+/* Where the content written to path is now: its staged temporary file while a transaction on this
+ * thread holds it back, else path itself (a command that reads back what it wrote, as eval's report
+ * embeds its sheets). */
+const char *sss_outputs_current_path(const char *path);
 
 /* Refuses (SSS_ERROR_INVALID_ARGUMENT) an output that is the same file (device and inode: also
  * through other spellings, symlinks or hard links) as one of the inputs; NULL inputs are skipped.

@@ -103,7 +103,7 @@ static void sb_image(sbuf *b, const char *dir, const char *file, const char *alt
     snprintf(path, sizeof path, "%s/%s", dir, file);
     char *data = NULL;
     size_t size = 0;
-    if (sss_read_file(path, 256u << 20, &data, &size, NULL) != SSS_OK) {
+    if (sss_read_file(sss_outputs_current_path(path), 256u << 20, &data, &size, NULL) != SSS_OK) {
         sb_printf(b, "<p class=\"fail\">image %s is missing</p>\n", file);
         return;
     }

@@ -113,6 +113,9 @@ partial "render --animate, frame 2 unwritable" -- render "$ROOT/scenes/gl_twist.
     --animate --width 16 --height 16
 partial "render --animate, --exr frames unwritable" -- render "$ROOT/scenes/gl_twist.json" -o "$P/g.png" \
     --exr "$P/missing/g.exr" --frames 2 --animate --width 16 --height 16
+mkdir -p "$P/ev/report.html"  # eval's last output cannot be written: none of its outputs may stay
+partial "eval, report.html a folder" -- eval "$I/s.json" --techniques local --frames 1 --warmup 0 \
+    --reference-quality draft --out "$P/ev" --quiet
 
 # ---- An output that is an input's file: refused before the work, the input unchanged
 S=$T/same
