@@ -70,6 +70,7 @@ int sss_cmd_import(int argc, char **argv)
     if (!asset) return cli_usage_error(cmd, "missing the glTF asset");
     if (!out) return cli_usage_error(cmd, "missing -o SCENE.json");
 
+    if (cli_check_outputs(cmd, &out, 1, &asset, 1, NULL) != CLI_EXIT_OK) return CLI_EXIT_ERROR;
     sss_gltf_scene scene;
     sss_error err = {0};
     if (sss_gltf_load(asset, &desc, &scene, &err) != SSS_OK) return cli_fail(cmd, &err);

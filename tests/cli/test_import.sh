@@ -36,6 +36,10 @@ ls "$dir" | grep -q '^bad' && err "a bad input left output"
 "$SSS" import "$dir/d.glb" -o "$dir/d.json" >/dev/null || err "import of the export failed"
 grep -q '"subsurface"' "$dir/d.json" || err "the export lost the subsurface material"
 "$SSS" export gltf "$ROOT/scenes/default.json" >/dev/null 2>&1; [ $? = 2 ] || err "export gltf without -o is not a usage error"
+# An output onto the asset itself is refused before the work, the asset unchanged.
+cp "$data/external.gltf" "$data/external data.bin" "$dir/"
+"$SSS" import "$dir/external.gltf" -o "$dir/external.gltf" >/dev/null 2>&1; [ $? = 1 ] || err "import onto its input not refused"
+cmp -s "$dir/external.gltf" "$data/external.gltf" || err "import overwrote its input"
 # Usage errors: exit 2.
 "$SSS" import "$data/scatter.glb" >/dev/null 2>&1; [ $? = 2 ] || err "missing -o is not a usage error"
 "$SSS" import "$data/scatter.glb" -o "$dir/x.json" --light-scale 0 >/dev/null 2>&1; [ $? = 2 ] || err "--light-scale 0 is not a usage error"
