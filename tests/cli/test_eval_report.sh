@@ -15,13 +15,7 @@ if [ -z "$CHROMIUM" ]; then
     echo "skipped: chromium is not installed (scripts/install-deps.sh --dev installs it)"
     exit 0
 fi
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fails=0
-fail() {
-    echo "FAIL: $*"
-    fails=$((fails + 1))
-}
+. "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
 cat >"$T/ball.json" <<'EOF'
 {

@@ -10,13 +10,7 @@ set -u
 SSS=$1
 ROOT=$2
 DATA=$ROOT/tests/data
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fails=0
-fail() {
-    echo "FAIL: $*"
-    fails=$((fails + 1))
-}
+. "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 # expect CODE PATTERN -- ARGS: exit status CODE within 10 s (a hang is a failure), stderr matching
 # PATTERN (extended regex, case-insensitive).
 expect() {

@@ -5,13 +5,7 @@
 set -u
 SSS=$1
 ROOT=$2
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fails=0
-fail() {
-    echo "FAIL: $*"
-    fails=$((fails + 1))
-}
+. "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 # expect CODE PATTERN -- ARGS: exit status CODE, stderr matching PATTERN (extended regex, case-insensitive)
 expect() {
     local code=$1 pattern=$2

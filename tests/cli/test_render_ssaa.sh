@@ -8,13 +8,7 @@
 set -u
 SSS=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 ROOT=$2
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fails=0
-fail() {
-    echo "FAIL: $*"
-    fails=$((fails + 1))
-}
+. "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 SC=$ROOT/scenes
 
 "$SSS" render --help | grep -q -- "--supersample K" || fail "render --help lacks --supersample"

@@ -9,13 +9,7 @@
 set -u
 SSS=$1
 ROOT=$2
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fails=0
-fail() {
-    echo "FAIL: $*"
-    fails=$((fails + 1))
-}
+. "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 SC=$ROOT/scenes/gl_area.json # procedural shapes only: edited copies need no asset paths
 PY=python3
 [ -x /usr/bin/python3 ] && PY=/usr/bin/python3

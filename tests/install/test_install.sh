@@ -10,13 +10,7 @@
 set -u
 BUILD=$1
 ROOT=$2
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fails=0
-fail() {
-    echo "FAIL: $*"
-    fails=$((fails + 1))
-}
+. "$(dirname "${BASH_SOURCE[0]}")/../cli/harness.sh"
 P=$T/prefix
 cmake --install "$BUILD" --prefix "$P" >"$T/install.log" 2>&1 || { cat "$T/install.log"; echo "FAIL: cmake --install"; exit 1; }
 pc=$(find "$P" -name sss.pc 2>/dev/null | head -1)
