@@ -31,35 +31,33 @@ static double region_energy(const env_map *e, env_region r)
            e->sum[(size_t)r.y1 * W + (size_t)r.x0] + e->sum[(size_t)r.y0 * W + (size_t)r.x0];
 }
 
+/* The first cut c in (lo, hi) along one axis whose lower part holds half of the region's energy. */
+static int median_cut(const env_map *e, env_region r, int along_x, double half)
+{
+    int lo = along_x ? r.x0 : r.y0, hi = along_x ? r.x1 : r.y1, best = lo + 1;
+    for (int c = lo + 1; c < hi; c++) {
+        env_region t = r;
+        if (along_x) t.x1 = c;
+        else t.y1 = c;
+        best = c;
+        if (region_energy(e, t) >= half) break;
+    }
+    return best;
+}
+
 /* Splits along the longer side (angular width: columns shrink by sin(theta)) at the energy median;
  * returns 0 for a region of one cell. */
 static int split_region(const env_map *e, env_region r, env_region *a, env_region *b)
 {
     double th = M_PI * 0.5 * (r.y0 + r.y1) / e->h;
     double wx = (r.x1 - r.x0) * sin(th) * 2.0, wy = (r.y1 - r.y0); /* u spans 2 pi, v spans pi */
-    double total = region_energy(e, r);
+    double half = 0.5 * region_energy(e, r);
     *a = *b = r;
     if ((wx >= wy && r.x1 - r.x0 > 1) || r.y1 - r.y0 <= 1) {
         if (r.x1 - r.x0 <= 1) return 0;
-        int best = r.x0 + 1;
-        for (int x = r.x0 + 1; x < r.x1; x++) {
-            env_region t = r;
-            t.x1 = x;
-            best = x;
-            if (region_energy(e, t) >= 0.5 * total) break;
-        }
-        a->x1 = best;
-        b->x0 = best;
+        a->x1 = b->x0 = median_cut(e, r, 1, half);
     } else {
-        int best = r.y0 + 1;
-        for (int y = r.y0 + 1; y < r.y1; y++) {
-            env_region t = r;
-            t.y1 = y;
-            best = y;
-            if (region_energy(e, t) >= 0.5 * total) break;
-        }
-        a->y1 = best;
-        b->y0 = best;
+        a->y1 = b->y0 = median_cut(e, r, 0, half);
     }
     return 1;
 }
