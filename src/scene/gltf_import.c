@@ -8,6 +8,7 @@
 
 #include "core/file_util.h"
 #include "scene/gltf_internal.h"
+#include "scene/scene_internal.h"
 
 #define GLTF_MAX_DEPTH 1024 /* node hierarchy depth (recursion) */
 
@@ -429,16 +430,11 @@ sss_result sss_gltf_load(const char *path, const sss_gltf_desc *desc, sss_gltf_s
     size_t size = 0;
     sss_result res = sss_read_file(path, SSS_GLTF_MAX_FILE_SIZE, &data, &size, err);
     if (res != SSS_OK) return res;
-    char *dir = malloc(strlen(path) + 2);
+    char *dir = scene_folder_of(path);
     if (!dir) {
         free(data);
         return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     }
-    strcpy(dir, path);
-    char *slash = strrchr(dir, '/');
-    if (!slash) strcpy(dir, ".");
-    else if (slash == dir) dir[1] = '\0';
-    else *slash = '\0';
     res = sss_gltf_parse(data, size, dir, path, desc, out, err);
     free(dir);
     free(data);

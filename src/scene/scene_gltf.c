@@ -46,11 +46,8 @@ sss_result scene_load_gltf(const char *path, const sss_scene_load_desc *desc, ss
     if ((res = gltf_scene_text(path, &g, &json, err)) == SSS_OK) {
         unsigned flags = desc ? desc->flags : 0;
         sss_scene_load_desc inner = {flags | SSS_SCENE_SKIP_MESHES | SSS_SCENE_SKIP_FILE_CHECKS};
-        char *dir = scene_strdup(path), *slash = dir ? strrchr(dir, '/') : NULL;
+        char *dir = scene_folder_of(path);
         if (!dir) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
-        else if (!slash) strcpy(dir, ".");
-        else if (slash == dir) dir[1] = '\0';
-        else *slash = '\0';
         if (res == SSS_OK) res = sss_scene_parse(json, strlen(json), dir, path, &inner, scene, err);
         free(dir);
         for (size_t i = 0; res == SSS_OK && i < scene->object_count && !(flags & SSS_SCENE_SKIP_MESHES); i++) {

@@ -17,6 +17,8 @@ typedef struct scene_ctx {
 } scene_ctx;
 
 char *scene_strdup(const char *s);
+/* The folder of a file's path ("." for a bare name, "/" at the root), malloc'd; NULL out of memory. */
+char *scene_folder_of(const char *path);
 
 /* Reads the string field `key` of obj as a file path: resolved against base_dir (absolute paths are
  * kept) into *out (malloc'd); unless SSS_SCENE_SKIP_FILE_CHECKS, the file must be a readable regular

@@ -22,6 +22,18 @@ char *scene_strdup(const char *s)
     return d;
 }
 
+char *scene_folder_of(const char *path)
+{
+    char *dir = malloc(strlen(path) + 2); /* room for "." */
+    if (!dir) return NULL;
+    strcpy(dir, path);
+    char *slash = strrchr(dir, '/');
+    if (!slash) strcpy(dir, ".");
+    else if (slash == dir) dir[1] = '\0';
+    else *slash = '\0';
+    return dir;
+}
+
 /* base_dir + "/" + rel, or rel when it is absolute. */
 static char *join_path(const char *base_dir, const char *rel)
 {
@@ -418,15 +430,11 @@ sss_result sss_scene_load(const char *path, const sss_scene_load_desc *desc, sss
     sss_result res = sss_read_file(path, SSS_SCENE_MAX_FILE_SIZE, &text, &size, err);
     if (res != SSS_OK) return res;
     /* The folder of the scene file: relative paths inside it start there. */
-    char *dir = scene_strdup(path);
+    char *dir = scene_folder_of(path);
     if (!dir) {
         free(text);
         return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     }
-    char *slash = strrchr(dir, '/');
-    if (!slash) strcpy(dir, ".");
-    else if (slash == dir) dir[1] = '\0';
-    else *slash = '\0';
     res = sss_scene_parse(text, size, dir, path, desc, scene, err);
     free(dir);
     free(text);
