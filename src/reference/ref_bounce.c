@@ -94,41 +94,24 @@ static int normal_axis(const ref_bsample *bs, const uint32_t *ids, uint32_t n, f
     return axis;
 }
 
-/* The sort key of sample id: a position or a normal component. */
-static inline float cluster_key(const ref_bsample *bs, uint32_t id, int axis, int normal)
+/* Sample ids ordered by one coordinate of their position or (normal) geometric normal. */
+typedef struct cluster_order {
+    const ref_bsample *bs;
+    int axis, normal;
+} cluster_order;
+
+static float cluster_key(const void *ids, size_t i, const void *order)
 {
-    return normal ? bs[id].ng[axis] : bs[id].p[axis];
+    const cluster_order *o = order;
+    const ref_bsample *s = &o->bs[((const uint32_t *)ids)[i]];
+    return o->normal ? s->ng[o->axis] : s->p[o->axis];
 }
 
-/* Partially sorts ids[0, n) by key so that ids[k] is the k-th smallest (Hoare quickselect with a
- * median-of-three pivot: deterministic), as ref_tree.c's select_kth does for points. */
-static void select_ids(const ref_bsample *bs, uint32_t *ids, size_t n, size_t k, int axis, int normal)
+static void swap_ids(void *ids, size_t i, size_t j)
 {
-    size_t lo = 0, hi = n - 1;
-#define KEY(i) cluster_key(bs, ids[i], axis, normal)
-#define SWAP(i, j) do { uint32_t t_ = ids[i]; ids[i] = ids[j]; ids[j] = t_; } while (0)
-    while (hi > lo) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (KEY(mid) < KEY(lo)) SWAP(mid, lo);
-        if (KEY(hi) < KEY(lo)) SWAP(hi, lo);
-        if (KEY(hi) < KEY(mid)) SWAP(hi, mid);
-        float pivot = KEY(mid);
-        size_t i = lo, j = hi;
-        for (;;) {
-            while (KEY(i) < pivot) i++;
-            while (KEY(j) > pivot) j--;
-            if (i >= j) break;
-            SWAP(i, j);
-            i++;
-            j--;
-        }
-        if (k <= j)
-            hi = j;
-        else
-            lo = j + 1;
-    }
-#undef KEY
-#undef SWAP
+    uint32_t *d = ids, t = d[i];
+    d[i] = d[j];
+    d[j] = t;
 }
 
 static uint32_t make_clusters(const ref_bsample *bs, uint32_t *ids, uint32_t n, double size, uint32_t *cluster_of,
@@ -157,7 +140,8 @@ static uint32_t make_clusters(const ref_bsample *bs, uint32_t *ids, uint32_t n, 
             continue;
         }
         uint32_t mid = j.begin + m / 2;
-        select_ids(bs, ids + j.begin, m, mid - j.begin, by_normal ? naxis : axis, by_normal);
+        cluster_order order = {bs, by_normal ? naxis : axis, by_normal};
+        ref_select_kth(ids + j.begin, m, mid - j.begin, &order, cluster_key, swap_ids);
         stack[top++] = (cluster_job){mid, j.end};
         stack[top++] = (cluster_job){j.begin, mid};
     }

@@ -65,6 +65,39 @@ static inline void ref_rng_seed(ref_rng *r, uint64_t seed, uint64_t a, uint64_t 
 /* Uniform in [0, 1). */
 static inline double ref_rng_uniform(ref_rng *r) { return ref_rng_u32(r) * (1.0 / 4294967296.0); }
 
+/* ---- selection -------------------------------------------------------------------------------- */
+
+/* Reorders items [0, n) (n >= 1) so that item k holds the k-th smallest key, smaller keys before it and
+ * larger ones after (Hoare quickselect with a median-of-three pivot: deterministic). key reads item
+ * i's key, swap exchanges two items; inline, so that the callers' key and swap inline too. */
+static inline void ref_select_kth(void *items, size_t n, size_t k, const void *ctx,
+                                  float (*key)(const void *items, size_t i, const void *ctx),
+                                  void (*swap)(void *items, size_t i, size_t j))
+{
+    size_t lo = 0, hi = n - 1;
+    while (hi > lo) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (key(items, mid, ctx) < key(items, lo, ctx)) swap(items, mid, lo);
+        if (key(items, hi, ctx) < key(items, lo, ctx)) swap(items, hi, lo);
+        if (key(items, hi, ctx) < key(items, mid, ctx)) swap(items, hi, mid);
+        float pivot = key(items, mid, ctx);
+        size_t i = lo, j = hi;
+        for (;;) {
+            while (key(items, i, ctx) < pivot) i++;
+            while (key(items, j, ctx) > pivot) j--;
+            if (i >= j) break;
+            swap(items, i, j);
+            i++;
+            j--;
+        }
+        /* Now [lo, j] <= pivot <= [j + 1, hi]. */
+        if (k <= j)
+            hi = j;
+        else
+            lo = j + 1;
+    }
+}
+
 /* ---- tabulated profile (ref_profile.c) -------------------------------------------------------- */
 
 /* The far part S_far(r) = S_r(max(r, R0)) per channel, on a grid uniform in r within each octave

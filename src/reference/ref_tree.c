@@ -5,41 +5,16 @@
 
 #include "reference/ref_internal.h"
 
-static inline float coord(const ref_point *p, int axis) { return p->p[axis]; }
-
-static inline void swap_points(ref_point *a, ref_point *b)
+static float point_coord(const void *pts, size_t i, const void *axis)
 {
-    ref_point t = *a;
-    *a = *b;
-    *b = t;
+    return ((const ref_point *)pts)[i].p[*(const int *)axis];
 }
 
-/* Partially sorts pts[0, n) along axis so that pts[k] is the k-th smallest, smaller ones before it
- * and larger ones after (Hoare quickselect with a median-of-three pivot: deterministic). */
-static void select_kth(ref_point *pts, size_t n, size_t k, int axis)
+static void swap_points(void *pts, size_t i, size_t j)
 {
-    size_t lo = 0, hi = n - 1;
-    while (hi > lo) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (coord(&pts[mid], axis) < coord(&pts[lo], axis)) swap_points(&pts[mid], &pts[lo]);
-        if (coord(&pts[hi], axis) < coord(&pts[lo], axis)) swap_points(&pts[hi], &pts[lo]);
-        if (coord(&pts[hi], axis) < coord(&pts[mid], axis)) swap_points(&pts[hi], &pts[mid]);
-        float pivot = coord(&pts[mid], axis);
-        size_t i = lo, j = hi;
-        for (;;) {
-            while (coord(&pts[i], axis) < pivot) i++;
-            while (coord(&pts[j], axis) > pivot) j--;
-            if (i >= j) break;
-            swap_points(&pts[i], &pts[j]);
-            i++;
-            j--;
-        }
-        /* Now [lo, j] <= pivot <= [j + 1, hi]. */
-        if (k <= j)
-            hi = j;
-        else
-            lo = j + 1;
-    }
+    ref_point *p = pts, t = p[i];
+    p[i] = p[j];
+    p[j] = t;
 }
 
 typedef struct build_item {
@@ -94,7 +69,7 @@ sss_result ref_tree_build(ref_tree *tree, sss_error *err)
             continue;
         }
         uint32_t mid = it.begin + size / 2;
-        select_kth(tree->points + it.begin, size, mid - it.begin, axis);
+        ref_select_kth(tree->points + it.begin, size, mid - it.begin, &axis, point_coord, swap_points);
         uint32_t child = (uint32_t)count;
         count += 2;
         nd->first = child;
