@@ -44,18 +44,21 @@ sss_result scene_load_gltf(const char *path, const sss_scene_load_desc *desc, ss
     if (res != SSS_OK) return res;
     char *json = NULL;
     if ((res = gltf_scene_text(path, &g, &json, err)) == SSS_OK) {
-        unsigned flags = desc ? desc->flags : 0;
-        sss_scene_load_desc inner = {flags | SSS_SCENE_SKIP_MESHES | SSS_SCENE_SKIP_FILE_CHECKS};
+        /* the meshes are in memory: they stand in for the "mesh" files the scene text names, and go
+         * through the loader's checks (bounds, world reach, texture UVs) like meshes read from files */
+        sss_scene_load_desc inner = {(desc ? desc->flags : 0) | SSS_SCENE_SKIP_FILE_CHECKS};
         char *dir = scene_folder_of(path);
-        if (!dir) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
-        if (res == SSS_OK) res = sss_scene_parse(json, strlen(json), dir, path, &inner, scene, err);
-        free(dir);
-        for (size_t i = 0; res == SSS_OK && i < scene->object_count && !(flags & SSS_SCENE_SKIP_MESHES); i++) {
-            sss_scene_object *o = &scene->objects[i];
-            o->mesh = g.objects[i].mesh;
+        sss_mesh *meshes = calloc(g.object_count ? g.object_count : 1, sizeof *meshes);
+        if (!dir || !meshes) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+        for (size_t i = 0; res == SSS_OK && i < g.object_count; i++) {
+            meshes[i] = g.objects[i].mesh;
             memset(&g.objects[i].mesh, 0, sizeof g.objects[i].mesh);
-            sss_mesh_bounds(&o->mesh, o->bounds_min, o->bounds_max);
         }
+        if (res == SSS_OK)
+            res = scene_parse_given_meshes(json, strlen(json), dir, path, &inner, meshes, g.object_count, scene, err);
+        for (size_t i = 0; meshes && i < g.object_count; i++) sss_mesh_free(&meshes[i]); /* the ones not taken */
+        free(meshes);
+        free(dir);
     }
     free(json);
     sss_gltf_scene_free(&g);

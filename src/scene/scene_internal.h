@@ -14,11 +14,18 @@ typedef struct scene_ctx {
     jr r;
     const char *base_dir;
     unsigned flags;
+    sss_mesh *given_meshes; /* objects[i]'s mesh when i < given_count (taken over), else read or built */
+    size_t given_count;
 } scene_ctx;
 
 char *scene_strdup(const char *s);
 /* The folder of a file's path ("." for a bare name, "/" at the root), malloc'd; NULL out of memory. */
 char *scene_folder_of(const char *path);
+/* sss_scene_parse with the objects' meshes already in memory (an imported glTF asset): meshes[i] is
+ * taken over as objects[i]'s mesh instead of reading its "mesh" file, and goes through the same checks. */
+sss_result scene_parse_given_meshes(const char *json_text, size_t size, const char *base_dir, const char *name,
+                                    const sss_scene_load_desc *desc, sss_mesh *meshes, size_t mesh_count,
+                                    sss_scene *scene, sss_error *err);
 
 /* Reads the string field `key` of obj as a file path: resolved against base_dir (absolute paths are
  * kept) into *out (malloc'd); unless SSS_SCENE_SKIP_FILE_CHECKS, the file must be a readable regular

@@ -319,8 +319,16 @@ static sss_result load_object(scene_ctx *c, sss_scene *s, sss_scene_object *o)
         if (res != SSS_OK) return res;
     }
     if (c->flags & SSS_SCENE_SKIP_MESHES) return SSS_OK;
-    if (o->mesh_path) res = sss_mesh_read(o->mesh_path, &o->mesh, r->err);
-    else res = build_procedural(&o->procedural, &o->mesh, r->err);
+    size_t index = (size_t)(o - s->objects);
+    if (index < c->given_count) {
+        o->mesh = c->given_meshes[index];
+        memset(&c->given_meshes[index], 0, sizeof c->given_meshes[index]);
+        res = SSS_OK;
+    } else if (o->mesh_path) {
+        res = sss_mesh_read(o->mesh_path, &o->mesh, r->err);
+    } else {
+        res = build_procedural(&o->procedural, &o->mesh, r->err);
+    }
     if (res != SSS_OK) return jr_prefix(r, o->mesh_path ? "mesh" : "procedural", res);
     sss_mesh_bounds(&o->mesh, o->bounds_min, o->bounds_max);
     if ((res = check_world_reach(r, o)) != SSS_OK) return res;
@@ -367,8 +375,17 @@ static int is_space(char ch)
 sss_result sss_scene_parse(const char *json_text, size_t size, const char *base_dir, const char *name,
                            const sss_scene_load_desc *desc, sss_scene *scene, sss_error *err)
 {
+    return scene_parse_given_meshes(json_text, size, base_dir, name, desc, NULL, 0, scene, err);
+}
+
+sss_result scene_parse_given_meshes(const char *json_text, size_t size, const char *base_dir, const char *name,
+                                    const sss_scene_load_desc *desc, sss_mesh *meshes, size_t mesh_count,
+                                    sss_scene *scene, sss_error *err)
+{
     scene_ctx ctx;
     memset(scene, 0, sizeof *scene);
+    ctx.given_meshes = meshes;
+    ctx.given_count = meshes ? mesh_count : 0;
     if (!name) name = "scene";
     jr_init(&ctx.r, name, err);
     ctx.base_dir = base_dir ? base_dir : ".";

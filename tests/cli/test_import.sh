@@ -31,6 +31,13 @@ out=$("$SSS" render "$data/bad/accessor_range.gltf" -o "$dir/bad.png" 2>&1); cod
 [ $code = 1 ] || err "render of a bad .gltf: exit $code"
 case "$out" in *"accessors[0]"*) ;; *) err "render: message does not name the accessor: $out";; esac
 ls "$dir" | grep -q '^bad' && err "a bad input left output"
+# A .gltf loaded directly goes through the scene loader's checks like a scene's mesh files: a node
+# scaled beyond the 1e18 world range is refused by the reference too (it used to render it).
+sed 's/"mesh": 0/"mesh": 0, "scale": [1e20, 1e20, 1e20]/' "$data/external.gltf" >"$dir/huge.gltf"
+cp "$data/external data.bin" "$dir/"
+out=$("$SSS" reference "$dir/huge.gltf" -o "$dir/huge.png" --quality draft -q 2>&1); code=$?
+[ $code = 1 ] || err "reference of a .gltf beyond the world range: exit $code"
+case "$out" in *"huge.gltf: objects[0]"*"beyond 1e+18"*) ;; *) err "reference: message does not name the object: $out";; esac
 # export gltf, then import: the default scene comes back with its subsurface material.
 "$SSS" export gltf "$ROOT/scenes/default.json" -o "$dir/d.glb" >/dev/null || err "export gltf failed"
 "$SSS" import "$dir/d.glb" -o "$dir/d.json" >/dev/null || err "import of the export failed"
