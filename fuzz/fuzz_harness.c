@@ -172,12 +172,12 @@ static const char *fuzz_image(const uint8_t *data, size_t size, const char *name
     if (img.width < 1 || img.height < 1 || img.width > SSS_IMAGE_MAX_DIM || img.height > SSS_IMAGE_MAX_DIM || !img.pixels)
         return broken("decoded image is %dx%d (pixels %p)", img.width, img.height, (void *)img.pixels);
     size_t n = (size_t)img.width * (size_t)img.height * 3, nonfinite = 0;
-    int png = strstr(name, ".png") != NULL, hdr = strstr(name, ".hdr") != NULL;
+    int png = strstr(name, ".png") != NULL || strstr(name, ".jpg") != NULL, hdr = strstr(name, ".hdr") != NULL;
     for (size_t i = 0; i < n && !bad; i++) {
         float v = img.pixels[i];
         nonfinite += !isfinite(v);
-        /* PNG decodes 8/16-bit codes with the sRGB curve; RGBE holds non-negative finite values. */
-        if (png && !(v >= 0.0f && v <= 1.0f)) bad = broken("PNG sample %zu = %g outside [0, 1]", i, v);
+        /* PNG and JPEG decode 8/16-bit codes with the sRGB curve; RGBE holds non-negative finite values. */
+        if (png && !(v >= 0.0f && v <= 1.0f)) bad = broken("PNG/JPEG sample %zu = %g outside [0, 1]", i, v);
         if (hdr && !(v >= 0.0f && isfinite(v))) bad = broken("HDR sample %zu = %g", i, v);
     }
     if (!bad && sss_image_count_nonfinite(&img) != nonfinite) bad = broken("sss_image_count_nonfinite disagrees");
@@ -196,6 +196,7 @@ static const char *fuzz_image(const uint8_t *data, size_t size, const char *name
 const char *sss_fuzz_hdr(const uint8_t *data, size_t size) { return fuzz_image(data, size, "fuzz.hdr"); }
 const char *sss_fuzz_pfm(const uint8_t *data, size_t size) { return fuzz_image(data, size, "fuzz.pfm"); }
 const char *sss_fuzz_exr(const uint8_t *data, size_t size) { return fuzz_image(data, size, "fuzz.exr"); }
+const char *sss_fuzz_jpg(const uint8_t *data, size_t size) { return fuzz_image(data, size, "fuzz.jpg"); }
 /* A copy of a PNG with every complete chunk's CRC-32 recomputed (PNG specification, Annex D): the
  * reader refuses bad CRCs, and mutations almost always break one, so without the repair the fuzzer
  * would rarely reach the decoder. NULL when out of memory. */
@@ -552,7 +553,7 @@ const char *sss_fuzz_gltf(const uint8_t *data, size_t size)
     sss_result r = sss_gltf_parse(data, size, fixtures_dir, name, NULL, &g, &err);
     const char *bad = check_error(r, &err, name);
     if (r != SSS_OK) {
-        if (g.objects || g.object_count || g.lights || g.light_count)
+        if (g.objects || g.object_count || g.lights || g.light_count || g.images || g.image_count)
             return bad ? bad : broken("failed (%s) but the import is not empty", err.message);
         return bad;
     }
@@ -562,7 +563,13 @@ const char *sss_fuzz_gltf(const uint8_t *data, size_t size)
         bad = check_mesh(&g.objects[i].mesh, what, 1);
         names[i] = "fixture.ply";
     }
-    if (!bad && sss_gltf_scene_json(&g, (const char *const *)names, &json, &err) != SSS_OK)
+    const char **images = calloc(g.image_count ? g.image_count : 1, sizeof *images);
+    for (size_t k = 0; !bad && k < g.image_count; k++) {
+        if (g.images[k].pixels && sss_image_count_nonfinite(&g.images[k]))
+            bad = broken("gltf images[%zu] holds NaN or Inf", k);
+        images[k] = "fixture.png";
+    }
+    if (!bad && sss_gltf_scene_json(&g, (const char *const *)names, images, &json, &err) != SSS_OK)
         bad = broken("scene JSON failed: %s", err.message);
     sss_scene s;
     sss_scene_load_desc desc = {SSS_SCENE_SKIP_MESHES | SSS_SCENE_SKIP_FILE_CHECKS};
@@ -575,6 +582,7 @@ const char *sss_fuzz_gltf(const uint8_t *data, size_t size)
     }
     free(json);
     free(names);
+    free(images);
     sss_gltf_scene_free(&g);
     return bad;
 }
@@ -582,6 +590,6 @@ const char *sss_fuzz_gltf(const uint8_t *data, size_t size)
 const sss_fuzz_target sss_fuzz_targets[] = {
     {"ply", sss_fuzz_ply}, {"obj", sss_fuzz_obj}, {"scene", sss_fuzz_scene}, {"hdr", sss_fuzz_hdr},
     {"pfm", sss_fuzz_pfm}, {"exr", sss_fuzz_exr}, {"png", sss_fuzz_png}, {"sam", sss_fuzz_sam}, {"env_cut", sss_fuzz_env_cut},
-    {"gltf", sss_fuzz_gltf},
+    {"gltf", sss_fuzz_gltf}, {"jpg", sss_fuzz_jpg},
 };
 const size_t sss_fuzz_target_count = sizeof sss_fuzz_targets / sizeof sss_fuzz_targets[0];

@@ -22,6 +22,7 @@ const char *sss_fuzz_hdr(const uint8_t *data, size_t size);   /* sss_image_decod
 const char *sss_fuzz_pfm(const uint8_t *data, size_t size);   /* sss_image_decode, PFM */
 const char *sss_fuzz_exr(const uint8_t *data, size_t size);   /* sss_image_decode, OpenEXR */
 const char *sss_fuzz_png(const uint8_t *data, size_t size);   /* sss_image_decode, PNG */
+const char *sss_fuzz_jpg(const uint8_t *data, size_t size);   /* sss_image_decode, JPEG */
 const char *sss_fuzz_sam(const uint8_t *data, size_t size);   /* sss_sam_decode (checksum fixed up), sss_sam_check */
 const char *sss_fuzz_env_cut(const uint8_t *data, size_t size); /* gl_env_median_cut on a small map */
 const char *sss_fuzz_gltf(const uint8_t *data, size_t size);  /* sss_gltf_parse (.gltf, .glb), its scene JSON */

@@ -18,7 +18,7 @@ build=$1
 seconds=$2
 shift 2
 root=$(cd "$(dirname "$0")/.." && pwd)
-targets=${*:-ply obj scene hdr pfm exr png sam env_cut gltf}
+targets=${*:-ply obj scene hdr pfm exr png sam env_cut gltf jpg}
 case "$seconds" in '' | *[!0-9]*) echo "run_fuzz.sh: SECONDS must be a whole number" >&2; exit 2 ;; esac
 
 findings=0

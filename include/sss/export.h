@@ -52,9 +52,11 @@ typedef struct sss_export_gltf_desc {
  * KHR_materials_volume_scatter + KHR_materials_ior + KHR_materials_diffuse_transmission (the
  * importer's mapping inverted: sss_gltf_load of the file gives back the coefficients), diffuse ones
  * as baseColorFactor, the camera (yfov, aspectRatio), point, spot and directional lights as
- * KHR_lights_punctual (intensities 1:1). Not written: textures, profiles other than PBD, the render
- * settings, area and environment lights (counted in desc->skipped_lights). desc may be NULL. Written
- * atomically. */
+ * KHR_lights_punctual (intensities 1:1), albedo textures as embedded PNG baseColorTextures (8-bit
+ * sRGB: exact for textures read from PNG or JPEG; HDR values clip at 1). Not written: profiles other
+ * than PBD, the render settings, area and environment lights (glTF 2.0 has neither: counted in
+ * desc->skipped_lights). The scene must have been loaded with its meshes (textures decoded). desc may
+ * be NULL. Written atomically. */
 sss_result sss_export_gltf(const sss_scene *scene, sss_export_gltf_desc *desc, const char *out_path,
                            sss_error *err);
 

@@ -8,8 +8,9 @@
  * subsurface coefficients per world unit; everything else -> diffuse from baseColorFactor), the
  * camera (a perspective camera node, or a framing camera) and KHR_lights_punctual lights.
  * Does not: animations, skins, morph targets (the rest pose is imported), sparse accessors, points
- * and lines, orthographic cameras, texture transforms, embedded images (only a baseColorTexture
- * whose image is an external file is kept). Every file goes through sss_read_file (sizes checked
+ * and lines, orthographic cameras, texture transforms. A baseColorTexture is kept as an external file's
+ * path, or decoded (PNG or JPEG) when the image is embedded (a bufferView or a data: URI).
+ * Every file goes through sss_read_file (sizes checked
  * before allocation). Messages name the file and the JSON path ("a.gltf: accessors[3].count: ...").
  * Memory: sss_gltf_load fills an sss_gltf_scene; release it with sss_gltf_scene_free.
  *
@@ -32,6 +33,7 @@
 #define SSS_GLTF_H
 
 #include "sss/common.h"
+#include "sss/image.h"
 #include "sss/mesh.h"
 #include "sss/scene.h"
 
@@ -57,6 +59,7 @@ typedef struct sss_gltf_material {
     double sigma_a[3], sigma_s[3]; /* subsurface: per world unit */
     double g, eta;
     char *texture;           /* subsurface: baseColorTexture's image file (resolved path) or NULL */
+    int image;               /* subsurface: its embedded image, an index into sss_gltf_scene.images; or -1 */
 } sss_gltf_material;
 
 typedef struct sss_gltf_object {
@@ -72,6 +75,8 @@ typedef struct sss_gltf_scene {
     int camera_from_asset;   /* 1 when the asset had the camera */
     sss_light *lights;       /* point, spot, directional */
     size_t light_count;
+    sss_image *images;       /* the asset's images[k], decoded when a material uses it embedded; else empty */
+    size_t image_count;
 } sss_gltf_scene;
 
 /* Imports a .gltf or .glb (by content: a .glb starts with "glTF"). desc may be NULL. On failure *out
@@ -83,13 +88,16 @@ sss_result sss_gltf_parse(const void *data, size_t size, const char *base_dir, c
 void sss_gltf_scene_free(sss_gltf_scene *scene);
 
 /* The scene as JSON text of our format (docs/scene-format.md): objects[i] gets "mesh": mesh_paths[i] and an
- * identity transform (the meshes are in world space); texture paths are written as given in the
- * materials. *json is malloc'd (NUL-terminated). */
-sss_result sss_gltf_scene_json(const sss_gltf_scene *scene, const char *const *mesh_paths, char **json,
-                               sss_error *err);
+ * identity transform (the meshes are in world space); a material's texture is its file path as given,
+ * or image_paths[k] for its embedded image k (image_paths may be NULL when no material has one).
+ * *json is malloc'd (NUL-terminated). */
+sss_result sss_gltf_scene_json(const sss_gltf_scene *scene, const char *const *mesh_paths,
+                               const char *const *image_paths, char **json, sss_error *err);
 
 /* Writes the scene as scene_path (JSON, written atomically) plus one binary PLY per object beside it
- * (<stem>_objN.ply, world space, referenced by file name). On failure nothing is left behind. */
+ * (<stem>_objN.ply, world space, referenced by file name) and one PNG per embedded image that a
+ * material uses (<stem>_imgK.png: 8-bit sRGB, the decoded pixels exactly). On failure nothing is left
+ * behind. */
 sss_result sss_gltf_write_scene(const sss_gltf_scene *scene, const char *scene_path, sss_error *err);
 
 #ifdef __cplusplus

@@ -1,6 +1,7 @@
 /* sss/image.h — linear float RGB images, their file formats, tone mapping and image metrics.
  *
- * Does: read/write PNG (8-bit sRGB), Radiance HDR, PFM and OpenEXR (half or float RGB); tone map
+ * Does: read/write PNG (8-bit sRGB), Radiance HDR, PFM and OpenEXR (half or float RGB), read JPEG (8-bit
+ * sRGB, as glTF assets carry textures); encode PNG in memory; tone map
  * exactly as docs/scene-format.md render.exposure; SSIM/DSSIM (Wang et al. 2004, docs/physics.md §5), PSNR, RMSE, max abs
  * error; find NaN/Inf. Does not: resample, colour-manage beyond sRGB, GL.
  * Pixels are linear RGB floats, row-major, top row first. PNG files are decoded with the exact inverse
@@ -19,7 +20,7 @@ extern "C" {
 
 /* Largest accepted width or height, for reading and creating (documented limit). */
 #define SSS_IMAGE_MAX_DIM 32768
-/* Largest PNG decoded, width x height (2^27: e.g. 16384 x 8192, 1.6 GB as floats). Deflate expands up
+/* Largest PNG or JPEG decoded, width x height (2^27: e.g. 16384 x 8192, 1.6 GB as floats). Deflate expands up
  * to 1032:1, so a PNG of under a megabyte can claim gigabytes: the claim is refused from the header
  * (SSS_ERROR_LIMIT) before anything is decoded. */
 #define SSS_IMAGE_MAX_PNG_PIXELS (1L << 27)
@@ -32,7 +33,8 @@ typedef struct sss_image {
 sss_result sss_image_create(sss_image *img, int width, int height, sss_error *err); /* zero-filled */
 void sss_image_free(sss_image *img);
 
-/* Format by file extension (case-insensitive): .png, .hdr, .pfm, .exr. Errors name the path.
+/* Format by file extension (case-insensitive): .png, .hdr, .pfm, .exr; reading also .jpg, .jpeg.
+ * Errors name the path.
  * A header that claims more pixels than the file's data could hold (given the format's best
  * compression) is refused before the image is allocated. */
 sss_result sss_image_read(const char *path, sss_image *out, sss_error *err);
@@ -42,6 +44,11 @@ sss_result sss_image_read_size(const char *path, int *width, int *height, sss_er
 /* sss_image_read from memory (size bytes; for fuzzing and embedded data): the format comes from name's
  * extension, which also names the input in messages (NULL = "image", which has no format). */
 sss_result sss_image_decode(const void *data, size_t size, const char *name, sss_image *out, sss_error *err);
+/* The image as PNG bytes (8-bit sRGB, tone-mapped as sss_image_write with that exposure), for
+ * containers that embed images (glTF). *bytes is malloc'd (free it); NaN or Inf is refused as by the
+ * writers. */
+sss_result sss_image_encode_png(const sss_image *img, double exposure, unsigned char **bytes, size_t *size,
+                                sss_error *err);
 /* PNG is tone-mapped with exposure; HDR, PFM and EXR store linear values (exposure ignored).
  * The file is written to a temporary name in the same folder and renamed when complete.
  * Writers REFUSE images holding NaN or Inf (SSS_ERROR_NUMERIC, the message gives the count; see

@@ -6,9 +6,10 @@
  * resolves paths relative to the scene file's folder, loads meshes (sss_mesh_read or the procedural
  * shapes), resolves materials to per-scene-unit coefficients (sss_material) and builds one PBD table
  * per distinct (eta, g) of the subsurface materials (shared; PBRT needs it for kdsubsurface).
- * Textures are decoded once at load and refused when unreadable or holding NaN/Inf (the renderers
- * then read them again), so every command refuses the same texture files.
- * Does not: render, keep texture pixels, load environment maps (their paths are resolved and
+ * Textures are decoded once at load (sss_scene.textures, one per distinct file, shared by the
+ * materials that name it) and refused when unreadable or holding NaN/Inf, so every command refuses
+ * the same texture files and no renderer decodes them again.
+ * Does not: render, load environment maps (their paths are resolved and
  * checked), validate technique names (the renderer does; the loader keeps the string).
  * Threads: loading different scenes concurrently is safe except for cJSON's global "last error"
  * pointer, which this loader does not use.
@@ -53,6 +54,7 @@
 #include <stdint.h>
 
 #include "sss/common.h"
+#include "sss/image.h"
 #include "sss/material.h"
 #include "sss/mesh.h"
 #include "sss/profile.h"
@@ -235,6 +237,8 @@ typedef struct sss_scene_material {
     sss_scene_profile profile;
     sss_artist_params artist;          /* ARTIST: s in scene units */
     char *texture;                     /* resolved path of `texture` (checked readable), or NULL */
+    const sss_image *texture_image;    /* its decoded pixels in sss_scene.textures; NULL without a
+                                        * texture or with SSS_SCENE_SKIP_MESHES */
     int has_specular;
     double roughness;                  /* specular.roughness in [0, 1] when has_specular */
 } sss_scene_material;
@@ -331,6 +335,13 @@ typedef struct sss_render_settings {
     double exposure;                          /* stops, default 0, finite */
 } sss_render_settings;
 
+/* A decoded albedo texture: linear RGB, top row first (sss/image.h). */
+typedef struct sss_scene_texture {
+    char *path;      /* as in the materials' `texture` (resolved); for a glTF asset's embedded image,
+                      * "<asset path>#images[k]" */
+    sss_image image;
+} sss_scene_texture;
+
 typedef struct sss_scene {
     char *name;      /* the scene file's path as given (or the name given to sss_scene_parse) */
     char *base_dir;  /* folder that relative paths are resolved against */
@@ -343,6 +354,8 @@ typedef struct sss_scene {
     sss_render_settings render;
     sss_pbd_table **tables; /* cache: one table per distinct (eta, g) of the subsurface materials */
     size_t table_count;
+    sss_scene_texture *textures; /* one per distinct texture file (empty with SSS_SCENE_SKIP_MESHES) */
+    size_t texture_count;
 } sss_scene;
 
 /* Flags of sss_scene_load_desc. */

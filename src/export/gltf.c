@@ -1,6 +1,7 @@
 /* sss_export_gltf: a scene as one binary glTF 2.0 file (docs/gltf.md, "Export"), the reverse of the
  * importer (src/scene/gltf_*.c): world-space meshes, subsurface materials as KHR_materials_volume +
- * KHR_materials_volume_scatter (+ _ior, _diffuse_transmission), the camera, KHR_lights_punctual. */
+ * KHR_materials_volume_scatter (+ _ior, _diffuse_transmission) with their albedo textures as embedded
+ * PNG baseColorTextures, the camera, KHR_lights_punctual. */
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdint.h>
@@ -91,6 +92,35 @@ static int add_accessor(glb *g, const void *data, size_t count, int components, 
     return cJSON_GetArraySize(g->accessors) - 1;
 }
 
+/* The scene's albedo textures as images[k] (embedded PNG) and textures[k], k = index in scene->textures:
+ * 8-bit sRGB, so a texture decoded from a PNG goes back to its exact bytes (HDR values clip at 1). */
+static void add_textures(glb *g, const sss_scene *s, sss_error *err)
+{
+    if (s->texture_count == 0) return;
+    cJSON *images = cJSON_AddArrayToObject(g->root, "images"), *textures = cJSON_AddArrayToObject(g->root, "textures");
+    if (!images || !textures) g->ok = 0;
+    for (size_t k = 0; g->ok == 1 && k < s->texture_count; k++) {
+        unsigned char *png = NULL;
+        size_t bytes = 0;
+        if (sss_image_encode_png(&s->textures[k].image, 0.0, &png, &bytes, err) != SSS_OK) {
+            sss_error_prefix(err, s->textures[k].path);
+            g->ok = -1; /* err is set */
+            return;
+        }
+        size_t offset = g->size;
+        append(g, png, bytes);
+        free(png);
+        cJSON *view = add_object(g, g->views);
+        add_number(g, view, "buffer", 0);
+        add_number(g, view, "byteOffset", (double)offset);
+        add_number(g, view, "byteLength", (double)bytes);
+        cJSON *image = add_object(g, images);
+        add_number(g, image, "bufferView", cJSON_GetArraySize(g->views) - 1);
+        if (image && !cJSON_AddStringToObject(image, "mimeType", "image/png")) g->ok = 0;
+        add_number(g, add_object(g, textures), "source", (double)k);
+    }
+}
+
 /* A node at the end of nodes[], listed in the scene; matrix is row-major (glTF's is column-major). */
 static cJSON *add_node(glb *g, const double m[16])
 {
@@ -118,9 +148,12 @@ static double multiscatter_albedo(double alpha, double g)
 
 /* Subsurface: sigma_t = sigma_a + sigma_s per scene unit as attenuationColor c = exp(-sigma_t d) at
  * d = 1 / max(sigma_t) (c in [1/e, 1), well resolved), alpha = sigma_s / sigma_t as multiscatterColor. */
-static void add_material(glb *g, cJSON *materials, const sss_scene_material *m)
+static void add_material(glb *g, cJSON *materials, const sss_scene *s, const sss_scene_material *m)
 {
     cJSON *mat = add_object(g, materials), *pbr = add_child(g, mat, "pbrMetallicRoughness");
+    for (size_t k = 0; m->texture_image && k < s->texture_count; k++)
+        if (&s->textures[k].image == m->texture_image)
+            add_number(g, add_child(g, pbr, "baseColorTexture"), "index", (double)k);
     double base[4] = {m->albedo[0], m->albedo[1], m->albedo[2], 1};
     for (int k = 0; k < 3; k++) base[k] = base[k] < 0 ? 0 : base[k] > 1 ? 1 : base[k];
     add_vec(g, pbr, "baseColorFactor", base, 4);
@@ -297,13 +330,14 @@ static void add_document(glb *g, const sss_scene *scene, sss_export_gltf_desc *d
     g->views = cJSON_AddArrayToObject(g->root, "bufferViews");
     g->accessors = cJSON_AddArrayToObject(g->root, "accessors");
     if (!g->scene_nodes || !g->nodes || !meshes || !materials || !g->views || !g->accessors) g->ok = 0;
-    for (size_t i = 0; g->ok && i < scene->object_count; i++) {
+    add_textures(g, scene, err);
+    for (size_t i = 0; g->ok == 1 && i < scene->object_count; i++) {
         sss_mesh world = {0};
         if (sss_scene_object_world_mesh(&scene->objects[i], d->time, &world, err) != SSS_OK) {
             g->ok = -1; /* err is set */
             break;
         }
-        add_material(g, materials, &scene->objects[i].material);
+        add_material(g, materials, scene, &scene->objects[i].material);
         add_mesh(g, meshes, &world, (int)i);
         add_number(g, add_node(g, NULL), "mesh", (double)i);
         sss_mesh_free(&world);

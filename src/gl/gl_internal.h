@@ -311,7 +311,7 @@ sss_result gl_scene_prepare_splats(sss_gl_renderer *r, sss_error *err); /* splat
 void gl_scene_free(gl_scene *gs);
 /* textures.c: albedo textures as one RGBA16F array (common size, bilinear resampling, mipmapped);
  * count 0 makes a 1x1 white layer so the sampler is always complete. */
-sss_result gl_albedo_upload(gl_scene *gs, const char *const *paths, int count, sss_error *err);
+sss_result gl_albedo_upload(gl_scene *gs, const sss_scene_texture *textures, size_t count, sss_error *err);
 void gl_bind_scene(const sss_gl_renderer *r); /* SSBOs, LUT, shadow and albedo samplers */
 /* lights.c */
 sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err);

@@ -142,12 +142,6 @@ sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err)
         free(orec); free(mrec); free(mref); free(luts);
         return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene upload)");
     }
-    const char **tex_paths = calloc(s->object_count, sizeof *tex_paths);
-    int tex_count = 0;
-    if (!tex_paths) {
-        free(orec); free(mrec); free(mref); free(luts);
-        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene upload)");
-    }
     sss_result res = SSS_OK;
     int lut_layers = 0;
     for (int k = 0; k < 3; k++) {
@@ -202,12 +196,8 @@ sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err)
                 /* splat reach: r_max, or less when a smaller radius already holds splat_energy */
                 double reach = energy_radius(sm, r->shared[GL_P_SPLAT_ENERGY]);
                 rec->spec[3] = (float)(reach > 0.0 && reach < gm->r_max ? reach : gm->r_max);
-                if (sm->texture) {
-                    int t = 0;
-                    while (t < tex_count && strcmp(tex_paths[t], sm->texture) != 0) t++;
-                    if (t == tex_count) tex_paths[tex_count++] = sm->texture;
-                    rec->params[3] = (float)t;
-                }
+                for (size_t t = 0; sm->texture_image && t < s->texture_count; t++)
+                    if (&s->textures[t].image == sm->texture_image) rec->params[3] = (float)t; /* its layer */
             }
         }
         o->material = mi;
@@ -293,7 +283,7 @@ sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err)
             }
         e++;
     }
-    if (res == SSS_OK) res = gl_albedo_upload(gs, tex_paths, tex_count, err);
+    if (res == SSS_OK) res = gl_albedo_upload(gs, s->textures, s->texture_count, err);
     if (res == SSS_OK) {
         gs->ssbo_objects = make_buffer(orec, sizeof *orec * n_obj, &gs->buffer_bytes);
         gs->ssbo_materials = make_buffer(mrec, sizeof *mrec * (size_t)gs->material_count, &gs->buffer_bytes);
@@ -355,7 +345,6 @@ sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err)
     free(mrec);
     free(mref);
     free(luts);
-    free(tex_paths);
     if (res != SSS_OK) return res;
     return gl_check(r->ctx, "the scene upload", err);
 }

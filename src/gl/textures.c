@@ -1,4 +1,5 @@
-/* gl/textures.c — albedo textures of subsurface materials as layers of one 2D array texture.
+/* gl/textures.c — albedo textures of subsurface materials (decoded by the scene loader) as layers of
+ * one 2D array texture.
  * Layers share one size (the largest, at most 2048), so smaller images are resampled bilinearly.
  * Images are stored top row first; texture coordinates have v = 0 at the bottom (OBJ/PLY convention),
  * so rows are flipped on upload. */
@@ -29,9 +30,9 @@ static void sample_bilinear(const sss_image *img, double x, double y, float out[
         }
 }
 
-sss_result gl_albedo_upload(gl_scene *gs, const char *const *paths, int count, sss_error *err)
+sss_result gl_albedo_upload(gl_scene *gs, const sss_scene_texture *textures, size_t count, sss_error *err)
 {
-    if (count <= 0) {
+    if (count == 0) {
         glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &gs->albedo_array);
         glTextureStorage3D(gs->albedo_array, 1, GL_RGBA16F, 1, 1, 1);
         float white[4] = {1, 1, 1, 1};
@@ -39,48 +40,39 @@ sss_result gl_albedo_upload(gl_scene *gs, const char *const *paths, int count, s
         gs->texture_bytes += 8;
         return SSS_OK;
     }
-    sss_image *imgs = calloc((size_t)count, sizeof *imgs);
-    if (!imgs) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (albedo textures)");
-    sss_result res = SSS_OK;
     int size = 1;
-    for (int i = 0; i < count && res == SSS_OK; i++) {
-        res = sss_image_read(paths[i], &imgs[i], err);
-        if (res == SSS_OK) {
-            if (imgs[i].width > size) size = imgs[i].width;
-            if (imgs[i].height > size) size = imgs[i].height;
-            if (sss_image_count_nonfinite(&imgs[i]))
-                res = sss_error_set(err, SSS_ERROR_NUMERIC, "%s: albedo texture holds NaN or Inf", paths[i]);
-        }
+    for (size_t i = 0; i < count; i++) {
+        if (!textures[i].image.pixels)
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: texture not decoded (scene loaded without meshes)",
+                                 textures[i].path);
+        if (textures[i].image.width > size) size = textures[i].image.width;
+        if (textures[i].image.height > size) size = textures[i].image.height;
     }
     if (size > MAX_ALBEDO_SIZE) size = MAX_ALBEDO_SIZE;
-    float *layer = res == SSS_OK ? malloc((size_t)size * (size_t)size * 4 * sizeof(float)) : NULL;
-    if (res == SSS_OK && !layer) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (albedo textures)");
-    if (res == SSS_OK) {
-        int levels = gl_mip_levels(size, size);
-        glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &gs->albedo_array);
-        glTextureStorage3D(gs->albedo_array, levels, GL_RGBA16F, size, size, count);
-        glTextureParameteri(gs->albedo_array, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-        glTextureParameteri(gs->albedo_array, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTextureParameteri(gs->albedo_array, GL_TEXTURE_WRAP_S, GL_REPEAT);
-        glTextureParameteri(gs->albedo_array, GL_TEXTURE_WRAP_T, GL_REPEAT);
-        for (int i = 0; i < count; i++) {
-            const sss_image *im = &imgs[i];
-            for (int y = 0; y < size; y++)
-                for (int x = 0; x < size; x++) {
-                    float c[3];
-                    /* GL row y (from the bottom) samples image row from the top */
-                    sample_bilinear(im, (x + 0.5) * im->width / size, (size - y - 0.5) * im->height / size, c);
-                    float *d = layer + 4 * ((size_t)y * (size_t)size + (size_t)x);
-                    for (int k = 0; k < 3; k++) d[k] = c[k] < 0.0f ? 0.0f : c[k];
-                    d[3] = 1.0f;
-                }
-            glTextureSubImage3D(gs->albedo_array, 0, 0, 0, i, size, size, 1, GL_RGBA, GL_FLOAT, layer);
-        }
-        glGenerateTextureMipmap(gs->albedo_array);
-        gs->texture_bytes += (size_t)size * size * 8 * (size_t)count * 4 / 3;
+    float *layer = malloc((size_t)size * (size_t)size * 4 * sizeof(float));
+    if (!layer) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (albedo textures)");
+    int levels = gl_mip_levels(size, size);
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &gs->albedo_array);
+    glTextureStorage3D(gs->albedo_array, levels, GL_RGBA16F, size, size, (GLsizei)count);
+    glTextureParameteri(gs->albedo_array, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(gs->albedo_array, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(gs->albedo_array, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(gs->albedo_array, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    for (size_t i = 0; i < count; i++) {
+        const sss_image *im = &textures[i].image;
+        for (int y = 0; y < size; y++)
+            for (int x = 0; x < size; x++) {
+                float c[3];
+                /* GL row y (from the bottom) samples image row from the top */
+                sample_bilinear(im, (x + 0.5) * im->width / size, (size - y - 0.5) * im->height / size, c);
+                float *d = layer + 4 * ((size_t)y * (size_t)size + (size_t)x);
+                for (int k = 0; k < 3; k++) d[k] = c[k] < 0.0f ? 0.0f : c[k];
+                d[3] = 1.0f;
+            }
+        glTextureSubImage3D(gs->albedo_array, 0, 0, 0, (GLint)i, size, size, 1, GL_RGBA, GL_FLOAT, layer);
     }
+    glGenerateTextureMipmap(gs->albedo_array);
+    gs->texture_bytes += (size_t)size * size * 8 * count * 4 / 3;
     free(layer);
-    for (int i = 0; i < count; i++) sss_image_free(&imgs[i]);
-    free(imgs);
-    return res;
+    return SSS_OK;
 }

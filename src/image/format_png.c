@@ -82,14 +82,20 @@ static sss_result chunk_error(const char *path, const unsigned char head[8], int
     return sss_error_set(err, SSS_ERROR_PARSE, "%s: corrupt: chunk %s fails its CRC check", path, type);
 }
 
-/* The header's size against SSS_IMAGE_MAX_DIM per side and SSS_IMAGE_MAX_PNG_PIXELS in all. */
-static sss_result check_size(const char *path, long w, long h, sss_error *err)
+/* The header's size against SSS_IMAGE_MAX_DIM per side and SSS_IMAGE_MAX_PNG_PIXELS in all (the budget of
+ * every 8/16-bit format decoded through stb_image). */
+sss_result sss_image_check_decoded_size_(const char *path, const char *format, long w, long h, sss_error *err)
 {
     sss_result r = sss_image_check_dims_(path, w, h, err);
     if (r == SSS_OK && (double)w * (double)h > (double)SSS_IMAGE_MAX_PNG_PIXELS)
-        r = sss_error_set(err, SSS_ERROR_LIMIT, "%s: PNG of %ldx%ld pixels exceeds the limit of %ld pixels decoded",
-                          path, w, h, (long)SSS_IMAGE_MAX_PNG_PIXELS);
+        r = sss_error_set(err, SSS_ERROR_LIMIT, "%s: %s of %ldx%ld pixels exceeds the limit of %ld pixels decoded",
+                          path, format, w, h, (long)SSS_IMAGE_MAX_PNG_PIXELS);
     return r;
+}
+
+static sss_result check_size(const char *path, long w, long h, sss_error *err)
+{
+    return sss_image_check_decoded_size_(path, "PNG", w, h, err);
 }
 
 /* Checks the header (f just past the signature) before anything is decoded: IHDR's CRC, the size
@@ -182,6 +188,56 @@ sss_result sss_png_read_(FILE *f, const char *path, int size_only, sss_image *ou
         for (size_t i = 0; i < n; i++) out->pixels[i] = table[s[i]];
     }
     stbi_image_free(data);
+    return SSS_OK;
+}
+
+typedef struct png_buffer {
+    unsigned char *bytes;
+    size_t size, cap;
+    int failed;
+} png_buffer;
+
+static void write_to_buffer(void *context, void *data, int size)
+{
+    png_buffer *b = context;
+    if (b->failed || size <= 0) return;
+    if (b->size + (size_t)size > b->cap) {
+        size_t cap = b->cap ? 2 * b->cap : 65536;
+        while (cap < b->size + (size_t)size) cap *= 2;
+        unsigned char *grown = realloc(b->bytes, cap);
+        if (!grown) {
+            b->failed = 1;
+            return;
+        }
+        b->bytes = grown;
+        b->cap = cap;
+    }
+    memcpy(b->bytes + b->size, data, (size_t)size);
+    b->size += (size_t)size;
+}
+
+sss_result sss_image_encode_png(const sss_image *img, double exposure, unsigned char **bytes, size_t *size,
+                                sss_error *err)
+{
+    *bytes = NULL;
+    *size = 0;
+    sss_result r = sss_image_check_writable_("PNG in memory", img, err);
+    if (r != SSS_OK) return r;
+    if ((double)(3.0 * img->width + 1.0) * img->height > INT_MAX / 2)
+        return sss_error_set(err, SSS_ERROR_LIMIT, "%dx%d is too large for the PNG writer", img->width, img->height);
+    uint8_t *rgb = malloc((size_t)img->width * (size_t)img->height * 3);
+    png_buffer b = {0};
+    if (rgb) {
+        sss_image_to_srgb8(img, exposure, rgb);
+        if (!stbi_write_png_to_func(write_to_buffer, &b, img->width, img->height, 3, rgb, img->width * 3)) b.failed = 1;
+    }
+    free(rgb);
+    if (!rgb || b.failed) {
+        free(b.bytes);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "PNG encoder: out of memory");
+    }
+    *bytes = b.bytes;
+    *size = b.size;
     return SSS_OK;
 }
 

@@ -140,13 +140,14 @@ static stream_reader reader_for(const char *ext)
     if (strcmp(ext, "png") == 0) return sss_png_read_;
     if (strcmp(ext, "hdr") == 0) return sss_hdr_read_;
     if (strcmp(ext, "pfm") == 0) return sss_pfm_read_;
+    if (strcmp(ext, "jpg") == 0 || strcmp(ext, "jpeg") == 0) return sss_jpeg_read_;
     return NULL;
 }
 
 static sss_result unknown_format(const char *path, sss_error *err)
 {
     return sss_error_set(err, SSS_ERROR_UNSUPPORTED,
-                         "%s: unknown image format (expected the extension .png, .hdr, .pfm or .exr)", path);
+                         "%s: unknown image format (expected the extension .png, .hdr, .pfm or .exr; .jpg or .jpeg to read)", path);
 }
 
 /* Opens path with sss_open_input (a FIFO or folder fails at once) and runs the format's reader. */

@@ -11,6 +11,11 @@
 /* Checks a size read from a file header before anything is allocated: 1..SSS_IMAGE_MAX_DIM. */
 sss_result sss_image_check_dims_(const char *path, long width, long height, sss_error *err);
 
+/* A decoded 8/16-bit image's header size (PNG, JPEG) against SSS_IMAGE_MAX_DIM per side and
+ * SSS_IMAGE_MAX_PNG_PIXELS in all, before stb_image allocates from it; format names it in the message. */
+sss_result sss_image_check_decoded_size_(const char *path, const char *format, long width, long height,
+                                         sss_error *err);
+
 /* Validates img (non-NULL pixels, sizes in range) and refuses images holding NaN or Inf:
  * every writer calls this first, so a non-finite value never reaches a file (COMMON.md). */
 sss_result sss_image_check_writable_(const char *path, const sss_image *img, sss_error *err);
@@ -30,6 +35,7 @@ long long sss_image_stream_remaining_(FILE *f);
  * stop after the header's checks and set only out->width and out->height (no pixels). */
 sss_result sss_png_read_(FILE *f, const char *path, int size_only, sss_image *out, sss_error *err);
 sss_result sss_hdr_read_(FILE *f, const char *path, int size_only, sss_image *out, sss_error *err);
+sss_result sss_jpeg_read_(FILE *f, const char *path, int size_only, sss_image *out, sss_error *err);
 sss_result sss_pfm_read_(FILE *f, const char *path, int size_only, sss_image *out, sss_error *err);
 /* OpenEXR reads through the library's own I/O: from a descriptor of sss_open_input (file_size bytes;
  * always closed), or from memory (data, size). */

@@ -116,6 +116,12 @@ sss_result gltf_accessor_get(gltf_ctx *c, long index, const char *use, int compo
     return SSS_OK;
 }
 
+sss_result gltf_buffer_view(gltf_ctx *c, long index, const char *use, const unsigned char **start, size_t *length)
+{
+    long stride = 0;
+    return buffer_view(c, index, use, start, length, &stride);
+}
+
 double gltf_accessor_float(const gltf_accessor *a, size_t i, int k)
 {
     if (!a->base) return 0.0;

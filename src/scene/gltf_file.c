@@ -230,6 +230,18 @@ static int base64_decode(const char *text, unsigned char *out, size_t *out_size)
     return 1;
 }
 
+sss_result gltf_data_uri(gltf_ctx *c, const char *uri, const char *path, unsigned char **owned, size_t *size)
+{
+    *owned = NULL;
+    *size = 0;
+    const char *comma = strstr(uri, ";base64,");
+    if (!comma) return gltf_fail(c, SSS_ERROR_UNSUPPORTED, "%s: a data URI that is not base64", path);
+    const char *text = comma + 8;
+    if (!(*owned = malloc(strlen(text) / 4 * 3 + 3))) return gltf_fail(c, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    if (!base64_decode(text, *owned, size)) return gltf_fail(c, SSS_ERROR_PARSE, "%s: invalid base64", path);
+    return SSS_OK;
+}
+
 static int hex_value(int ch)
 {
     if (ch >= '0' && ch <= '9') return ch - '0';
@@ -289,13 +301,9 @@ static sss_result load_buffer(gltf_ctx *c, long index, gltf_buffer *b)
     } else if (!cJSON_IsString(uri)) {
         return gltf_fail(c, SSS_ERROR_PARSE, "%s.uri: expected a string", path);
     } else if (strncmp(uri->valuestring, "data:", 5) == 0) {
-        const char *comma = strstr(uri->valuestring, ";base64,");
-        if (!comma) return gltf_fail(c, SSS_ERROR_UNSUPPORTED, "%s.uri: a data URI that is not base64", path);
-        const char *text = comma + 8;
-        if (!(b->owned = malloc(strlen(text) / 4 * 3 + 3)))
-            return gltf_fail(c, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
-        if (!base64_decode(text, b->owned, &b->size))
-            return gltf_fail(c, SSS_ERROR_PARSE, "%s.uri: invalid base64", path);
+        char uri_path[80];
+        snprintf(uri_path, sizeof uri_path, "%s.uri", path);
+        if ((res = gltf_data_uri(c, uri->valuestring, uri_path, &b->owned, &b->size)) != SSS_OK) return res;
         b->data = b->owned;
     } else {
         char *file = gltf_resolve_uri(c->base_dir, uri->valuestring);

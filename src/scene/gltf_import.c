@@ -409,7 +409,7 @@ sss_result sss_gltf_parse(const void *data, size_t size, const char *base_dir, c
                           const sss_gltf_desc *desc, sss_gltf_scene *out, sss_error *err)
 {
     memset(out, 0, sizeof *out);
-    gltf_ctx c = {.name = name ? name : "gltf", .base_dir = base_dir ? base_dir : ".", .err = err};
+    gltf_ctx c = {.name = name ? name : "gltf", .base_dir = base_dir ? base_dir : ".", .err = err, .out = out};
     if (desc) c.desc = *desc;
     if (c.desc.width < 0 || c.desc.height < 0 || c.desc.width > SSS_SCENE_MAX_IMAGE_SIZE ||
         c.desc.height > SSS_SCENE_MAX_IMAGE_SIZE || c.desc.light_scale < 0 || !isfinite(c.desc.light_scale) ||
@@ -448,6 +448,8 @@ void sss_gltf_scene_free(sss_gltf_scene *scene)
         sss_mesh_free(&scene->objects[i].mesh);
         gltf_material_free(&scene->objects[i].material);
     }
+    for (size_t i = 0; i < scene->image_count; i++) sss_image_free(&scene->images[i]);
+    free(scene->images);
     free(scene->objects);
     free(scene->lights);
     memset(scene, 0, sizeof *scene);

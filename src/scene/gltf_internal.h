@@ -25,6 +25,7 @@ typedef struct gltf_ctx {
     gltf_buffer *buffers;
     size_t buffer_count;
     sss_gltf_desc desc;
+    sss_gltf_scene *out;  /* where decoded embedded images go (out->images, one slot per images[k]) */
 } gltf_ctx;
 
 /* A validated accessor: element i, component k is at base + i * stride + k * component size. */
@@ -68,7 +69,12 @@ char *gltf_resolve_uri(const char *base_dir, const char *uri);
 sss_result gltf_buffer_data(gltf_ctx *c, long index, const char *path, const unsigned char **data,
                             size_t *size);
 
-/* gltf_accessor.c. accessors[index], used as `use` (a JSON path for messages, e.g.
+/* The bytes of a data: URI with base64 content (malloc'd into *owned); path names the URI's JSON member. */
+sss_result gltf_data_uri(gltf_ctx *c, const char *uri, const char *path, unsigned char **owned, size_t *size);
+
+/* gltf_accessor.c. The bytes of bufferViews[index] (use names the referrer in messages). */
+sss_result gltf_buffer_view(gltf_ctx *c, long index, const char *use, const unsigned char **start, size_t *length);
+/* accessors[index], used as `use` (a JSON path for messages, e.g.
  * "meshes[0].primitives[1].attributes.POSITION"); components: the required element size. */
 sss_result gltf_accessor_get(gltf_ctx *c, long index, const char *use, int components, gltf_accessor *a);
 /* Component k of element i as a float (normalized integers mapped to [0, 1] or [-1, 1]). */

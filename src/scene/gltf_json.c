@@ -26,15 +26,16 @@ static cJSON *camera_json(const sss_camera *cam)
     return c;
 }
 
-static cJSON *material_json(const sss_gltf_material *m)
+static cJSON *material_json(const sss_gltf_material *m, const char *const *image_paths)
 {
+    const char *texture = m->texture ? m->texture : m->image >= 0 && image_paths ? image_paths[m->image] : NULL;
     cJSON *j = cJSON_CreateObject();
     int ok = j != NULL;
     if (ok && m->subsurface) {
         ok = cJSON_AddStringToObject(j, "type", "subsurface") && add_vec(j, "sigma_a", m->sigma_a, 3) &&
              add_vec(j, "sigma_s", m->sigma_s, 3) && cJSON_AddNumberToObject(j, "g", m->g) &&
              cJSON_AddNumberToObject(j, "eta", m->eta) &&
-             (!m->texture || cJSON_AddStringToObject(j, "texture", m->texture));
+             (!texture || cJSON_AddStringToObject(j, "texture", texture));
     } else if (ok) {
         ok = cJSON_AddStringToObject(j, "type", "diffuse") && add_vec(j, "reflectance", m->albedo, 3);
     }
@@ -64,8 +65,8 @@ static cJSON *light_json(const sss_light *l)
     return j;
 }
 
-sss_result sss_gltf_scene_json(const sss_gltf_scene *scene, const char *const *mesh_paths, char **json,
-                               sss_error *err)
+sss_result sss_gltf_scene_json(const sss_gltf_scene *scene, const char *const *mesh_paths,
+                               const char *const *image_paths, char **json, sss_error *err)
 {
     *json = NULL;
     cJSON *root = cJSON_CreateObject(), *objects = cJSON_CreateArray(), *lights = cJSON_CreateArray();
@@ -75,7 +76,7 @@ sss_result sss_gltf_scene_json(const sss_gltf_scene *scene, const char *const *m
     for (size_t i = 0; ok && i < scene->object_count; i++) {
         cJSON *o = cJSON_CreateObject();
         ok = o && cJSON_AddItemToArray(objects, o) && cJSON_AddStringToObject(o, "mesh", mesh_paths[i]) &&
-             cJSON_AddItemToObject(o, "material", material_json(&scene->objects[i].material));
+             cJSON_AddItemToObject(o, "material", material_json(&scene->objects[i].material, image_paths));
     }
     if (ok && scene->light_count) {
         ok = cJSON_AddItemToObject(root, "lights", lights);

@@ -28,13 +28,56 @@ static double single_scatter_albedo(double rho, double g)
     return (1.0 - s2) / (1.0 - g * s2);
 }
 
-/* The baseColorTexture's image when it is an external file (embedded images are not kept). */
-static sss_result base_color_texture(gltf_ctx *c, const cJSON *pbr, const char *path, char **out)
+/* images[source] decoded into c->out->images[source] (once; PNG or JPEG by mimeType, from a bufferView
+ * or a data: URI). */
+static sss_result embedded_image(gltf_ctx *c, const cJSON *image, long source)
+{
+    char p[48];
+    snprintf(p, sizeof p, "images[%ld]", source);
+    const cJSON *images = gltf_get(c->root, "images");
+    size_t count = (size_t)cJSON_GetArraySize(images);
+    if (!c->out->images) {
+        if (!(c->out->images = calloc(count, sizeof *c->out->images)))
+            return gltf_fail(c, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", p);
+        c->out->image_count = count;
+    }
+    if (c->out->images[source].pixels) return SSS_OK;
+    const cJSON *uri = gltf_get(image, "uri"), *mime = gltf_get(image, "mimeType");
+    long view = -1;
+    sss_result res = gltf_int(c, image, p, "bufferView", 0, -1, 0, 1L << 30, &view);
+    if (res != SSS_OK) return res;
+    const char *type = cJSON_IsString(mime) ? mime->valuestring : cJSON_IsString(uri) ? uri->valuestring : "";
+    const char *ext = strstr(type, "image/png") ? "png" : strstr(type, "image/jpeg") ? "jpg" : NULL;
+    if (!ext) return gltf_fail(c, SSS_ERROR_UNSUPPORTED, "%s.mimeType: not image/png or image/jpeg", p);
+    unsigned char *owned = NULL;
+    const unsigned char *bytes = NULL;
+    size_t size = 0;
+    char use[64];
+    snprintf(use, sizeof use, "%s.%s", p, view >= 0 ? "bufferView" : "uri");
+    if (view >= 0)
+        res = gltf_buffer_view(c, view, use, &bytes, &size);
+    else if ((res = gltf_data_uri(c, uri->valuestring, use, &owned, &size)) == SSS_OK)
+        bytes = owned;
+    char name[96];
+    snprintf(name, sizeof name, "%s.%s", p, ext); /* the decoder takes the format from the name */
+    sss_error inner = {0};
+    if (res == SSS_OK && (res = sss_image_decode(bytes, size, name, &c->out->images[source], &inner)) != SSS_OK)
+        gltf_fail(c, res, "%s", inner.message);
+    if (res == SSS_OK && sss_image_count_nonfinite(&c->out->images[source])) /* no 8-bit image has any */
+        res = gltf_fail(c, SSS_ERROR_NUMERIC, "%s: holds NaN or Inf", p);
+    free(owned);
+    return res;
+}
+
+/* The baseColorTexture's image: an external file's resolved path in *file, or an embedded image
+ * decoded into c->out->images[*image]. */
+static sss_result base_color_texture(gltf_ctx *c, const cJSON *pbr, const char *path, char **file, int *image)
 {
     const cJSON *info = gltf_get(pbr, "baseColorTexture");
     long tex = 0, source = 0, texcoord = 0;
     sss_result res;
-    *out = NULL;
+    *file = NULL;
+    *image = -1;
     if (!info) return SSS_OK;
     char p[192];
     snprintf(p, sizeof p, "%s.pbrMetallicRoughness.baseColorTexture", path);
@@ -48,21 +91,24 @@ static sss_result base_color_texture(gltf_ctx *c, const cJSON *pbr, const char *
     snprintf(p, sizeof p, "textures[%ld]", tex);
     if ((res = gltf_int(c, t, p, "source", 0, -1, 0, 1L << 30, &source)) != SSS_OK) return res;
     if (source < 0) return SSS_OK;
-    const cJSON *image = cJSON_IsArray(images) ? cJSON_GetArrayItem(images, (int)source) : NULL;
-    if (!image) return gltf_fail(c, SSS_ERROR_PARSE, "%s.source: image %ld does not exist", p, source);
-    const cJSON *uri = gltf_get(image, "uri");
-    if (!cJSON_IsString(uri) || strncmp(uri->valuestring, "data:", 5) == 0) return SSS_OK;
-    char *file = gltf_resolve_uri(c->base_dir, uri->valuestring);
+    const cJSON *img = cJSON_IsArray(images) ? cJSON_GetArrayItem(images, (int)source) : NULL;
+    if (!img) return gltf_fail(c, SSS_ERROR_PARSE, "%s.source: image %ld does not exist", p, source);
+    const cJSON *uri = gltf_get(img, "uri");
+    if (!cJSON_IsString(uri) || strncmp(uri->valuestring, "data:", 5) == 0) {
+        if ((res = embedded_image(c, img, source)) == SSS_OK) *image = (int)source;
+        return res;
+    }
+    char *resolved = gltf_resolve_uri(c->base_dir, uri->valuestring);
     struct stat st;
-    if (!file || stat(file, &st) != 0 || !S_ISREG(st.st_mode)) {
-        free(file);
+    if (!resolved || stat(resolved, &st) != 0 || !S_ISREG(st.st_mode)) {
+        free(resolved);
         return gltf_fail(c, SSS_ERROR_IO, "images[%ld].uri: \"%s\" is not a readable file", source,
                          uri->valuestring);
     }
     /* absolute, so that a scene written anywhere (or loaded from memory) finds it */
-    *out = realpath(file, NULL);
-    free(file);
-    if (!*out) return gltf_fail(c, SSS_ERROR_OUT_OF_MEMORY, "images[%ld].uri: out of memory", source);
+    *file = realpath(resolved, NULL);
+    free(resolved);
+    if (!*file) return gltf_fail(c, SSS_ERROR_OUT_OF_MEMORY, "images[%ld].uri: out of memory", source);
     return SSS_OK;
 }
 
@@ -111,6 +157,7 @@ sss_result gltf_material(gltf_ctx *c, long index, sss_gltf_material *m)
 {
     static const double white[4] = {1, 1, 1, 1};
     memset(m, 0, sizeof *m);
+    m->image = -1;
     char path[64];
     snprintf(path, sizeof path, "materials[%ld]", index);
     for (int k = 0; k < 3; k++) m->albedo[k] = 1.0; /* the default material: white, diffuse */
@@ -141,11 +188,12 @@ sss_result gltf_material(gltf_ctx *c, long index, sss_gltf_material *m)
     if (!volume || !(thickness > 0) || isinf(distance) || !gltf_get(ext, "KHR_materials_volume_scatter"))
         return SSS_OK;
     if ((res = subsurface(c, ext, path, m)) != SSS_OK) return res;
-    return pbr ? base_color_texture(c, pbr, path, &m->texture) : SSS_OK;
+    return pbr ? base_color_texture(c, pbr, path, &m->texture, &m->image) : SSS_OK;
 }
 
 void gltf_material_free(sss_gltf_material *m)
 {
     free(m->texture);
     m->texture = NULL;
+    m->image = -1;
 }

@@ -8,14 +8,15 @@
 
 #define GLTF_PATH_CAP 4096
 
-/* "<dir>/<stem>_obj<i>.ply" for scene_path "<dir>/<stem>.json"; *name points at the file name. */
-static int mesh_file(const char *scene_path, size_t i, char *path, const char **name)
+/* "<dir>/<stem>_<kind><i>.<ext>" for scene_path "<dir>/<stem>.json"; *name points at the file name. */
+static int side_file(const char *scene_path, const char *kind, size_t i, const char *ext, char *path,
+                     const char **name)
 {
     const char *slash = strrchr(scene_path, '/');
     const char *base = slash ? slash + 1 : scene_path;
     const char *dot = strrchr(base, '.');
     size_t stem = dot && dot > base ? (size_t)(dot - scene_path) : strlen(scene_path);
-    int n = snprintf(path, GLTF_PATH_CAP, "%.*s_obj%zu.ply", (int)stem, scene_path, i);
+    int n = snprintf(path, GLTF_PATH_CAP, "%.*s_%s%zu.%s", (int)stem, scene_path, kind, i, ext);
     *name = path + (base - scene_path);
     return n > 0 && n < GLTF_PATH_CAP;
 }
@@ -32,22 +33,29 @@ static sss_result write_json(const char *json, const char *scene_path, sss_error
 
 sss_result sss_gltf_write_scene(const sss_gltf_scene *scene, const char *scene_path, sss_error *err)
 {
-    size_t n = scene->object_count;
-    char (*paths)[GLTF_PATH_CAP] = calloc(n ? n : 1, GLTF_PATH_CAP);
-    const char **names = calloc(n ? n : 1, sizeof *names);
+    size_t n = scene->object_count, m = scene->image_count, files = n + m;
+    char (*paths)[GLTF_PATH_CAP] = calloc(files ? files : 1, GLTF_PATH_CAP);
+    const char **names = calloc(files ? files : 1, sizeof *names);
     sss_result res = paths && names ? SSS_OK : sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", scene_path);
     size_t written = 0;
-    for (size_t i = 0; res == SSS_OK && i < n; i++) {
-        if (!mesh_file(scene_path, i, paths[i], &names[i]))
+    for (size_t i = 0; res == SSS_OK && i < files; i++) {
+        int image = i >= n;
+        if (image && !scene->images[i - n].pixels) continue; /* not embedded, or no material uses it */
+        if (!side_file(scene_path, image ? "img" : "obj", image ? i - n : i, image ? "png" : "ply", paths[i], &names[i]))
             res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: path too long", scene_path);
-        else if ((res = sss_mesh_write_ply(paths[i], &scene->objects[i].mesh, err)) == SSS_OK)
-            written++;
+        else if (image)
+            /* 8-bit sources: writing the decoded pixels at exposure 0 gives back their exact codes */
+            res = sss_image_write(paths[i], &scene->images[i - n], 0.0, err);
+        else
+            res = sss_mesh_write_ply(paths[i], &scene->objects[i].mesh, err);
+        if (res == SSS_OK) written = i + 1;
     }
     char *json = NULL;
-    if (res == SSS_OK) res = sss_gltf_scene_json(scene, names, &json, err);
+    if (res == SSS_OK) res = sss_gltf_scene_json(scene, names, names + n, &json, err);
     if (res == SSS_OK) res = write_json(json, scene_path, err);
     if (res != SSS_OK)
-        for (size_t i = 0; i < written; i++) remove(paths[i]);
+        for (size_t i = 0; i < written; i++)
+            if (names[i]) remove(paths[i]);
     free(json);
     free(names);
     free(paths);

@@ -16,16 +16,28 @@ typedef struct scene_ctx {
     unsigned flags;
     sss_mesh *given_meshes; /* objects[i]'s mesh when i < given_count (taken over), else read or built */
     size_t given_count;
+    sss_scene_texture *given_textures; /* decoded images standing in for texture files (path relative
+                                        * to base_dir as the scene text names it); taken over when used */
+    size_t given_texture_count;
 } scene_ctx;
+
+/* What an imported asset hands the loader in memory instead of files. */
+typedef struct scene_given {
+    sss_mesh *meshes; /* meshes[i] is objects[i]'s mesh */
+    size_t mesh_count;
+    sss_scene_texture *textures;
+    size_t texture_count;
+} scene_given;
 
 char *scene_strdup(const char *s);
 /* The folder of a file's path ("." for a bare name, "/" at the root), malloc'd; NULL out of memory. */
 char *scene_folder_of(const char *path);
-/* sss_scene_parse with the objects' meshes already in memory (an imported glTF asset): meshes[i] is
- * taken over as objects[i]'s mesh instead of reading its "mesh" file, and goes through the same checks. */
-sss_result scene_parse_given_meshes(const char *json_text, size_t size, const char *base_dir, const char *name,
-                                    const sss_scene_load_desc *desc, sss_mesh *meshes, size_t mesh_count,
-                                    sss_scene *scene, sss_error *err);
+/* sss_scene_parse with meshes and textures already in memory (an imported glTF asset): given->meshes[i]
+ * is taken over as objects[i]'s mesh instead of reading its "mesh" file, a given texture is taken over
+ * by the materials naming its path instead of decoding a file; both go through the same checks. Whatever
+ * is not taken stays with the caller. given may be NULL. */
+sss_result scene_parse_given(const char *json_text, size_t size, const char *base_dir, const char *name,
+                             const sss_scene_load_desc *desc, scene_given *given, sss_scene *scene, sss_error *err);
 
 /* Reads the string field `key` of obj as a file path: resolved against base_dir (absolute paths are
  * kept) into *out (malloc'd); unless SSS_SCENE_SKIP_FILE_CHECKS, the file must be a readable regular

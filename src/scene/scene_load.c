@@ -294,16 +294,48 @@ static sss_result check_world_reach(jr *r, const sss_scene_object *o)
                        reach, reach > FLT_MAX ? " (not finite in single precision)" : "", SSS_SCENE_MAX_WORLD_COORD);
 }
 
-/* A texture is decoded once at load and refused as the real-time renderer would refuse it
- * (unreadable, NaN or Inf), so that every command that loads the scene refuses the same files. */
-static sss_result check_texture(const char *path, sss_error *err)
+/* A given texture (an imported asset's embedded image) standing in for the file at t->path. */
+static int take_given_texture(scene_ctx *c, sss_scene_texture *t)
 {
-    sss_image img;
-    sss_result res = sss_image_read(path, &img, err);
-    if (res == SSS_OK && sss_image_count_nonfinite(&img))
-        res = sss_error_set(err, SSS_ERROR_NUMERIC, "%s: albedo texture holds NaN or Inf", path);
-    sss_image_free(&img);
-    return res;
+    for (size_t k = 0; k < c->given_texture_count; k++) {
+        sss_scene_texture *g = &c->given_textures[k];
+        if (!g->image.pixels) continue;
+        char *resolved = join_path(c->base_dir, g->path);
+        int same = resolved && strcmp(resolved, t->path) == 0;
+        free(resolved);
+        if (same) {
+            t->image = g->image;
+            memset(&g->image, 0, sizeof g->image);
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* The material's texture, decoded once per file into s->textures (room for one per object) and refused
+ * as the real-time renderer would refuse it (unreadable, NaN or Inf), so that every command that loads
+ * the scene refuses the same files. */
+static sss_result load_texture(scene_ctx *c, sss_scene *s, sss_scene_material *m)
+{
+    for (size_t k = 0; k < s->texture_count; k++)
+        if (strcmp(s->textures[k].path, m->texture) == 0) {
+            m->texture_image = &s->textures[k].image;
+            return SSS_OK;
+        }
+    sss_scene_texture *t = &s->textures[s->texture_count];
+    if (!(t->path = scene_strdup(m->texture))) return sss_error_set(c->r.err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+    sss_result res = take_given_texture(c, t) ? SSS_OK : sss_image_read(m->texture, &t->image, c->r.err);
+    if (res == SSS_OK && sss_image_count_nonfinite(&t->image))
+        res = sss_error_set(c->r.err, SSS_ERROR_NUMERIC, "%s: albedo texture holds NaN or Inf", m->texture);
+    if (res != SSS_OK) {
+        free(t->path);
+        sss_image_free(&t->image);
+        memset(t, 0, sizeof *t);
+        return res;
+    }
+    s->texture_count++;
+    m->texture_image = &t->image;
+    return SSS_OK;
 }
 
 static sss_result load_object(scene_ctx *c, sss_scene *s, sss_scene_object *o)
@@ -340,7 +372,7 @@ static sss_result load_object(scene_ctx *c, sss_scene *s, sss_scene_object *o)
         jr_leave(r, mark);
         return res;
     }
-    if (o->material.texture && (res = check_texture(o->material.texture, r->err)) != SSS_OK) {
+    if (o->material.texture && (res = load_texture(c, s, &o->material)) != SSS_OK) {
         size_t mark = jr_enter_key(r, "material");
         res = jr_prefix(r, "texture", res);
         jr_leave(r, mark);
@@ -354,6 +386,9 @@ static sss_result load_object(scene_ctx *c, sss_scene *s, sss_scene_object *o)
 static sss_result load_phase(scene_ctx *c, sss_scene *s)
 {
     jr *r = &c->r;
+    if (!(c->flags & SSS_SCENE_SKIP_MESHES) && s->object_count &&
+        !(s->textures = calloc(s->object_count, sizeof *s->textures)))
+        return jr_fail(r, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
     size_t mark = jr_enter_key(r, "objects");
     sss_result res = SSS_OK;
     for (size_t i = 0; i < s->object_count && res == SSS_OK; i++) {
@@ -375,17 +410,18 @@ static int is_space(char ch)
 sss_result sss_scene_parse(const char *json_text, size_t size, const char *base_dir, const char *name,
                            const sss_scene_load_desc *desc, sss_scene *scene, sss_error *err)
 {
-    return scene_parse_given_meshes(json_text, size, base_dir, name, desc, NULL, 0, scene, err);
+    return scene_parse_given(json_text, size, base_dir, name, desc, NULL, scene, err);
 }
 
-sss_result scene_parse_given_meshes(const char *json_text, size_t size, const char *base_dir, const char *name,
-                                    const sss_scene_load_desc *desc, sss_mesh *meshes, size_t mesh_count,
-                                    sss_scene *scene, sss_error *err)
+sss_result scene_parse_given(const char *json_text, size_t size, const char *base_dir, const char *name,
+                             const sss_scene_load_desc *desc, scene_given *given, sss_scene *scene, sss_error *err)
 {
     scene_ctx ctx;
     memset(scene, 0, sizeof *scene);
-    ctx.given_meshes = meshes;
-    ctx.given_count = meshes ? mesh_count : 0;
+    ctx.given_meshes = given ? given->meshes : NULL;
+    ctx.given_count = given && given->meshes ? given->mesh_count : 0;
+    ctx.given_textures = given ? given->textures : NULL;
+    ctx.given_texture_count = given && given->textures ? given->texture_count : 0;
     if (!name) name = "scene";
     jr_init(&ctx.r, name, err);
     ctx.base_dir = base_dir ? base_dir : ".";
@@ -464,6 +500,11 @@ void sss_scene_free(sss_scene *scene)
     for (size_t i = 0; i < scene->object_count; i++) scene_object_free(&scene->objects[i]);
     for (size_t i = 0; i < scene->light_count; i++) scene_light_free(&scene->lights[i]);
     for (size_t i = 0; i < scene->table_count; i++) free(scene->tables[i]);
+    for (size_t i = 0; i < scene->texture_count; i++) {
+        free(scene->textures[i].path);
+        sss_image_free(&scene->textures[i].image);
+    }
+    free(scene->textures);
     free(scene->objects);
     free(scene->lights);
     free(scene->tables);

@@ -21,8 +21,22 @@ mkdir "$dir/a" "$dir/b"
 diff <(sed 1d "$dir/a/x.pbrt") <(sed 1d "$dir/b/x.pbrt") >/dev/null || err "the .glb and its imported scene export differently"
 for i in 0 1 2 3 4 5; do cmp -s "$dir/a/x_obj$i.ply" "$dir/b/x_obj$i.ply" || err "object $i differs"; done
 
+# Embedded textures (a .glb bufferView, a data: URI) render exactly like the external PNG they were
+# made from, and the texture is visible (the same asset without it renders differently).
+render() { "$SSS" render "$1" -o "$2" --width 48 --height 48 >/dev/null || err "render $1 failed"; }
+render "$data/textured.gltf" "$dir/t_ext.png"
+sed -z 's/"baseColorTexture": {[^}]*}//' "$data/textured.gltf" >"$dir/untextured.gltf"
+render "$dir/untextured.gltf" "$dir/t_none.png"
+for asset in textured_embedded.glb textured_datauri.gltf; do
+    render "$data/$asset" "$dir/t_emb.png"
+    case $("$SSS" compare "$dir/t_ext.png" "$dir/t_emb.png") in *"max=0"*) ;; *) err "$asset renders unlike textured.gltf";; esac
+done
+case $("$SSS" compare "$dir/t_ext.png" "$dir/t_none.png") in *"max=0"*) err "the texture does not show";; esac
+rm -f "$dir"/t_*.png
+
 # Bad inputs: exit 1, the file and the JSON path named, nothing written.
-for bad in truncated.glb accessor_range.gltf missing_buffer.gltf required_ext.gltf index_range.gltf; do
+for bad in truncated.glb accessor_range.gltf missing_buffer.gltf required_ext.gltf index_range.gltf image_mime.glb \
+           image_corrupt.glb; do
     out=$("$SSS" import "$data/bad/$bad" -o "$dir/bad.json" 2>&1); code=$?
     [ $code = 1 ] || err "$bad: exit $code"
     case "$out" in *"$bad"*) ;; *) err "$bad: message does not name the file: $out";; esac

@@ -1,6 +1,7 @@
 /* glTF export round trip: a scene exported by sss_export_gltf and imported by sss_gltf_load gives
  * back its world meshes, coefficients (sigma_a, sigma_s, g, eta per scene unit), camera basis and
- * punctual lights; area lights are counted as left out; the file is a valid .glb container. */
+ * punctual lights; area lights are counted as left out; the file is a valid .glb container; albedo
+ * textures travel as embedded PNGs with their pixels. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -11,6 +12,8 @@
 #include "check.h"
 #include "sss/export.h"
 #include "sss/gltf.h"
+#include "sss/image.h"
+#include "sss/scene.h"
 
 static const char scene_json[] =
     "{\"camera\": {\"position\": [0.5, 1, 5], \"look_at\": [0, 0.5, 0], \"fov\": 40, \"width\": 200, \"height\": 300},"
@@ -142,8 +145,41 @@ static void test_round_trip(void)
     sss_scene_free(&scene);
 }
 
+/* A textured object (the JPEG of the image tests, decoded once by the scene loader) exports as an
+ * embedded PNG baseColorTexture that imports to the same pixels, bit for bit. */
+static void test_texture(void)
+{
+    static const char textured[] =
+        "{\"camera\": {\"position\": [0, 0, 3], \"look_at\": [0, 0, 0], \"width\": 32, \"height\": 32},"
+        " \"objects\": [{\"procedural\": {\"shape\": \"box\", \"size\": [1, 1, 1]},"
+        "   \"material\": {\"type\": \"subsurface\", \"medium\": \"marble\", \"texture\": \"two_colours.jpg\"}}]}";
+    sss_error err = {0};
+    sss_scene scene;
+    sss_image jpeg;
+    CHECK(sss_image_read(SSS_TEST_DATA "/images/two_colours.jpg", &jpeg, &err) == SSS_OK);
+    CHECK_MSG(sss_scene_parse(textured, strlen(textured), SSS_TEST_DATA "/images", "textured.json", NULL, &scene,
+                              &err) == SSS_OK, "%s", err.message);
+    char dir[] = "/tmp/sss_test_export_XXXXXX", path[600];
+    CHECK(mkdtemp(dir) != NULL);
+    snprintf(path, sizeof path, "%s/textured.glb", dir);
+    CHECK_MSG(sss_export_gltf(&scene, NULL, path, &err) == SSS_OK, "%s", err.message);
+    sss_gltf_scene g;
+    CHECK_MSG(sss_gltf_load(path, NULL, &g, &err) == SSS_OK, "%s", err.message);
+    CHECK(g.object_count == 1 && g.objects[0].material.image == 0 && g.image_count == 1);
+    if (g.image_count == 1 && g.images[0].pixels && g.images[0].width == jpeg.width && g.images[0].height == jpeg.height)
+        CHECK(memcmp(g.images[0].pixels, jpeg.pixels, sizeof(float) * 3 * (size_t)jpeg.width * (size_t)jpeg.height) == 0);
+    else
+        CHECK_MSG(0, "exported image missing or resized");
+    sss_gltf_scene_free(&g);
+    sss_scene_free(&scene);
+    sss_image_free(&jpeg);
+    remove(path);
+    CHECK(rmdir(dir) == 0);
+}
+
 int main(void)
 {
     test_round_trip();
+    test_texture();
     return CHECK_DONE();
 }

@@ -257,6 +257,30 @@ static void test_png_sizes(const char *dir)
     expect_bytes_fail(path, b, png_header(b, 16384, 16384), SSS_ERROR_LIMIT, "PNG of 16384^2");
 }
 
+/* JPEG: a frame header beyond the limits is refused before decoding; a cut file fails. */
+static void test_jpeg(const char *dir)
+{
+    size_t size = 0;
+    unsigned char *b = slurp(SSS_TEST_DATA "/images/two_colours.jpg", &size);
+    CHECK(b != NULL && size > 200);
+    if (!b) return;
+    char path[256];
+    snprintf(path, sizeof path, "%s/j.jpg", dir);
+    size_t sof = 2;
+    while (sof + 9 < size && !(b[sof] == 0xFF && (b[sof + 1] == 0xC0 || b[sof + 1] == 0xC2))) sof++;
+    CHECK(sof + 9 < size);
+    if (sof + 9 < size) { /* SOF: FF Cn, length(2), precision(1), height(2), width(2) */
+        b[sof + 5] = 0x80, b[sof + 6] = 0x00, b[sof + 7] = 0x80, b[sof + 8] = 0x00; /* 32768 x 32768 */
+        expect_bytes_fail(path, b, size, SSS_ERROR_LIMIT, "JPEG beyond the pixel budget");
+        b[sof + 5] = 0x00, b[sof + 6] = 0x00; /* height 0 */
+        expect_bytes_fail(path, b, size, SSS_OK, "JPEG of height 0");
+    }
+    expect_bytes_fail(path, "\xFF\xD8\xFF\xE0", 4, SSS_OK, "JPEG of 4 bytes");
+    expect_bytes_fail(path, "GIF89a", 6, SSS_ERROR_PARSE, "GIF named .jpg");
+    free(b);
+    truncations(dir, SSS_TEST_DATA "/images/two_colours.jpg", "jpg", 0);
+}
+
 /* A valid PNG with one bit of a stored chunk CRC flipped (stb_image decodes it regardless). */
 static void test_png_crc(const char *dir)
 {
@@ -356,6 +380,7 @@ int main(void)
     test_hdr_headers(dir);
     test_png_sizes(dir);
     test_png_crc(dir);
+    test_jpeg(dir);
     test_exr_sizes(dir);
     test_exr_channels(dir);
     remove_dir(dir);

@@ -31,7 +31,8 @@ static unsigned char *slurp(const char *path, size_t *size)
 static int is_image(const char *name)
 {
     const char *dot = strrchr(name, '.');
-    return dot && (!strcmp(dot, ".png") || !strcmp(dot, ".hdr") || !strcmp(dot, ".pfm") || !strcmp(dot, ".exr"));
+    return dot && (!strcmp(dot, ".png") || !strcmp(dot, ".hdr") || !strcmp(dot, ".pfm") || !strcmp(dot, ".exr") ||
+                   !strcmp(dot, ".jpg"));
 }
 
 /* Read and decode agree on path, whose bytes are data[0..size). */
@@ -107,8 +108,8 @@ int main(void)
 {
     int n = compare_dir(SSS_TEST_DATA "/images");
     n += compare_dir(SSS_TEST_DATA "/bad");
-    const char *seeds[] = {"png", "hdr", "pfm", "exr"};
-    for (int i = 0; i < 4; i++) {
+    const char *seeds[] = {"png", "hdr", "pfm", "exr", "jpg"};
+    for (int i = 0; i < 5; i++) {
         char dir[1024];
         snprintf(dir, sizeof dir, "%s/fuzz/corpus/%s", SSS_SOURCE_DIR, seeds[i]);
         n += compare_dir(dir);

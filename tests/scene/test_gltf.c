@@ -10,6 +10,7 @@
 
 #include "check.h"
 #include "sss/gltf.h"
+#include "sss/image.h"
 #include "sss/scene.h"
 
 #define DATA SSS_TEST_DATA "/gltf/"
@@ -367,6 +368,70 @@ static void test_texture(void)
     sss_scene_free(&scene);
 }
 
+/* Two images hold the same pixels, bit for bit. */
+static void check_same_image(const sss_image *a, const sss_image *b, const char *what)
+{
+    CHECK_MSG(a->pixels && b->pixels && a->width == b->width && a->height == b->height, "%s: %dx%d vs %dx%d", what,
+              a->width, a->height, b->width, b->height);
+    if (a->pixels && b->pixels && a->width == b->width && a->height == b->height)
+        CHECK_MSG(memcmp(a->pixels, b->pixels, sizeof(float) * 3 * (size_t)a->width * (size_t)a->height) == 0,
+                  "%s: pixels differ", what);
+}
+
+/* Embedded baseColorTexture images (a .glb's bufferView, a data: URI; PNG and JPEG) decode to the
+ * pixels of the files they were made from (make_assets.py), reach the scene as its texture, and are
+ * written beside an imported scene as PNG with the same pixels. */
+static void test_embedded_textures(void)
+{
+    sss_error err = {0};
+    sss_image png, jpeg;
+    CHECK(sss_image_read(DATA "albedo.png", &png, &err) == SSS_OK);
+    CHECK(sss_image_read(SSS_TEST_DATA "/images/two_colours.jpg", &jpeg, &err) == SSS_OK);
+    const char *assets[] = {"textured_embedded.glb", "textured_datauri.gltf", "textured_jpeg.glb"};
+    for (int a = 0; a < 3; a++) {
+        char path[512];
+        snprintf(path, sizeof path, DATA "%s", assets[a]);
+        sss_gltf_scene g;
+        CHECK_MSG(sss_gltf_load(path, NULL, &g, &err) == SSS_OK, "%s", err.message);
+        if (g.object_count != 1) continue;
+        const sss_gltf_material *m = &g.objects[0].material;
+        CHECK_MSG(m->texture == NULL && m->image == 0 && g.image_count == 1, "%s: image %d", assets[a], m->image);
+        if (m->image == 0 && g.image_count == 1) check_same_image(&g.images[0], a == 2 ? &jpeg : &png, assets[a]);
+        sss_gltf_scene_free(&g);
+
+        sss_scene scene;
+        CHECK_MSG(sss_scene_load(path, NULL, &scene, &err) == SSS_OK, "%s", err.message);
+        const sss_scene_material *sm = scene.object_count == 1 ? &scene.objects[0].material : NULL;
+        CHECK(sm && sm->texture && strstr(sm->texture, "#images[0]") && sm->texture_image && scene.texture_count == 1);
+        if (sm && sm->texture_image) check_same_image(sm->texture_image, a == 2 ? &jpeg : &png, assets[a]);
+        sss_scene_free(&scene);
+    }
+
+    /* sss import: the embedded image becomes <stem>_img0.png beside the scene */
+    sss_gltf_scene g;
+    char dir[] = "/tmp/sss_test_gltf_XXXXXX", path[512], img[600], ply[600];
+    CHECK(mkdtemp(dir) != NULL);
+    snprintf(path, sizeof path, "%s/imported.json", dir);
+    snprintf(img, sizeof img, "%s/imported_img0.png", dir);
+    snprintf(ply, sizeof ply, "%s/imported_obj0.ply", dir);
+    CHECK(sss_gltf_load(DATA "textured_jpeg.glb", NULL, &g, &err) == SSS_OK);
+    CHECK_MSG(sss_gltf_write_scene(&g, path, &err) == SSS_OK, "%s", err.message);
+    sss_gltf_scene_free(&g);
+    sss_scene scene;
+    CHECK_MSG(sss_scene_load(path, NULL, &scene, &err) == SSS_OK, "%s", err.message);
+    const sss_scene_material *sm = scene.object_count == 1 ? &scene.objects[0].material : NULL;
+    CHECK(sm && sm->texture && strcmp(sm->texture, img) == 0);
+    if (sm && sm->texture_image) check_same_image(sm->texture_image, &jpeg, "imported_img0.png");
+
+    sss_scene_free(&scene);
+    remove(img);
+    remove(ply);
+    remove(path);
+    CHECK(rmdir(dir) == 0);
+    sss_image_free(&png);
+    sss_image_free(&jpeg);
+}
+
 static void check_bad(const char *file, sss_result code, const char *needle)
 {
     char path[512];
@@ -386,6 +451,8 @@ static void test_bad_inputs(void)
     check_bad("missing_buffer.gltf", SSS_ERROR_IO, "buffers[0].uri");
     check_bad("required_ext.gltf", SSS_ERROR_UNSUPPORTED, "extensionsRequired[1]: \"KHR_draco_mesh_compression\"");
     check_bad("index_range.gltf", SSS_ERROR_PARSE, "indices: accessors[1][2] = 3 is out of range");
+    check_bad("image_mime.glb", SSS_ERROR_UNSUPPORTED, "images[0].mimeType: not image/png or image/jpeg");
+    check_bad("image_corrupt.glb", SSS_ERROR_PARSE, "images[0].png: not a PNG file");
 
     /* a node that is its own child */
     static const char cycle[] = "{\"asset\": {\"version\": \"2.0\"}, \"scenes\": [{\"nodes\": [0]}], "
@@ -459,6 +526,7 @@ int main(void)
     test_gltf_transform_asset();
     test_exported_asset();
     test_texture();
+    test_embedded_textures();
     test_bad_inputs();
     test_scene_load();
     return CHECK_DONE();

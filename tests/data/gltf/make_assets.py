@@ -5,12 +5,17 @@
   scatter.glb      the same scene as binary glTF (JSON chunk + BIN chunk)
   external.gltf    a triangle whose buffer is the external file "external data.bin" (URI with %20)
   textured.gltf    the cube, subsurface, baseColorTexture = the external albedo.png (2x2)
+  textured_embedded.glb   the same with albedo.png's bytes in a bufferView of the BIN chunk
+  textured_datauri.gltf   the same with albedo.png as a data:image/png URI
+  textured_jpeg.glb       the same with tests/data/images/two_colours.jpg (libjpeg-turbo) in a bufferView
   (exported.glb: written by `sss export gltf exported_source.json -o exported.glb`)
   bad/truncated.glb        scatter.glb cut inside its BIN chunk
   bad/accessor_range.gltf  an accessor reaching past its buffer view
   bad/missing_buffer.gltf  a buffer URI naming a file that does not exist
   bad/required_ext.gltf    extensionsRequired lists an extension sss does not implement
   bad/index_range.gltf     an index beyond the vertex count
+  bad/image_mime.glb       an embedded image whose mimeType is image/gif
+  bad/image_corrupt.glb    an embedded "image/png" whose bytes are not a PNG
 
 Usage: python3 make_assets.py [OUT_DIR]   (default: this script's folder)
 """
@@ -170,9 +175,14 @@ def png_2x2(path):
 
 
 def textured_doc():
-    """The cube with a subsurface material whose baseColorTexture is the external albedo.png."""
+    """The cube with a subsurface material whose baseColorTexture is the external albedo.png, lit by a
+    directional light (so that renders show the texture)."""
     blob, views, accessors = pack_cube()
-    doc = {"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+    doc = {"asset": {"version": "2.0"}, "scenes": [{"nodes": [0, 1]}],
+           "nodes": [{"mesh": 0}, {"rotation": list(quat((1, 0, 0), -20)),
+                                   "extensions": {"KHR_lights_punctual": {"light": 0}}}],
+           "extensionsUsed": ["KHR_lights_punctual"],
+           "extensions": {"KHR_lights_punctual": {"lights": [{"type": "directional", "intensity": 3}]}},
            "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3,
                                        "material": 0}]}],
            "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}},
@@ -181,6 +191,17 @@ def textured_doc():
                                          "KHR_materials_volume_scatter": {"multiscatterColor": [0.8, 0.8, 0.8]}}}],
            "textures": [{"source": 0}], "images": [{"uri": "albedo.png"}],
            "buffers": [{"byteLength": len(blob)}], "bufferViews": views, "accessors": accessors}
+    return doc, blob
+
+
+def embed_image(doc, blob, data, mime):
+    """doc's images[0] as data appended to blob in a new bufferView (returns the new blob)."""
+    doc = json.loads(json.dumps(doc))
+    blob += b"\0" * (-len(blob) % 4)
+    doc["bufferViews"].append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(data)})
+    doc["images"] = [{"bufferView": len(doc["bufferViews"]) - 1, "mimeType": mime}]
+    blob += data
+    doc["buffers"][0]["byteLength"] = len(blob)
     return doc, blob
 
 
@@ -201,6 +222,20 @@ def main():
     doc, blob = textured_doc()
     write_gltf(os.path.join(OUT, "textured.gltf"), doc, blob)
     png_2x2(os.path.join(OUT, "albedo.png"))
+
+    with open(os.path.join(OUT, "albedo.png"), "rb") as f:
+        png = f.read()
+    with open(os.path.join(OUT, "..", "images", "two_colours.jpg"), "rb") as f:
+        jpeg = f.read()
+    for name, data, mime in (("textured_embedded.glb", png, "image/png"), ("textured_jpeg.glb", jpeg, "image/jpeg"),
+                             (os.path.join("bad", "image_mime.glb"), png, "image/gif"),
+                             (os.path.join("bad", "image_corrupt.glb"), b"\x89PNG not a png at all", "image/png")):
+        d, b = embed_image(doc, blob, data, mime)
+        with open(os.path.join(OUT, name), "wb") as f:
+            f.write(glb_bytes(d, b))
+    d = json.loads(json.dumps(doc))
+    d["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode()}]
+    write_gltf(os.path.join(OUT, "textured_datauri.gltf"), d, blob)
 
     tri, tri_blob = triangle_doc("external%20data.bin")
     dump(os.path.join(OUT, "external.gltf"), tri)
