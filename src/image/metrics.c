@@ -1,4 +1,5 @@
-/* image/metrics.c — SSIM / DSSIM, PSNR, RMSE and max abs error on tone-mapped 8-bit images (docs/physics.md §5).
+/* image/metrics.c — SSIM / DSSIM, PSNR, RMSE and max abs error on tone-mapped 8-bit images (docs/physics.md §5);
+ * the mean FLIP comes from image/flip.c.
  *
  * SSIM after Wang et al. 2004 as scikit-image 0.19 computes it with gaussian_weights=True, sigma=1.5,
  * use_sample_covariance=False, data_range=255, per channel (channel_axis) and averaged:
@@ -132,6 +133,12 @@ sss_result sss_image_compare_srgb8(const uint8_t *a, const uint8_t *b, int width
         if (d > maxd) maxd = d;
     }
     double mse = (double)sumsq / (double)n;
+    double flip = 0.0;
+    if ((r = sss_image_flip_srgb8(a, b, width, height, SSS_FLIP_DEFAULT_PPD, &flip, NULL, err)) != SSS_OK) {
+        if (dssim_map) sss_image_free(dssim_map);
+        return r;
+    }
+    out->flip = flip;
     out->ssim = (mean[0] + mean[1] + mean[2]) / 3.0;
     out->dssim = (1.0 - out->ssim) / 2.0;
     out->psnr = sumsq == 0 ? INFINITY : 10.0 * log10(255.0 * 255.0 / mse);
