@@ -113,6 +113,7 @@ typedef struct sss_eval_entry {
     sss_gl_stats stats;               /* texture_bytes + buffer_bytes is the renderer's GPU memory */
     sss_image image;                  /* QUALITY at the first resolution only (empty otherwise) */
     sss_image dssim_map;              /* per-pixel, per-channel DSSIM of image (same rule) */
+    sss_image flip_map;               /* per-pixel FLIP of image, in all three channels (same rule) */
 } sss_eval_entry;
 
 typedef enum sss_eval_ref_source {

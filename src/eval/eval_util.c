@@ -200,6 +200,7 @@ void sss_eval_results_free(sss_eval_results *res)
     for (int i = 0; i < res->entry_count; i++) {
         sss_image_free(&res->entries[i].image);
         sss_image_free(&res->entries[i].dssim_map);
+        sss_image_free(&res->entries[i].flip_map);
     }
     free(res->entries);
     for (int i = 0; i < res->label_count; i++) free(res->labels[i]);
