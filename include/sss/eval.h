@@ -144,6 +144,10 @@ typedef struct sss_eval_scene {
     int reference_count;
     sss_eval_reference references[8]; /* one per quality resolution, in order */
     sss_image reference;              /* at the first quality resolution (empty when unavailable) */
+    sss_image object_ids;             /* G-buffer object index + 1 of the subsurface objects (0: other
+                                         objects and background) from the first technique that rendered
+                                         at that size, at its supersampled size (a whole multiple of it);
+                                         empty when none did. For the silhouette crops */
 } sss_eval_scene;
 
 typedef struct sss_eval_results {
