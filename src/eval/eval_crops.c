@@ -1,6 +1,7 @@
 /* eval/eval_crops.c — where the report zooms in: the worst-error window of a technique (largest mean
  * FLIP) and a silhouette window of the scene (most G-buffer coverage edges), found with summed-area
  * tables over every window position. */
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "eval/eval_internal.h"
@@ -76,4 +77,10 @@ eval_window eval_silhouette_window(const sss_image *object_ids, int w, int h, in
     eval_window win = best_window(v, w, h, size);
     free(v);
     return win;
+}
+
+void eval_crops_file(const sss_eval_scene *s, int k, char *out, size_t cap)
+{
+    if (s->has_time) snprintf(out, cap, "crops_%s_t%g_%d.png", s->stem, s->time, k);
+    else snprintf(out, cap, "crops_%s_%d.png", s->stem, k);
 }

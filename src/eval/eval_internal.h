@@ -114,6 +114,12 @@ eval_window eval_worst_window(const sss_image *flip_map, int size);
  * (sss_eval_scene.object_ids, at `scale` x the w x h output) changes to a neighbour, i.e. silhouettes
  * against the background and between objects. Invalid when there are no ids or no edges. */
 eval_window eval_silhouette_window(const sss_image *object_ids, int w, int h, int size);
+/* "crops_<stem>[_t<T>]_<k>.png": the crops of technique k (label index) in scene s. */
+void eval_crops_file(const sss_eval_scene *s, int k, char *out, size_t cap);
+/* Writes that file: reference | technique for the worst-FLIP window and the silhouette window, 128-pixel
+ * boxes. Only for techniques compared at the scene's first quality size (SSS_ERROR_INVALID_ARGUMENT
+ * otherwise). */
+sss_result eval_write_crops(const sss_eval_results *res, int scene, int k, const char *path, sss_error *err);
 /* Draws surface scaled into the box (x, y, w, h) keeping its aspect ratio; returns the drawn height. */
 double eval_draw_surface(cairo_t *cr, cairo_surface_t *s, double x, double y, double w, double h);
 /* Text helpers: size in pixels; align 0 left, 0.5 centre, 1 right (x is the anchor); y the baseline. */

@@ -194,3 +194,34 @@ sss_result sss_eval_write_sheet(const sss_eval_results *res, int scene, const ch
     cairo_surface_destroy(s);
     return r;
 }
+
+sss_result eval_write_crops(const sss_eval_results *res, int scene, int k, const char *path, sss_error *err)
+{
+    if (!res || scene < 0 || scene >= res->scene_count || k < 0 || k >= res->label_count)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: no such technique", path);
+    const sss_eval_scene *es = &res->scenes[scene];
+    int w, h;
+    eval_primary_size(res, scene, &w, &h);
+    const sss_eval_entry *e = eval_find(res, scene, SSS_EVAL_QUALITY, res->labels[k], w, h);
+    if (!e || !e->has_metrics || !e->image.pixels)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: %s was not compared", path, res->labels[k]);
+    const double box = 128;
+    int crop = eval_crop_size(w, h);
+    eval_window worst = eval_worst_window(&e->flip_map, crop), sil = eval_silhouette_window(&es->object_ids, w, h, crop);
+    int W = (int)(2 * MARGIN + 2 * (2 * box + GAP) + 24), H = (int)(MARGIN + box + 24);
+    cairo_surface_t *s;
+    cairo_t *cr;
+    if (!eval_canvas(W, H, &s, &cr)) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: cannot draw", path);
+    cairo_surface_t *rs = eval_surface_from_image(&es->reference, es->exposure);
+    cairo_surface_t *is = eval_surface_from_image(&e->image, es->exposure);
+    crop_pair(cr, rs, is, worst, MARGIN, MARGIN / 2, box, "worst FLIP", WORST_RGB);
+    crop_pair(cr, rs, is, sil, MARGIN + 2 * box + GAP + 24, MARGIN / 2, box, "silhouette", SILHOUETTE_RGB);
+    if (rs) cairo_surface_destroy(rs);
+    if (is) cairo_surface_destroy(is);
+    sss_result r = cairo_status(cr) == CAIRO_STATUS_SUCCESS ? eval_write_surface(s, path, err)
+                                                            : sss_error_set(err, SSS_ERROR_UNSUPPORTED, "%s: cairo: %s",
+                                                                            path, cairo_status_to_string(cairo_status(cr)));
+    cairo_destroy(cr);
+    cairo_surface_destroy(s);
+    return r;
+}
