@@ -44,13 +44,13 @@ done <"$D/ssim_reference.txt"
 nflip=0
 while read -r tag a b ppd mean; do
     [ "$tag" = flip ] && [ "$ppd" != 20 ] || continue
-    run "$D/$a" "$D/$b"
+    run "$ROOT/tests/data/$a" "$ROOT/tests/data/$b"
     got=$(printf '%s\n' "$out" | sed -n 's/.* flip=\([0-9.]*\)$/\1/p')
     awk -v g="$got" -v m="$mean" 'BEGIN { exit !(g != "" && (g - m) ^ 2 < 2e-5 ^ 2) }' ||
         fail "$a vs $b: flip '$got', NVIDIA's FLIP gives $mean"
     nflip=$((nflip + 1))
 done <"$ROOT/tests/data/flip/flip_reference.txt"
-[ "$nflip" -eq 4 ] || fail "FLIP reference pairs not found ($nflip)"
+[ "$nflip" -eq 6 ] || fail "FLIP reference pairs not found ($nflip)"
 case "$("$SSS" compare "$D/base.png" "$D/base.png")" in *" flip=0.000000") ;; *) fail "FLIP of identical images is not 0" ;; esac
 
 # Different sizes: exit 1 naming both sizes.
