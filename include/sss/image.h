@@ -89,6 +89,10 @@ typedef struct sss_image_metrics {
  * per-pixel DSSIM of R, G and B. Images of different sizes are an error. */
 sss_result sss_image_compare(const sss_image *a, const sss_image *b, double exposure,
                              sss_image_metrics *out, sss_image *dssim_map, sss_error *err);
+/* sss_image_compare that also returns the FLIP map (optional, may be NULL; as sss_image_flip's), with
+ * FLIP computed once for both. */
+sss_result sss_image_compare_maps(const sss_image *a, const sss_image *b, double exposure, sss_image_metrics *out,
+                                  sss_image *dssim_map, sss_image *flip_map, sss_error *err);
 
 /* The same on ready-made 8-bit sRGB images (width * height * 3 bytes each). Both compare functions
  * need width and height >= 11 (the SSIM window), as scikit-image does. dssim_map, when given, must

@@ -178,15 +178,12 @@ static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size s
         if (r == SSS_OK && e.ok && ref.pixels) {
             sss_error cerr = {0};
             sss_image map = {0}, flip_map = {0};
-            double flip = 0.0;
-            if (sss_image_compare(&ref, &e.image, es->exposure, &e.metrics, k == 0 ? &map : NULL, &cerr) == SSS_OK &&
-                (k != 0 || sss_image_flip(&ref, &e.image, es->exposure, SSS_FLIP_DEFAULT_PPD, &flip, &flip_map,
-                                          &cerr) == SSS_OK)) {
+            if (sss_image_compare_maps(&ref, &e.image, es->exposure, &e.metrics, k == 0 ? &map : NULL,
+                                       k == 0 ? &flip_map : NULL, &cerr) == SSS_OK) {
                 e.has_metrics = 1;
                 e.dssim_map = map;
                 e.flip_map = flip_map;
             } else {
-                sss_image_free(&map);
                 eval_fail_entry(&e, cerr.message);
             }
         }

@@ -134,7 +134,8 @@ static void test_flat_fields(void)
 static uint32_t lcg(uint32_t *s) { return *s = *s * 1664525u + 1013904223u; }
 
 /* FLIP(a, a) = 0; FLIP(a, b) = FLIP(b, a) (both pipelines are symmetric); every pixel in [0, 1], also
- * for the largest differences (black against white noise); compare fills metrics.flip. */
+ * for the largest differences (black against white noise); compare fills metrics.flip, compare_maps
+ * also the map. */
 static void test_properties(void)
 {
     const int w = 48, h = 36;
@@ -166,6 +167,17 @@ static void test_properties(void)
         CHECK(sss_image_compare(&ia, &ib, 0.0, &m, NULL, NULL) == SSS_OK);
         CHECK(sss_image_flip(&ia, &ib, 0.0, SSS_FLIP_DEFAULT_PPD, &mean, NULL, NULL) == SSS_OK);
         CHECK(m.flip == mean && mean > 0);
+        /* compare_maps: the same metrics and the same FLIP map as sss_image_flip's */
+        sss_image_metrics m2;
+        sss_image fmap = {0}, fmap2 = {0}, dmap = {0};
+        CHECK(sss_image_flip(&ia, &ib, 0.0, SSS_FLIP_DEFAULT_PPD, &mean, &fmap, NULL) == SSS_OK);
+        CHECK(sss_image_compare_maps(&ia, &ib, 0.0, &m2, &dmap, &fmap2, NULL) == SSS_OK);
+        CHECK(m2.flip == m.flip && m2.ssim == m.ssim && dmap.pixels && fmap2.pixels);
+        CHECK(fmap2.pixels && fmap.pixels &&
+              memcmp(fmap.pixels, fmap2.pixels, sizeof(float) * 3 * (size_t)ia.width * (size_t)ia.height) == 0);
+        sss_image_free(&fmap);
+        sss_image_free(&fmap2);
+        sss_image_free(&dmap);
     }
     sss_image_free(&ia);
     sss_image_free(&ib);
