@@ -8,8 +8,8 @@
 
 int eval_crop_size(int w, int h)
 {
-    int s = (w < h ? w : h) / 4;
-    if (s < 8) s = 8;
+    int s = (w < h ? w : h) / 8; /* 48 pixels at 384: a 3x zoom on the sheet */
+    if (s < 12) s = 12;
     if (s > w) s = w;
     if (s > h) s = h;
     return s;

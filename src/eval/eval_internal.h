@@ -106,7 +106,8 @@ typedef struct eval_window {
     int x, y, size; /* top-left pixel and side, in the image's pixels */
     int valid;
 } eval_window;
-/* Side of the crop windows of a w x h image: a quarter of the shorter side, at least 8 pixels. */
+/* Side of the crop windows of a w x h image: an eighth of the shorter side, at least 12 pixels (and
+ * at most the image). */
 int eval_crop_size(int w, int h);
 /* The window of the entry's FLIP map with the largest mean FLIP (the worst-error window). */
 eval_window eval_worst_window(const sss_image *flip_map, int size);
@@ -116,7 +117,7 @@ eval_window eval_worst_window(const sss_image *flip_map, int size);
 eval_window eval_silhouette_window(const sss_image *object_ids, int w, int h, int size);
 /* "crops_<stem>[_t<T>]_<k>.png": the crops of technique k (label index) in scene s. */
 void eval_crops_file(const sss_eval_scene *s, int k, char *out, size_t cap);
-/* Writes that file: reference | technique for the worst-FLIP window and the silhouette window, 128-pixel
+/* Writes that file: reference | technique for the worst-FLIP window and the silhouette window, 192-pixel
  * boxes. Only for techniques compared at the scene's first quality size (SSS_ERROR_INVALID_ARGUMENT
  * otherwise). */
 sss_result eval_write_crops(const sss_eval_results *res, int scene, int k, const char *path, sss_error *err);

@@ -291,7 +291,7 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
                "difference; the mean is the number in the tables. Lower is better for both. On each sheet the DSSIM "
                "map (R, G, B = per-channel DSSIM) and the FLIP map (magma) carry colour bars with their scale. The "
                "zoomed crops show the reference left and the technique right, nearest-neighbour: the "
-               "<span style=\"color:#d97000\">worst window</span> of a technique is the square (a quarter of the "
+               "<span style=\"color:#d97000\">worst window</span> of a technique is the square (an eighth of the "
                "shorter side) with the largest mean FLIP; the <span style=\"color:#0090c0\">silhouette window</span> "
                "of a scene is the square holding the most pixels where the G-buffer object id of a subsurface "
                "object changes (its outline against the background, the ground or another object).</p>\n");

@@ -152,7 +152,7 @@ sss_result sss_eval_write_sheet(const sss_eval_results *res, int scene, const ch
     };
     cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
     for (size_t i = 0; i < sizeof legend / sizeof legend[0]; i++) eval_text(cr, lx, ly + 22 + 16 * i, 11.5, 0, 0, legend[i]);
-    snprintf(buf, sizeof buf, "Windows are %dx%d pixels (a quarter of the shorter side)%s.", crop, crop,
+    snprintf(buf, sizeof buf, "Windows are %dx%d pixels (an eighth of the shorter side)%s.", crop, crop,
              sil.valid ? "" : "; no silhouette window: no G-buffer object ids or no subsurface edges");
     eval_text(cr, lx, ly + 22 + 16 * 7, 11.5, 0, 0, buf);
     snprintf(buf, sizeof buf, "ms: median total frame time of %d frame%s after %d warm-up; %s", res->frames,
@@ -205,7 +205,7 @@ sss_result eval_write_crops(const sss_eval_results *res, int scene, int k, const
     const sss_eval_entry *e = eval_find(res, scene, SSS_EVAL_QUALITY, res->labels[k], w, h);
     if (!e || !e->has_metrics || !e->image.pixels)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: %s was not compared", path, res->labels[k]);
-    const double box = 128;
+    const double box = 192;
     int crop = eval_crop_size(w, h);
     eval_window worst = eval_worst_window(&e->flip_map, crop), sil = eval_silhouette_window(&es->object_ids, w, h, crop);
     int W = (int)(2 * MARGIN + 2 * (2 * box + GAP) + 24), H = (int)(MARGIN + box + 24);
