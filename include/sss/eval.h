@@ -1,5 +1,5 @@
 /* sss/eval.h — evaluation of the real-time techniques against the CPU ground truth, as the papers
- * measure them: image quality (DSSIM, PSNR, RMSE; Maisch & Ropinski 2020, section 8.1, Figs. 7 and 10; Maisch & Ropinski 2017
+ * measure them: image quality (DSSIM, FLIP, PSNR, RMSE; Maisch & Ropinski 2020, section 8.1, Figs. 7 and 10; Maisch & Ropinski 2017
  * Figs. 10 and 11), frame time per pass (Maisch & Ropinski 2020, section 8.2, Fig. 11), precomputation and memory.
  *
  * Does: loads scenes, renders every requested technique (the GL registry's, so new techniques appear
@@ -113,6 +113,7 @@ typedef struct sss_eval_entry {
     sss_gl_stats stats;               /* texture_bytes + buffer_bytes is the renderer's GPU memory */
     sss_image image;                  /* QUALITY at the first resolution only (empty otherwise) */
     sss_image dssim_map;              /* per-pixel, per-channel DSSIM of image (same rule) */
+    sss_image flip_map;               /* per-pixel FLIP of image, in all three channels (same rule) */
 } sss_eval_entry;
 
 typedef enum sss_eval_ref_source {
@@ -143,6 +144,10 @@ typedef struct sss_eval_scene {
     int reference_count;
     sss_eval_reference references[8]; /* one per quality resolution, in order */
     sss_image reference;              /* at the first quality resolution (empty when unavailable) */
+    sss_image object_ids;             /* G-buffer object index + 1 of the subsurface objects (0: other
+                                         objects and background) from the first technique that rendered
+                                         at that size, at its supersampled size (a whole multiple of it);
+                                         empty when none did. For the silhouette crops */
 } sss_eval_scene;
 
 typedef struct sss_eval_results {
@@ -190,19 +195,24 @@ int sss_eval_reference_path(const char *dir, const char *stem, int width, int he
 /* ---- Output ---------------------------------------------------------------------------------- */
 
 /* Everything below into out_dir (created if missing): results.json, results.csv, sheet_<scene>.png per
- * scene, plot_dssim.png, plot_passes.png, plot_sam_rmse.png, plot_resolution.png and report.html.
+ * scene, crops_<scene>_<k>.png per compared technique k (its zoomed crops), plot_dssim.png,
+ * plot_flip.png, plot_passes.png, plot_sam_rmse.png (only when the SAM sweep ran: without points it
+ * would be an empty plot; the report says why it is missing), plot_resolution.png and report.html.
  * Files are written atomically. */
 sss_result sss_eval_write_all(const sss_eval_results *res, const char *out_dir, sss_error *err);
 
 sss_result sss_eval_write_json(const sss_eval_results *res, const char *path, sss_error *err);
 sss_result sss_eval_write_csv(const sss_eval_results *res, const char *path, sss_error *err);
 /* The comparison sheet of one scene (Maisch & Ropinski 2020, Fig. 7): the reference large, each technique with its
- * label, DSSIM and milliseconds, and its per-pixel DSSIM map (R, G, B = the channels' DSSIM). */
+ * label, DSSIM, FLIP and milliseconds, its per-pixel DSSIM map (R, G, B = the channels' DSSIM) and FLIP map
+ * with colour bars, and zoomed crops of its worst-FLIP window and of the scene's silhouette window. */
 sss_result sss_eval_write_sheet(const sss_eval_results *res, int scene, const char *path, sss_error *err);
-/* Plots (PNG): DSSIM per technique per scene (grouped bars, Maisch & Ropinski 2020, Fig. 10); stacked milliseconds
+/* Plots (PNG): DSSIM (and FLIP) per technique per scene (grouped bars, Maisch & Ropinski 2020, Fig. 10); stacked milliseconds
  * per pass (Maisch & Ropinski 2020, Fig. 11); SAM RMSE against back-side samples (Maisch & Ropinski 2017, Fig. 10; says "sam not
- * available" when it is not); total frame time against resolution (mean over scenes). */
+ * available" when it is not); total frame time against resolution (one panel per scene, a line per
+ * technique). */
 sss_result sss_eval_plot_dssim(const sss_eval_results *res, const char *path, sss_error *err);
+sss_result sss_eval_plot_flip(const sss_eval_results *res, const char *path, sss_error *err);
 sss_result sss_eval_plot_passes(const sss_eval_results *res, const char *path, sss_error *err);
 sss_result sss_eval_plot_sam(const sss_eval_results *res, const char *path, sss_error *err);
 sss_result sss_eval_plot_resolution(const sss_eval_results *res, const char *path, sss_error *err);

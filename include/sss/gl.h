@@ -164,7 +164,8 @@ sss_result sss_gl_renderer_read(sss_gl_renderer *r, sss_image *out, sss_error *e
  * created by the call; free with sss_image_free): "reflected", "irradiance", "translucency",
  * "translucency_full", "screen", "final" (the output image, as sss_gl_renderer_read), "supersampled"
  * (the linear result before the SSAA box filter, supersample x the output size; with supersample 1
- * the same as "final"). Intermediate buffers are at the supersampled size. Unknown or unavailable
+ * the same as "final"), "object_id" (the G-buffer's object index + 1 in every channel, 0 where no
+ * object covers the pixel). Intermediate buffers are at the supersampled size. Unknown or unavailable
  * names are errors. */
 sss_result sss_gl_renderer_read_buffer(sss_gl_renderer *r, const char *name, sss_image *out, sss_error *err);
 /* Draws the last frame, tone mapped with the scene's exposure, to the window's back buffer. */

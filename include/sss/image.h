@@ -3,7 +3,7 @@
  * Does: read/write PNG (8-bit sRGB), Radiance HDR, PFM and OpenEXR (half or float RGB), read JPEG (8-bit
  * sRGB, as glTF assets carry textures); encode PNG in memory; tone map
  * exactly as docs/scene-format.md render.exposure; SSIM/DSSIM (Wang et al. 2004, docs/physics.md §5), PSNR, RMSE, max abs
- * error; find NaN/Inf. Does not: resample, colour-manage beyond sRGB, GL.
+ * error, LDR-FLIP (Andersson et al. 2020); find NaN/Inf. Does not: resample, colour-manage beyond sRGB, GL.
  * Pixels are linear RGB floats, row-major, top row first. PNG files are decoded with the exact inverse
  * of the sRGB curve, so writing a decoded PNG again at exposure 0 gives back the same bytes.
  */
@@ -86,14 +86,20 @@ typedef struct sss_image_metrics {
     double psnr;     /* dB on the 8-bit images; INFINITY when identical */
     double rmse;     /* on the 8-bit images, in [0, 255] */
     double max_abs;  /* largest absolute 8-bit difference */
+    double flip;     /* mean LDR-FLIP in [0, 1] at SSS_FLIP_DEFAULT_PPD (see sss_image_flip) */
 } sss_image_metrics;
 
-/* Compares a and b after tone mapping both with exposure (docs/physics.md §5: 11x11 Gaussian window,
+/* Compares a and b after tone mapping both with exposure (metrics.flip as sss_image_flip at
+ * SSS_FLIP_DEFAULT_PPD; the rest docs/physics.md §5: 11x11 Gaussian window,
  * sigma 1.5, K1 0.01, K2 0.03, per channel, averaged; borders as scikit-image, which crops 5 pixels).
  * dssim_map (optional, may be NULL) receives a width x height image whose three channels hold the
  * per-pixel DSSIM of R, G and B. Images of different sizes are an error. */
 sss_result sss_image_compare(const sss_image *a, const sss_image *b, double exposure,
                              sss_image_metrics *out, sss_image *dssim_map, sss_error *err);
+/* sss_image_compare that also returns the FLIP map (optional, may be NULL; as sss_image_flip's), with
+ * FLIP computed once for both. */
+sss_result sss_image_compare_maps(const sss_image *a, const sss_image *b, double exposure, sss_image_metrics *out,
+                                  sss_image *dssim_map, sss_image *flip_map, sss_error *err);
 
 /* The same on ready-made 8-bit sRGB images (width * height * 3 bytes each). Both compare functions
  * need width and height >= 11 (the SSIM window), as scikit-image does. dssim_map, when given, must
@@ -101,6 +107,25 @@ sss_result sss_image_compare(const sss_image *a, const sss_image *b, double expo
  * Border pixels of the map use the same 'reflect' boundary as the filter (scikit-image's full map). */
 sss_result sss_image_compare_srgb8(const uint8_t *a, const uint8_t *b, int width, int height,
                                    sss_image_metrics *out, sss_image *dssim_map, sss_error *err);
+
+/* LDR-FLIP (Andersson et al. 2020, "FLIP: A Difference Evaluator for Alternating Images", HPG 2020):
+ * the difference an observer sees when flipping between reference and test, per pixel in [0, 1]
+ * (0: none), from a colour pipeline (contrast sensitivity filtering, Hunt-adjusted HyAB distance) and
+ * a feature pipeline (edges and points). It depends on the viewing condition, given as pixels per
+ * degree of visual angle: SSS_FLIP_DEFAULT_PPD is the paper's default of about 67 ppd, a 0.7 m wide
+ * 3840-pixel monitor seen from 0.7 m (the value NVIDIA's reference implementation computes). The result is symmetric in the two images. Computed on the tone-mapped 8-bit sRGB
+ * images (as the other metrics); mean is the mean over pixels. flip_map (optional, may be NULL; must
+ * not hold an image) receives a width x height image with the per-pixel FLIP in all three channels
+ * (free it with sss_image_free; left empty on error). ppd outside [SSS_FLIP_MIN_PPD, SSS_FLIP_MAX_PPD]
+ * and images of different sizes are errors. */
+#define SSS_FLIP_DEFAULT_PPD 67.02064327658226 /* 0.7 m * (3840 px / 0.7 m) * pi / 180 */
+#define SSS_FLIP_MIN_PPD 1.0
+#define SSS_FLIP_MAX_PPD 1000.0
+sss_result sss_image_flip(const sss_image *reference, const sss_image *test, double exposure, double ppd,
+                          double *mean, sss_image *flip_map, sss_error *err);
+/* The same on ready-made 8-bit sRGB images (width * height * 3 bytes each). */
+sss_result sss_image_flip_srgb8(const uint8_t *reference, const uint8_t *test, int width, int height, double ppd,
+                                double *mean, sss_image *flip_map, sss_error *err);
 
 #ifdef __cplusplus
 }

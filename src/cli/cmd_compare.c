@@ -1,4 +1,4 @@
-/* sss compare — DSSIM, PSNR and RMSE of two images (docs/physics.md §5), optionally a DSSIM map. */
+/* sss compare — DSSIM, PSNR, RMSE and FLIP of two images (docs/physics.md §5), optionally a DSSIM map. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -17,12 +17,14 @@ static void print_help(void)
            "\n"
            "Compares two images (.png, .hdr, .pfm, .exr) after tone-mapping both to 8-bit sRGB with\n"
            "exposure E stops (default 0): round(255 srgb(clamp(linear 2^E, 0, 1))), docs/scene-format.md render.exposure.\n"
-           "Prints one line:  dssim=D psnr=P rmse=R max=M\n"
+           "Prints one line:  dssim=D psnr=P rmse=R max=M flip=F\n"
            "  dssim  (1 - SSIM) / 2, SSIM of Wang et al. 2004 per colour channel (11x11 Gaussian window,\n"
            "         sigma 1.5, K1 0.01, K2 0.03, range 255) averaged over R, G, B; the mean leaves out a\n"
            "         5-pixel border. Equals scikit-image structural_similarity(gaussian_weights=True,\n"
            "         sigma=1.5, use_sample_covariance=False, data_range=255, channel_axis=2).\n"
            "  psnr   dB on the 8-bit images ('inf' when identical); rmse and max in 8-bit codes.\n"
+           "  flip   mean LDR-FLIP (Andersson et al. 2020) in [0, 1], A taken as the reference, viewed at\n"
+           "         67 pixels per degree (a 0.7 m wide 3840-pixel monitor at 0.7 m); 0 = identical\n"
            "Images must be the same size and at least 11x11 pixels.\n"
            "\n"
            "options:\n"
@@ -131,7 +133,7 @@ int sss_cmd_compare(int argc, char **argv)
         status = cli_fail(CMD, &err);
         goto done;
     }
-    printf("dssim=%.6f psnr=%.3f rmse=%.4f max=%.0f\n", m.dssim, m.psnr, m.rmse, m.max_abs);
+    printf("dssim=%.6f psnr=%.3f rmse=%.4f max=%.0f flip=%.6f\n", m.dssim, m.psnr, m.rmse, m.max_abs, m.flip);
 done:
     sss_image_free(&img[0]);
     sss_image_free(&img[1]);

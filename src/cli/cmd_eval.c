@@ -25,10 +25,10 @@ static void print_usage(FILE *f)
             "                [--reference-threads N] [--sam-sweep | --no-sam-sweep] [--sam-counts 3,10,20,50]\n"
             "                [--supersample K] [--quiet]\n"
             "\n"
-            "Renders every technique and the CPU reference for each scene, compares them (DSSIM, PSNR, RMSE\n"
-            "on the tone-mapped 8-bit images), times every pass (median of N frames) and writes to DIR:\n"
+            "Renders every technique and the CPU reference for each scene, compares them (DSSIM, FLIP, PSNR,\n"
+            "RMSE on the tone-mapped 8-bit images), times every pass (median of N frames) and writes to DIR:\n"
             "results.json (schema docs/results.schema.json), results.csv, sheet_<scene>.png (reference,\n"
-            "techniques and their DSSIM maps), plot_dssim.png, plot_passes.png, plot_sam_rmse.png,\n"
+            "techniques, their DSSIM and FLIP maps and zoomed crops), plot_dssim.png, plot_passes.png, plot_sam_rmse.png,\n"
             "plot_resolution.png, and report.html (self-contained). A technique that fails is reported as\n"
             "failed with its error, not dropped. A summary table goes to stdout.\n"
             "\n"
@@ -143,22 +143,24 @@ static int split_list(char *text, char **items, int max)
 
 static void print_summary(const sss_eval_results *res, const char *out_dir)
 {
-    printf("%-22s %-26s %-7s %9s %8s %8s %11s\n", "scene", "technique", "status", "DSSIM", "PSNR", "RMSE", "ms/frame");
+    printf("%-22s %-26s %-7s %9s %8s %8s %8s %11s\n", "scene", "technique", "status", "DSSIM", "FLIP", "PSNR", "RMSE",
+           "ms/frame");
     for (int i = 0; i < res->entry_count; i++) {
         const sss_eval_entry *e = &res->entries[i];
         if (e->kind != SSS_EVAL_QUALITY) continue;
         int pw = res->scenes[e->scene].references[0].width, ph = res->scenes[e->scene].references[0].height;
         if (e->width != pw || e->height != ph) continue;
-        char d[16] = "-", p[16] = "-", r[16] = "-", ms[24] = "-";
+        char d[16] = "-", fl[16] = "-", p[16] = "-", r[16] = "-", ms[24] = "-";
         if (e->has_metrics) {
             snprintf(d, sizeof d, "%.4f", e->metrics.dssim);
+            snprintf(fl, sizeof fl, "%.4f", e->metrics.flip);
             if (isfinite(e->metrics.psnr)) snprintf(p, sizeof p, "%.2f", e->metrics.psnr);
             else snprintf(p, sizeof p, "inf");
             snprintf(r, sizeof r, "%.3f", e->metrics.rmse);
         }
         if (e->ok) snprintf(ms, sizeof ms, "%.1f", e->total_ms);
-        printf("%-22.22s %-26.26s %-7s %9s %8s %8s %11s\n", res->scenes[e->scene].name, e->label,
-               e->ok ? "ok" : "FAILED", d, p, r, ms);
+        printf("%-22.22s %-26.26s %-7s %9s %8s %8s %8s %11s\n", res->scenes[e->scene].name, e->label,
+               e->ok ? "ok" : "FAILED", d, fl, p, r, ms);
     }
     int failed = 0;
     for (int i = 0; i < res->entry_count; i++) failed += !res->entries[i].ok;

@@ -190,3 +190,93 @@ void eval_format_number(double v, double step, char *out, size_t cap)
     if (fabs(v) >= 1e6) snprintf(out, cap, "%.3g", v);
     else snprintf(out, cap, "%.*f", decimals, v);
 }
+
+eval_rgb eval_magma(double t)
+{
+    /* matplotlib's magma (van der Walt & Smith 2015, CC0) at entries 0, 16, ..., 240 and 255 of its 256;
+     * linear in between (the largest deviation from the full table is under 1/255) */
+    static const double stops[17][3] = {
+        {0.001462, 0.000466, 0.013866}, {0.039608, 0.031090, 0.133515}, {0.113094, 0.065492, 0.276784},
+        {0.211718, 0.061992, 0.418647}, {0.316654, 0.071690, 0.485380}, {0.414709, 0.110431, 0.504662},
+        {0.512831, 0.148179, 0.507648}, {0.613617, 0.181811, 0.498536}, {0.716387, 0.214982, 0.475290},
+        {0.816914, 0.255895, 0.436461}, {0.904281, 0.319610, 0.388137}, {0.960949, 0.418323, 0.359630},
+        {0.986700, 0.535582, 0.382210}, {0.996096, 0.653659, 0.446213}, {0.996898, 0.769591, 0.534892},
+        {0.992440, 0.884330, 0.640099}, {0.987053, 0.991438, 0.749504}};
+    if (!(t > 0)) t = 0; /* also NaN */
+    if (t > 1) t = 1;
+    double i = t * 255.0;
+    int k = i >= 240.0 ? 15 : (int)(i / 16.0);
+    double k0 = 16.0 * k, k1 = k == 15 ? 255.0 : 16.0 * (k + 1), f = (i - k0) / (k1 - k0);
+    eval_rgb c = {stops[k][0] + f * (stops[k + 1][0] - stops[k][0]), stops[k][1] + f * (stops[k + 1][1] - stops[k][1]),
+                  stops[k][2] + f * (stops[k + 1][2] - stops[k][2])};
+    return c;
+}
+
+cairo_surface_t *eval_surface_from_flip(const sss_image *map)
+{
+    if (!map || !map->pixels || map->width < 1 || map->height < 1) return NULL;
+    size_t n = (size_t)map->width * (size_t)map->height;
+    uint8_t *rgb = malloc(n * 3);
+    if (!rgb) return NULL;
+    for (size_t i = 0; i < n; i++) {
+        eval_rgb c = eval_magma(map->pixels[3 * i]);
+        rgb[3 * i] = (uint8_t)lround(255.0 * c.r);
+        rgb[3 * i + 1] = (uint8_t)lround(255.0 * c.g);
+        rgb[3 * i + 2] = (uint8_t)lround(255.0 * c.b);
+    }
+    cairo_surface_t *s = surface_from_rgb8(rgb, map->width, map->height);
+    free(rgb);
+    return s;
+}
+
+void eval_draw_colour_bar(cairo_t *cr, double x, double y, double w, double h, int magma, double vmax,
+                          const char *label)
+{
+    double lw = label ? eval_text_width(cr, 10, 1, label) + 6 : 0;
+    w -= lw; /* the name goes right of the bar */
+    if (label) {
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        eval_text(cr, x + w + 6, y + h, 10, 1, 0, label);
+    }
+    cairo_pattern_t *p = cairo_pattern_create_linear(x, 0, x + w, 0);
+    for (int i = 0; i <= 16; i++) {
+        eval_rgb c = magma ? eval_magma(i / 16.0) : (eval_rgb){i / 16.0, i / 16.0, i / 16.0};
+        cairo_pattern_add_color_stop_rgb(p, i / 16.0, c.r, c.g, c.b);
+    }
+    cairo_set_source(cr, p);
+    cairo_rectangle(cr, x, y, w, h);
+    cairo_fill(cr);
+    cairo_pattern_destroy(p);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_set_line_width(cr, 1);
+    cairo_rectangle(cr, x + 0.5, y + 0.5, w - 1, h);
+    cairo_stroke(cr);
+    char buf[32];
+    int ticks = w >= 160 ? 4 : 2; /* labels of 4 ticks need the room */
+    for (int i = 0; i <= ticks; i++) {
+        double tx = x + w * i / ticks;
+        cairo_move_to(cr, round(tx) + 0.5, y + h);
+        cairo_line_to(cr, round(tx) + 0.5, y + h + 3);
+        cairo_stroke(cr);
+        eval_format_number(vmax * i / ticks, vmax / 4.0, buf, sizeof buf);
+        eval_text(cr, tx, y + h + 13, 10, 0, i == 0 ? 0.0 : i == ticks ? 1.0 : 0.5, buf);
+    }
+}
+
+void eval_draw_crop(cairo_t *cr, cairo_surface_t *s, int x, int y, int size, double bx, double by, double box)
+{
+    if (!s || size < 1) {
+        eval_draw_surface(cr, NULL, bx, by, box, box);
+        return;
+    }
+    double sc = box / size;
+    cairo_save(cr);
+    cairo_rectangle(cr, bx, by, box, box);
+    cairo_clip(cr);
+    cairo_translate(cr, bx, by);
+    cairo_scale(cr, sc, sc);
+    cairo_set_source_surface(cr, s, -x, -y);
+    cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
+    cairo_paint(cr);
+    cairo_restore(cr);
+}

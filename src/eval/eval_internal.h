@@ -61,6 +61,8 @@ typedef struct eval_gl {
     int frames, warmup_frames;
     int supersample;      /* SSAA factor of specs that do not set "supersample" */
     eval_progress *prog;
+    sss_image *object_ids; /* when not NULL and still empty: receives the G-buffer object ids of the next
+                              technique that renders ("object_id" buffer; stays empty if unreadable) */
 } eval_gl;
 
 void eval_fail_entry(sss_eval_entry *e, const char *msg);
@@ -86,6 +88,39 @@ eval_rgb eval_palette(int i); /* distinct colours (Tableau 10, then darker varia
 cairo_surface_t *eval_surface_from_image(const sss_image *img, double exposure);
 /* The DSSIM map as colours: channel value * gain, clamped to [0, 1] (black = no difference). */
 cairo_surface_t *eval_surface_from_map(const sss_image *map, double gain);
+/* matplotlib's magma colour map at t in [0, 1] (clamped), as the FLIP paper shows its maps. */
+eval_rgb eval_magma(double t);
+/* A FLIP map (first channel, in [0, 1]) through eval_magma. */
+cairo_surface_t *eval_surface_from_flip(const sss_image *map);
+/* A horizontal colour bar in the box (x, y, w, h) with ticks and values under it from 0 to vmax:
+ * grey (black to white, the DSSIM maps' per-channel scale) or magma; label (may be NULL) is written
+ * right of the bar, inside the box. */
+void eval_draw_colour_bar(cairo_t *cr, double x, double y, double w, double h, int magma, double vmax,
+                          const char *label);
+/* Draws the crop (x, y, size) of surface s scaled into the square box (bx, by, box), nearest-neighbour. */
+void eval_draw_crop(cairo_t *cr, cairo_surface_t *s, int x, int y, int size, double bx, double by, double box);
+
+/* ---- Zoomed crops (eval_crops.c) ---- */
+
+typedef struct eval_window {
+    int x, y, size; /* top-left pixel and side, in the image's pixels */
+    int valid;
+} eval_window;
+/* Side of the crop windows of a w x h image: an eighth of the shorter side, at least 12 pixels (and
+ * at most the image). */
+int eval_crop_size(int w, int h);
+/* The window of the entry's FLIP map with the largest mean FLIP (the worst-error window). */
+eval_window eval_worst_window(const sss_image *flip_map, int size);
+/* The window holding the most coverage edges of a scene: pixels where the G-buffer object id
+ * (sss_eval_scene.object_ids, at `scale` x the w x h output) changes to a neighbour, i.e. silhouettes
+ * against the background and between objects. Invalid when there are no ids or no edges. */
+eval_window eval_silhouette_window(const sss_image *object_ids, int w, int h, int size);
+/* "crops_<stem>[_t<T>]_<k>.png": the crops of technique k (label index) in scene s. */
+void eval_crops_file(const sss_eval_scene *s, int k, char *out, size_t cap);
+/* Writes that file: reference | technique for the worst-FLIP window and the silhouette window, 192-pixel
+ * boxes. Only for techniques compared at the scene's first quality size (SSS_ERROR_INVALID_ARGUMENT
+ * otherwise). */
+sss_result eval_write_crops(const sss_eval_results *res, int scene, int k, const char *path, sss_error *err);
 /* Draws surface scaled into the box (x, y, w, h) keeping its aspect ratio; returns the drawn height. */
 double eval_draw_surface(cairo_t *cr, cairo_surface_t *s, double x, double y, double w, double h);
 /* Text helpers: size in pixels; align 0 left, 0.5 centre, 1 right (x is the anchor); y the baseline. */

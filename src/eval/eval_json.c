@@ -43,13 +43,14 @@ static cJSON *entry_json(const sss_eval_results *res, const sss_eval_entry *e)
     else cJSON_AddStringToObject(o, "error", e->error);
     if (e->has_metrics) {
         add_num(o, "dssim", e->metrics.dssim);
+        add_num(o, "flip", e->metrics.flip);
         add_num(o, "psnr", e->metrics.psnr);
         cJSON_AddBoolToObject(o, "psnr_infinite", isinf(e->metrics.psnr) != 0);
         add_num(o, "rmse", e->metrics.rmse);
         add_num(o, "max_abs", e->metrics.max_abs);
     } else {
-        const char *keys[] = {"dssim", "psnr", "rmse", "max_abs"};
-        for (int i = 0; i < 4; i++) cJSON_AddNullToObject(o, keys[i]);
+        const char *keys[] = {"dssim", "flip", "psnr", "rmse", "max_abs"};
+        for (int i = 0; i < 5; i++) cJSON_AddNullToObject(o, keys[i]);
         cJSON_AddBoolToObject(o, "psnr_infinite", 0);
     }
     cJSON_AddNumberToObject(o, "frames", e->frames);
@@ -212,7 +213,7 @@ sss_result sss_eval_write_csv(const sss_eval_results *res, const char *path, sss
     char tmp[4096];
     FILE *f = sss_atomic_open(path, tmp, sizeof tmp, err);
     if (!f) return err ? err->code : SSS_ERROR_IO;
-    fputs("scene,time,kind,technique,label,width,height,sam_n,status,dssim,psnr,rmse,max_abs,frames,ms_total,"
+    fputs("scene,time,kind,technique,label,width,height,sam_n,status,dssim,flip,psnr,rmse,max_abs,frames,ms_total,"
           "precompute_ms,gpu_bytes,passes,error\n", f);
     for (int i = 0; i < res->entry_count; i++) {
         const sss_eval_entry *e = &res->entries[i];
@@ -226,6 +227,7 @@ sss_result sss_eval_write_csv(const sss_eval_results *res, const char *path, sss
         if (e->kind == SSS_EVAL_SAM_SWEEP) fprintf(f, "%d", e->sam_n);
         fprintf(f, ",%s", e->ok ? "ok" : "failed");
         csv_num(f, e->metrics.dssim, e->has_metrics);
+        csv_num(f, e->metrics.flip, e->has_metrics);
         csv_num(f, e->metrics.psnr, e->has_metrics); /* empty when infinite (identical images: rmse 0) */
         csv_num(f, e->metrics.rmse, e->has_metrics);
         csv_num(f, e->metrics.max_abs, e->has_metrics);

@@ -28,7 +28,7 @@ static double nice_max(double v)
     return ceil(v * 1.08 / step - 1e-9) * step;
 }
 
-/* Title, y axis with ticks, grid lines and label; x axis line; x ticks when xticks (numeric x). */
+/* Title, y axis with ticks, grid lines and label; x axis line; about xticks x ticks (numeric x; 0: none). */
 static void draw_axes(cairo_t *cr, const frame *f, const char *xlabel, const char *ylabel, int xticks)
 {
     double first, step;
@@ -52,7 +52,7 @@ static void draw_axes(cairo_t *cr, const frame *f, const char *xlabel, const cha
         eval_text(cr, f->x0 - 8, y + 4, FONT - 1, 0, 1.0, buf);
     }
     if (xticks) {
-        eval_ticks(f->xlo, f->xhi, 8, &first, &step, &count);
+        eval_ticks(f->xlo, f->xhi, xticks, &first, &step, &count);
         for (int i = 0; i < count; i++) {
             double v = first + i * step;
             if (v > f->xhi + 1e-9 * step) break;
@@ -169,9 +169,11 @@ static sss_result finish(cairo_surface_t *s, cairo_t *cr, const char *path, sss_
     return r;
 }
 
-/* ---- DSSIM bars (Maisch & Ropinski 2020, Fig. 10) ---------------------------------------------------------- */
+/* ---- DSSIM and FLIP bars (Maisch & Ropinski 2020, Fig. 10) ------------------------------------------------ */
 
-sss_result sss_eval_plot_dssim(const sss_eval_results *res, const char *path, sss_error *err)
+static double metric_of(const sss_eval_entry *e, int flip) { return flip ? e->metrics.flip : e->metrics.dssim; }
+
+static sss_result plot_metric_bars(const sss_eval_results *res, const char *path, int flip, sss_error *err)
 {
     int ns = res->label_count, ng = res->scene_count;
     double bw = ns > 8 ? 14 : 20, gap = 28;
@@ -180,7 +182,8 @@ sss_result sss_eval_plot_dssim(const sss_eval_results *res, const char *path, ss
     double lw = legend_width(mc, "techniques", res->labels, ns);
     double glw = 0;
     for (int g = 0; g < ng; g++) glw = fmax(glw, eval_text_width(mc, FONT, 0, res->scenes[g].name));
-    const char *title = "DSSIM against the reference (lower is better)";
+    const char *title = flip ? "FLIP against the reference (mean LDR-FLIP at 67 ppd, lower is better)"
+                             : "DSSIM against the reference (lower is better)";
     double group_w = fmax(ns * bw, glw) + gap;
     int W = canvas_width(mc, (int)(100 + ng * group_w + 30 + lw), title), H = 460;
     cairo_destroy(mc);
@@ -194,11 +197,11 @@ sss_result sss_eval_plot_dssim(const sss_eval_results *res, const char *path, ss
         int pw, ph;
         eval_primary_size(res, e->scene, &pw, &ph);
         if (e->kind == SSS_EVAL_QUALITY && e->has_metrics && e->width == pw && e->height == ph)
-            vmax = fmax(vmax, e->metrics.dssim);
+            vmax = fmax(vmax, metric_of(e, flip));
     }
     frame f = {90, 60, W - lw - 20, H - 70, 0, 1, 0, nice_max(vmax)};
     draw_title(cr, W, title);
-    draw_axes(cr, &f, NULL, "DSSIM", 0);
+    draw_axes(cr, &f, NULL, flip ? "FLIP" : "DSSIM", 0);
     for (int g = 0; g < ng; g++) {
         double gx = f.x0 + gap / 2 + g * group_w + (group_w - gap - ns * bw) / 2;
         int pw, ph;
@@ -213,7 +216,7 @@ sss_result sss_eval_plot_dssim(const sss_eval_results *res, const char *path, ss
             if (!e->has_metrics) continue;
             eval_rgb c = eval_palette(k);
             cairo_set_source_rgb(cr, c.r, c.g, c.b);
-            double y = fy(&f, e->metrics.dssim);
+            double y = fy(&f, metric_of(e, flip));
             cairo_rectangle(cr, x + 1, y, bw - 2, f.y1 - y);
             cairo_fill(cr);
         }
@@ -224,6 +227,16 @@ sss_result sss_eval_plot_dssim(const sss_eval_results *res, const char *path, ss
     eval_text(cr, f.x0, H - 16, FONT - 2, 0, 0, "x = failed (see results.json); no bar = no reference");
     draw_legend(cr, f.x1 + 24, f.y0 + 10, "techniques", res->labels, ns, 0);
     return finish(s, cr, path, err);
+}
+
+sss_result sss_eval_plot_dssim(const sss_eval_results *res, const char *path, sss_error *err)
+{
+    return plot_metric_bars(res, path, 0, err);
+}
+
+sss_result sss_eval_plot_flip(const sss_eval_results *res, const char *path, sss_error *err)
+{
+    return plot_metric_bars(res, path, 1, err);
 }
 
 /* ---- Stacked milliseconds per pass (Maisch & Ropinski 2020, Fig. 11) ----------------------------------------- */
@@ -420,7 +433,7 @@ static sss_result line_plot(const char *path, const char *title, const char *xla
         }
     frame f = {90, 60, W - lw - 20, H - 70, 0, nice_max(xmax), 0, nice_max(ymax)};
     draw_title(cr, W, title);
-    draw_axes(cr, &f, xlabel, ylabel, 1);
+    draw_axes(cr, &f, xlabel, ylabel, 8);
     if (points == 0 || empty_detail) center_message(cr, &f, empty, empty_detail);
     else {
         draw_series(cr, &f, sv, count);
@@ -468,39 +481,62 @@ sss_result sss_eval_plot_sam(const sss_eval_results *res, const char *path, sss_
     return r;
 }
 
+/* One panel per scene (its sizes differ from the others', and so do its costs): frame time against
+ * megapixels, one line per technique, over the quality and timing sizes of that scene only. */
 sss_result sss_eval_plot_resolution(const sss_eval_results *res, const char *path, sss_error *err)
 {
-    int nl = res->label_count;
-    series *sv = calloc((size_t)(nl ? nl : 1), sizeof *sv);
+    int nl = res->label_count, ng = res->scene_count;
+    series *sv = calloc((size_t)(nl ? nl : 1) * (size_t)(ng ? ng : 1), sizeof *sv);
     if (!sv) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
-    /* per technique and size: mean total ms over the scenes where it ran */
-    for (int k = 0; k < nl; k++) {
-        double sum[64] = {0};
-        int cnt[64] = {0};
-        int sizes_w[64], sizes_h[64], nsz = 0;
-        for (int i = 0; i < res->entry_count; i++) {
-            const sss_eval_entry *e = &res->entries[i];
-            if (e->kind == SSS_EVAL_SAM_SWEEP || !e->ok || strcmp(e->label, res->labels[k]) != 0) continue;
-            int j = 0;
-            while (j < nsz && !(sizes_w[j] == e->width && sizes_h[j] == e->height)) j++;
-            if (j == nsz) {
-                if (nsz >= 64) continue;
-                sizes_w[nsz] = e->width;
-                sizes_h[nsz] = e->height;
-                nsz++;
+    int points = 0;
+    for (int g = 0; g < ng; g++)
+        for (int k = 0; k < nl; k++) {
+            series *se = &sv[(size_t)g * (size_t)nl + (size_t)k];
+            for (int i = 0; i < res->entry_count && se->n < 64; i++) {
+                const sss_eval_entry *e = &res->entries[i];
+                if (e->scene != g || e->kind == SSS_EVAL_SAM_SWEEP || !e->ok || strcmp(e->label, res->labels[k]) != 0)
+                    continue;
+                se->x[se->n] = e->width * (double)e->height / 1e6;
+                se->y[se->n] = e->total_ms;
+                se->n++;
+                points++;
             }
-            sum[j] += e->total_ms;
-            cnt[j]++;
+            sort_series(se);
         }
-        for (int j = 0; j < nsz; j++) {
-            sv[k].x[sv[k].n] = sizes_w[j] * (double)sizes_h[j] / 1e6;
-            sv[k].y[sv[k].n] = sum[j] / cnt[j];
-            sv[k].n++;
-        }
-        sort_series(&sv[k]);
+    const char *title = "Frame time against resolution, per scene (median ms per frame)";
+    cairo_surface_t *ms;
+    cairo_t *mc = measure_ctx(&ms);
+    double lw = legend_width(mc, "techniques", res->labels, nl);
+    double pw_px = 380, ph_px = 330;
+    int cols = ng < 3 ? (ng > 0 ? ng : 1) : 3, rows = ng > 0 ? (ng + cols - 1) / cols : 1;
+    int W = canvas_width(mc, (int)(20 + cols * pw_px + 30 + lw), title);
+    int H = (int)(60 + fmax(rows * ph_px, nl * 19 + 60));
+    cairo_destroy(mc);
+    cairo_surface_destroy(ms);
+    cairo_surface_t *s;
+    cairo_t *cr;
+    if (!eval_canvas(W, H, &s, &cr)) {
+        free(sv);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: cannot draw", path);
     }
-    sss_result r = line_plot(path, "Frame time against resolution (mean over scenes)", "megapixels",
-                             "ms per frame", "techniques", res->labels, sv, nl, "no successful renders", NULL, err);
+    draw_title(cr, W, title);
+    for (int g = 0; g < ng; g++) {
+        const series *sg = &sv[(size_t)g * (size_t)nl];
+        double xmax = 0, ymax = 0;
+        for (int k = 0; k < nl; k++)
+            for (int j = 0; j < sg[k].n; j++) xmax = fmax(xmax, sg[k].x[j]), ymax = fmax(ymax, sg[k].y[j]);
+        double px = 20 + (g % cols) * pw_px, py = 60 + (g / cols) * ph_px;
+        frame f = {px + 70, py + 30, px + pw_px - 20, py + ph_px - 60, 0, nice_max(xmax), 0, nice_max(ymax)};
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        eval_text(cr, (f.x0 + f.x1) / 2, py + 14, FONT, 1, 0.5, res->scenes[g].name);
+        draw_axes(cr, &f, "megapixels", g % cols == 0 ? "ms per frame" : NULL, 4);
+        draw_series(cr, &f, sg, nl);
+    }
+    if (points == 0) {
+        frame f = {90, 60, W - lw - 20, H - 70, 0, 1, 0, 1};
+        center_message(cr, &f, "no successful renders", NULL);
+    }
+    draw_legend(cr, 20 + cols * pw_px + 10, 80, "techniques", res->labels, nl, 1);
     free(sv);
-    return r;
+    return finish(s, cr, path, err);
 }

@@ -123,10 +123,12 @@ static void fmt_num(char *out, size_t cap, double v, const char *fmt, int ok)
     else snprintf(out, cap, fmt, v);
 }
 
+/* best: bit 0 the scene's lowest DSSIM, bit 1 its lowest FLIP. */
 static void entry_row(sbuf *b, const sss_eval_results *res, const sss_eval_entry *e, int best)
 {
-    char d[32], p[32], r[32], ms[32], pre[32], mem[32];
+    char d[32], fl[32], p[32], r[32], ms[32], pre[32], mem[32];
     fmt_num(d, sizeof d, e->metrics.dssim, "%.4f", e->has_metrics);
+    fmt_num(fl, sizeof fl, e->metrics.flip, "%.4f", e->has_metrics);
     if (e->has_metrics && isinf(e->metrics.psnr)) snprintf(p, sizeof p, "&infin;");
     else fmt_num(p, sizeof p, e->metrics.psnr, "%.2f", e->has_metrics);
     fmt_num(r, sizeof r, e->metrics.rmse, "%.3f", e->has_metrics);
@@ -141,8 +143,9 @@ static void entry_row(sbuf *b, const sss_eval_results *res, const sss_eval_entry
     else {
         sb_put(b, "<td class=\"fail\">failed</td>", 28);
     }
-    sb_printf(b, "<td%s>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td class=\"l small\">",
-              best ? " class=\"best\"" : "", d, p, r, ms, pre, mem);
+    sb_printf(b, "<td%s>%s</td><td class=\"flip%s\">%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td>"
+                 "<td class=\"l small\">",
+              best & 1 ? " class=\"best\"" : "", d, best & 2 ? " best" : "", fl, p, r, ms, pre, mem);
     if (e->ok)
         for (int k = 0; k < e->pass_count; k++) sb_printf(b, "%s%s&nbsp;%.1f", k ? ", " : "", e->passes[k].name, e->passes[k].ms);
     else sb_esc(b, e->error);
@@ -155,7 +158,7 @@ static void sb_puts(sbuf *b, const char *s) { sb_put(b, s, strlen(s)); }
 static void table_head(sbuf *b)
 {
     sb_puts(b,
-            "<table><tr><th class=\"l\">technique</th><th>size</th><th>status</th><th>DSSIM</th><th>PSNR dB</th>"
+            "<table><tr><th class=\"l\">technique</th><th>size</th><th>status</th><th>DSSIM</th><th class=\"flip\">FLIP</th><th>PSNR dB</th>"
            "<th>RMSE</th><th>ms/frame</th><th>set-up ms</th><th>GPU MB</th><th class=\"l\">passes (ms) or error</th></tr>\n");
 }
 
@@ -168,6 +171,83 @@ static const char *CSS =
     ".ok{color:#176e1a}.fail{color:#b00000;font-weight:bold}.best{font-weight:bold;background:#e6f4e6}"
     "img{max-width:100%;height:auto;border:1px solid #ddd;margin:6px 0}"
     ".meta td{text-align:left}.note{color:#555;font-size:13px}";
+
+static double metric(const sss_eval_entry *e, int flip) { return flip ? e->metrics.flip : e->metrics.dssim; }
+
+/* DSSIM or FLIP per scene and technique at the scene's first size, the best of each scene highlighted. */
+static void summary_table(sbuf *b, const sss_eval_results *res, int flip)
+{
+    sb_printf(b, "<h2>Summary: %s (lower is better)</h2>\n<table class=\"summary-%s\"><tr><th class=\"l\">scene</th>",
+              flip ? "FLIP" : "DSSIM", flip ? "flip" : "dssim");
+    for (int k = 0; k < res->label_count; k++) {
+        sb_puts(b, "<th>");
+        sb_esc(b, res->labels[k]);
+        sb_puts(b, "</th>");
+    }
+    sb_puts(b, "</tr>\n");
+    for (int s = 0; s < res->scene_count; s++) {
+        int w, h;
+        eval_primary_size(res, s, &w, &h);
+        double best = INFINITY;
+        for (int k = 0; k < res->label_count; k++) {
+            const sss_eval_entry *e = eval_find(res, s, SSS_EVAL_QUALITY, res->labels[k], w, h);
+            if (e && e->has_metrics && metric(e, flip) < best) best = metric(e, flip);
+        }
+        sb_puts(b, "<tr><td class=\"l\">");
+        sb_esc(b, res->scenes[s].name);
+        sb_puts(b, "</td>");
+        for (int k = 0; k < res->label_count; k++) {
+            const sss_eval_entry *e = eval_find(res, s, SSS_EVAL_QUALITY, res->labels[k], w, h);
+            if (!e || !e->ok) {
+                sb_puts(b, "<td class=\"fail\" title=\"");
+                sb_esc(b, e ? e->error : "not run");
+                sb_puts(b, "\">failed</td>");
+            } else if (!e->has_metrics) sb_puts(b, "<td>&ndash;</td>");
+            else sb_printf(b, "<td%s>%.4f</td>", metric(e, flip) == best ? " class=\"best\"" : "", metric(e, flip));
+        }
+        sb_puts(b, "</tr>\n");
+    }
+    sb_puts(b, "</table>\n");
+}
+
+/* The SAM sweep produced points to plot. */
+static int sam_plotted(const sss_eval_results *res)
+{
+    for (int i = 0; res->sam_swept && i < res->entry_count; i++)
+        if (res->entries[i].kind == SSS_EVAL_SAM_SWEEP && res->entries[i].has_metrics) return 1;
+    return 0;
+}
+
+/* The zoomed crops of each compared technique of scene s, one image per row. */
+static void crops_table(sbuf *b, const sss_eval_results *res, int s, const char *dir)
+{
+    int w, h;
+    eval_primary_size(res, s, &w, &h);
+    int crop = eval_crop_size(w, h);
+    eval_window sil = eval_silhouette_window(&res->scenes[s].object_ids, w, h, crop);
+    sb_printf(b, "<h3>Zoomed crops (%d&times;%d-pixel windows)</h3>\n", crop, crop);
+    if (sil.valid) sb_printf(b, "<p class=\"note\">silhouette window at (%d, %d)</p>\n", sil.x, sil.y);
+    else
+        sb_puts(b, "<p class=\"note\">no silhouette window: no G-buffer object ids were read, or no subsurface "
+                   "object has an outline in the image</p>\n");
+    sb_puts(b, "<table class=\"crops\"><tr><th class=\"l\">technique</th><th class=\"l\">worst window (largest "
+               "mean FLIP)</th><th class=\"l\">reference | technique</th></tr>\n");
+    for (int k = 0; k < res->label_count; k++) {
+        const sss_eval_entry *e = eval_find(res, s, SSS_EVAL_QUALITY, res->labels[k], w, h);
+        if (!e || !e->has_metrics || !e->image.pixels) continue;
+        eval_window worst = eval_worst_window(&e->flip_map, crop);
+        sb_puts(b, "<tr><td class=\"l\">");
+        sb_esc(b, e->label);
+        if (worst.valid) sb_printf(b, "</td><td class=\"l\">(%d, %d)</td><td class=\"l\">", worst.x, worst.y);
+        else sb_puts(b, "</td><td class=\"l\">none (no error)</td><td class=\"l\">");
+        char file[300], alt[SSS_EVAL_LABEL_SIZE + 32];
+        eval_crops_file(&res->scenes[s], k, file, sizeof file);
+        snprintf(alt, sizeof alt, "crops of %s", e->label);
+        sb_image(b, dir, file, alt);
+        sb_puts(b, "</td></tr>\n");
+    }
+    sb_puts(b, "</table>\n");
+}
 
 static sss_result build_report(const sss_eval_results *res, const char *dir, sbuf *b)
 {
@@ -203,46 +283,35 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
     else sb_printf(b, "%d bounces", res->reference_bounces);
     sb_printf(b, "%s</td></tr>", res->cached_reference ? ", cached images used where present" : "");
     sb_puts(b, "<tr><th class=\"l\">metrics</th><td>DSSIM = (1 &minus; SSIM)/2 (11&times;11 Gaussian window, "
-               "&sigma; 1.5), PSNR and RMSE on the tone-mapped 8-bit sRGB images (docs/physics.md §5)</td></tr></table>\n");
+               "&sigma; 1.5), FLIP (mean LDR-FLIP, Andersson et al. 2020, at 67 pixels per degree), PSNR and RMSE "
+               "on the tone-mapped 8-bit sRGB images (docs/physics.md §5, docs/eval.md)</td></tr></table>\n");
+    sb_puts(b, "<p class=\"note\" id=\"how-to-read\"><b>How to read.</b> DSSIM measures the loss of local "
+               "structure (0: identical). FLIP estimates what an observer sees when flipping between the reference "
+               "and the image on a 0.7&nbsp;m wide 4K monitor at 0.7&nbsp;m: per pixel in [0, 1], 0 = no visible "
+               "difference; the mean is the number in the tables. Lower is better for both. On each sheet the DSSIM "
+               "map (R, G, B = per-channel DSSIM) and the FLIP map (magma) carry colour bars with their scale. The "
+               "zoomed crops show the reference left and the technique right, nearest-neighbour: the "
+               "<span style=\"color:#d97000\">worst window</span> of a technique is the square (an eighth of the "
+               "shorter side) with the largest mean FLIP; the <span style=\"color:#0090c0\">silhouette window</span> "
+               "of a scene is the square holding the most pixels where the G-buffer object id of a subsurface "
+               "object changes (its outline against the background, the ground or another object).</p>\n");
 
-    /* summary: DSSIM per scene and technique, the best of each scene highlighted */
-    sb_puts(b, "<h2>Summary: DSSIM (lower is better)</h2>\n<table><tr><th class=\"l\">scene</th>");
-    for (int k = 0; k < res->label_count; k++) {
-        sb_puts(b, "<th>");
-        sb_esc(b, res->labels[k]);
-        sb_puts(b, "</th>");
-    }
-    sb_puts(b, "</tr>\n");
-    for (int s = 0; s < res->scene_count; s++) {
-        int w, h;
-        eval_primary_size(res, s, &w, &h);
-        double best = INFINITY;
-        for (int k = 0; k < res->label_count; k++) {
-            const sss_eval_entry *e = eval_find(res, s, SSS_EVAL_QUALITY, res->labels[k], w, h);
-            if (e && e->has_metrics && e->metrics.dssim < best) best = e->metrics.dssim;
-        }
-        sb_puts(b, "<tr><td class=\"l\">");
-        sb_esc(b, res->scenes[s].name);
-        sb_puts(b, "</td>");
-        for (int k = 0; k < res->label_count; k++) {
-            const sss_eval_entry *e = eval_find(res, s, SSS_EVAL_QUALITY, res->labels[k], w, h);
-            if (!e || !e->ok) {
-                sb_puts(b, "<td class=\"fail\" title=\"");
-                sb_esc(b, e ? e->error : "not run");
-                sb_puts(b, "\">failed</td>");
-            } else if (!e->has_metrics) sb_puts(b, "<td>&ndash;</td>");
-            else
-                sb_printf(b, "<td%s>%.4f</td>", e->metrics.dssim == best ? " class=\"best\"" : "", e->metrics.dssim);
-        }
-        sb_puts(b, "</tr>\n");
-    }
-    sb_puts(b, "</table>\n");
+    summary_table(b, res, 0);
+    summary_table(b, res, 1);
 
     sb_puts(b, "<h2>Plots</h2>\n");
     sb_image(b, dir, "plot_dssim.png", "DSSIM per technique and scene");
+    sb_image(b, dir, "plot_flip.png", "FLIP per technique and scene");
     sb_image(b, dir, "plot_passes.png", "milliseconds per pass");
-    sb_image(b, dir, "plot_sam_rmse.png", "SAM RMSE against back-side samples");
-    sb_image(b, dir, "plot_resolution.png", "frame time against resolution");
+    if (sam_plotted(res)) sb_image(b, dir, "plot_sam_rmse.png", "SAM RMSE against back-side samples");
+    else {
+        sb_puts(b, "<p class=\"note\">No SAM plot (plot_sam_rmse.png is not written): ");
+        sb_esc(b, !res->sam_available ? (res->sam_note[0] ? res->sam_note : "sam is not available")
+                  : res->sam_swept   ? "the sweep gave no compared points (no reference)"
+                                     : "the SAM sweep did not run (evaluate the sam technique or pass --sam-sweep)");
+        sb_puts(b, ".</p>\n");
+    }
+    sb_image(b, dir, "plot_resolution.png", "frame time against resolution, per scene");
 
     for (int s = 0; s < res->scene_count; s++) {
         const sss_eval_scene *es = &res->scenes[s];
@@ -273,17 +342,20 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
         char file[300];
         eval_sheet_file(es, file, sizeof file);
         sb_image(b, dir, file, es->name);
+        crops_table(b, res, s, dir);
         table_head(b);
-        double best = INFINITY;
+        double best[2] = {INFINITY, INFINITY};
         for (int i = 0; i < res->entry_count; i++) {
             const sss_eval_entry *e = &res->entries[i];
-            if (e->scene == s && e->kind == SSS_EVAL_QUALITY && e->has_metrics && e->metrics.dssim < best)
-                best = e->metrics.dssim;
+            for (int m = 0; m < 2; m++)
+                if (e->scene == s && e->kind == SSS_EVAL_QUALITY && e->has_metrics && metric(e, m) < best[m])
+                    best[m] = metric(e, m);
         }
         for (int i = 0; i < res->entry_count; i++) {
             const sss_eval_entry *e = &res->entries[i];
+            int q = e->scene == s && e->kind == SSS_EVAL_QUALITY && e->has_metrics;
             if (e->scene == s && e->kind != SSS_EVAL_SAM_SWEEP)
-                entry_row(b, res, e, e->kind == SSS_EVAL_QUALITY && e->has_metrics && e->metrics.dssim == best);
+                entry_row(b, res, e, (q && e->metrics.dssim == best[0]) | (q && e->metrics.flip == best[1]) << 1);
         }
         sb_puts(b, "</table>\n");
     }
@@ -363,15 +435,31 @@ sss_result sss_eval_write_all(const sss_eval_results *res, const char *out_dir, 
         snprintf(path, sizeof path, "%s/%s", out_dir, file);
         r = sss_eval_write_sheet(res, s, path, err);
     }
+    for (int s = 0; r == SSS_OK && s < res->scene_count; s++) {
+        int w, h;
+        eval_primary_size(res, s, &w, &h);
+        for (int k = 0; r == SSS_OK && k < res->label_count; k++) {
+            const sss_eval_entry *e = eval_find(res, s, SSS_EVAL_QUALITY, res->labels[k], w, h);
+            if (!e || !e->has_metrics || !e->image.pixels) continue;
+            char file[300];
+            eval_crops_file(&res->scenes[s], k, file, sizeof file);
+            snprintf(path, sizeof path, "%s/%s", out_dir, file);
+            r = eval_write_crops(res, s, k, path, err);
+        }
+    }
     if (r == SSS_OK) {
         snprintf(path, sizeof path, "%s/plot_dssim.png", out_dir);
         r = sss_eval_plot_dssim(res, path, err);
     }
     if (r == SSS_OK) {
+        snprintf(path, sizeof path, "%s/plot_flip.png", out_dir);
+        r = sss_eval_plot_flip(res, path, err);
+    }
+    if (r == SSS_OK) {
         snprintf(path, sizeof path, "%s/plot_passes.png", out_dir);
         r = sss_eval_plot_passes(res, path, err);
     }
-    if (r == SSS_OK) {
+    if (r == SSS_OK && sam_plotted(res)) {
         snprintf(path, sizeof path, "%s/plot_sam_rmse.png", out_dir);
         r = sss_eval_plot_sam(res, path, err);
     }

@@ -142,6 +142,19 @@ static sss_result run_entry(run_state *st, const sss_scene *view, int si, int i,
     return r;
 }
 
+/* Clears the ids of objects that are not subsurface: the silhouette crops look at the edges of the
+ * translucent objects (against the background, the ground and each other), not at a horizon. */
+static void keep_subsurface_ids(const sss_scene *scene, sss_image *ids)
+{
+    size_t n = ids->pixels ? (size_t)ids->width * (size_t)ids->height * 3 : 0;
+    for (size_t i = 0; i < n; i++) {
+        float id = ids->pixels[i];
+        size_t obj = id >= 1.0f ? (size_t)id - 1 : scene->object_count;
+        if (obj >= scene->object_count || scene->objects[obj].material.type != SSS_SCENE_MATERIAL_SUBSURFACE)
+            ids->pixels[i] = 0.0f;
+    }
+}
+
 static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size size, sss_error *err)
 {
     sss_eval_results *res = st->res;
@@ -158,13 +171,18 @@ static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size s
     if (r != SSS_OK) return r;
     sss_eval_entry e;
     for (int i = 0; i < res->label_count; i++) {
+        st->rc.object_ids = k == 0 ? &es->object_ids : NULL;
         r = run_entry(st, &view, si, i, size, SSS_EVAL_QUALITY, &e);
+        st->rc.object_ids = NULL;
+        if (k == 0) keep_subsurface_ids(&st->scenes[si], &es->object_ids);
         if (r == SSS_OK && e.ok && ref.pixels) {
             sss_error cerr = {0};
-            sss_image map = {0};
-            if (sss_image_compare(&ref, &e.image, es->exposure, &e.metrics, k == 0 ? &map : NULL, &cerr) == SSS_OK) {
+            sss_image map = {0}, flip_map = {0};
+            if (sss_image_compare_maps(&ref, &e.image, es->exposure, &e.metrics, k == 0 ? &map : NULL,
+                                       k == 0 ? &flip_map : NULL, &cerr) == SSS_OK) {
                 e.has_metrics = 1;
                 e.dssim_map = map;
+                e.flip_map = flip_map;
             } else {
                 eval_fail_entry(&e, cerr.message);
             }
@@ -174,6 +192,7 @@ static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size s
         if (r != SSS_OK) {
             sss_image_free(&e.image);
             sss_image_free(&e.dssim_map);
+            sss_image_free(&e.flip_map);
             sss_image_free(&ref);
             return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
         }

@@ -1,6 +1,8 @@
-/* eval/eval_sheet.c — the comparison sheet of one scene, after Maisch & Ropinski 2020, Fig. 7: the reference large
- * on the left; for every technique its image, its per-pixel DSSIM map (R, G, B = the DSSIM of each
- * channel, black = no perceptible difference) and a caption with label, DSSIM and milliseconds. */
+/* eval/eval_sheet.c — the comparison sheet of one scene, after Maisch & Ropinski 2020, Fig. 7: the reference
+ * with the legend on top; then one row per technique: its image, its per-pixel DSSIM map (R, G, B = the
+ * DSSIM of each channel, black = no difference) and FLIP map (magma), each with a colour bar, a caption
+ * with label, DSSIM, FLIP and milliseconds, and zoomed crops (reference beside technique) of its
+ * worst-FLIP window and of the scene's silhouette window (eval_crops.c). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -13,6 +15,9 @@
 #define HEADER 58.0
 #define GAP 6.0
 #define CAPTION 38.0
+#define BAR 24.0 /* colour bar and its labels under a map */
+#define WORST_RGB 1.0, 0.55, 0.0
+#define SILHOUETTE_RGB 0.0, 0.75, 0.95
 
 /* Shortens text with "..." until it fits width. */
 static void fit_text(cairo_t *cr, double size, int bold, const char *text, double width, char *out, size_t cap)
@@ -37,6 +42,62 @@ static const char *source_name(const sss_eval_reference *r)
     }
 }
 
+/* The outline of window win (in image pixels) on an image drawn at (x, y) with scale sc. */
+static void outline_window(cairo_t *cr, eval_window win, double x, double y, double sc, double r, double g, double b)
+{
+    if (!win.valid) return;
+    cairo_set_source_rgb(cr, r, g, b);
+    cairo_set_line_width(cr, 2);
+    cairo_rectangle(cr, x + win.x * sc, y + win.y * sc, win.size * sc, win.size * sc);
+    cairo_stroke(cr);
+}
+
+/* Reference crop and technique crop of win side by side in boxes of side box, framed in the window's
+ * colour, with a caption under them. */
+static void crop_pair(cairo_t *cr, cairo_surface_t *ref, cairo_surface_t *img, eval_window win, double x, double y,
+                      double box, const char *what, double r, double g, double b)
+{
+    char buf[160];
+    if (!win.valid) {
+        eval_draw_surface(cr, NULL, x, y, 2 * box + GAP, box);
+        cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
+        snprintf(buf, sizeof buf, "%s: no window", what);
+        eval_text(cr, x, y + box + 14, 11, 0, 0, buf);
+        return;
+    }
+    eval_draw_crop(cr, ref, win.x, win.y, win.size, x, y, box);
+    eval_draw_crop(cr, img, win.x, win.y, win.size, x + box + GAP, y, box);
+    cairo_set_source_rgb(cr, r, g, b);
+    cairo_set_line_width(cr, 3);
+    cairo_rectangle(cr, x - 1.5, y - 1.5, 2 * box + GAP + 3, box + 3);
+    cairo_stroke(cr);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    snprintf(buf, sizeof buf, "%s (%d, %d) %dpx: reference | technique", what, win.x, win.y, win.size);
+    eval_text(cr, x, y + box + 14, 11, 0, 0, buf);
+}
+
+static void caption(cairo_t *cr, const sss_eval_entry *e, const char *label, double x, double y, double width)
+{
+    char buf[600], fit[600];
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    fit_text(cr, 13, 1, label, width, fit, sizeof fit);
+    eval_text(cr, x, y + 14, 13, 1, 0, fit);
+    if (!e || !e->ok) {
+        cairo_set_source_rgb(cr, 0.8, 0, 0);
+        snprintf(buf, sizeof buf, "FAILED: %s", e ? e->error : "not run");
+    } else if (e->has_metrics) {
+        char psnr[32];
+        if (isfinite(e->metrics.psnr)) snprintf(psnr, sizeof psnr, "%.1f dB", e->metrics.psnr);
+        else snprintf(psnr, sizeof psnr, "inf");
+        snprintf(buf, sizeof buf, "DSSIM %.4f   FLIP %.4f   PSNR %s   %.1f ms", e->metrics.dssim, e->metrics.flip, psnr,
+                 e->total_ms);
+    } else {
+        snprintf(buf, sizeof buf, "no reference   %.1f ms", e->total_ms);
+    }
+    fit_text(cr, 11.5, 0, buf, width, fit, sizeof fit);
+    eval_text(cr, x, y + 30, 11.5, 0, 0, fit);
+}
+
 sss_result sss_eval_write_sheet(const sss_eval_results *res, int scene, const char *path, sss_error *err)
 {
     if (!res || scene < 0 || scene >= res->scene_count)
@@ -44,15 +105,14 @@ sss_result sss_eval_write_sheet(const sss_eval_results *res, int scene, const ch
     const sss_eval_scene *es = &res->scenes[scene];
     int w, h;
     eval_primary_size(res, scene, &w, &h);
-    double st = fmin(300.0 / w, 220.0 / h), sr = fmin(640.0 / w, 560.0 / h);
+    double st = fmin(220.0 / w, 170.0 / h), sr = fmin(440.0 / w, 330.0 / h);
     double tw = floor(w * st), th = floor(h * st), rw = floor(w * sr), rh = floor(h * sr);
-    int n = res->label_count;
-    int ncol = n <= 3 ? 1 : 2;
-    int rows = (n + ncol - 1) / ncol;
-    double cell_w = 2 * tw + GAP, cell_h = th + CAPTION + 12;
-    double left_h = rh + 80;
-    int W = (int)(MARGIN + rw + 24 + ncol * (cell_w + 16) + MARGIN);
-    int H = (int)(HEADER + fmax(left_h, rows * cell_h) + MARGIN);
+    double box = fmin(th, 150.0); /* crop boxes */
+    int n = res->label_count, crop = eval_crop_size(w, h);
+    eval_window sil = eval_silhouette_window(&es->object_ids, w, h, crop);
+    double row_w = 3 * tw + 2 * GAP + 24 + 2 * (2 * box + GAP) + 24, row_h = th + BAR + CAPTION + 18;
+    int W = (int)(2 * MARGIN + fmax(row_w, rw + 24 + 560));
+    int H = (int)(HEADER + rh + 30 + n * row_h + MARGIN);
     cairo_surface_t *s;
     cairo_t *cr;
     if (!eval_canvas(W, H, &s, &cr)) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: cannot draw", path);
@@ -73,52 +133,91 @@ sss_result sss_eval_write_sheet(const sss_eval_results *res, int scene, const ch
         eval_text(cr, MARGIN, 46, 12, 0, 0, fit);
     }
 
-    /* the reference, large */
+    /* the reference with the silhouette window, and the legend beside it */
     double y0 = HEADER;
     cairo_surface_t *rs = eval_surface_from_image(&es->reference, es->exposure);
     eval_draw_surface(cr, rs, MARGIN, y0, rw, rh);
-    if (rs) cairo_surface_destroy(rs);
+    outline_window(cr, sil, MARGIN, y0, sr, SILHOUETTE_RGB);
+    double lx = MARGIN + rw + 24, ly = y0 + 14;
     cairo_set_source_rgb(cr, 0, 0, 0);
-    eval_text(cr, MARGIN, y0 + rh + 20, 14, 1, 0, "Reference (CPU ground truth)");
-    cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
-    snprintf(buf, sizeof buf, "DSSIM maps: R, G, B = per-channel DSSIM x %g (white >= %g); black = no difference",
-             MAP_GAIN, 1.0 / MAP_GAIN);
-    fit_text(cr, 11, 0, buf, rw, fit, sizeof fit);
-    eval_text(cr, MARGIN, y0 + rh + 40, 11, 0, 0, fit);
+    eval_text(cr, lx, ly, 14, 1, 0, "Reference (CPU ground truth)");
+    const char *legend[] = {
+        "Each row: the technique; its DSSIM map (R, G, B = DSSIM of each channel; the bar is",
+        "the scale of one channel, white >= 0.2); its FLIP map (LDR-FLIP, Andersson et al. 2020,",
+        "at 67 pixels per degree; magma, 0 = no visible difference, 1 = largest); zoomed crops.",
+        "Crops (nearest-neighbour zoom, reference left, technique right):",
+        "  orange: the window with the largest mean FLIP of that technique (its worst error);",
+        "  cyan: the window with the most silhouette pixels of the subsurface objects (where the",
+        "  G-buffer object id changes, against background, ground or each other), same in every row.",
+    };
+    cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
+    for (size_t i = 0; i < sizeof legend / sizeof legend[0]; i++) eval_text(cr, lx, ly + 22 + 16 * i, 11.5, 0, 0, legend[i]);
+    snprintf(buf, sizeof buf, "Windows are %dx%d pixels (an eighth of the shorter side)%s.", crop, crop,
+             sil.valid ? "" : "; no silhouette window: no G-buffer object ids or no subsurface edges");
+    eval_text(cr, lx, ly + 22 + 16 * 7, 11.5, 0, 0, buf);
     snprintf(buf, sizeof buf, "ms: median total frame time of %d frame%s after %d warm-up; %s", res->frames,
-             res->frames == 1 ? "" : "s", res->warmup_frames,
-             res->timing_method[0] ? res->timing_method : "");
-    fit_text(cr, 11, 0, buf, rw, fit, sizeof fit);
-    eval_text(cr, MARGIN, y0 + rh + 56, 11, 0, 0, fit);
+             res->frames == 1 ? "" : "s", res->warmup_frames, res->timing_method[0] ? res->timing_method : "");
+    eval_text(cr, lx, ly + 22 + 16 * 8, 11.5, 0, 0, buf);
 
-    /* the techniques */
+    /* one row per technique */
     for (int k = 0; k < n; k++) {
-        int col = k % ncol, row = k / ncol;
-        double x = MARGIN + rw + 24 + col * (cell_w + 16), y = y0 + row * cell_h;
+        double x = MARGIN, y = y0 + rh + 30 + k * row_h;
         const sss_eval_entry *e = eval_find(res, scene, SSS_EVAL_QUALITY, res->labels[k], w, h);
         cairo_surface_t *is = e && e->ok ? eval_surface_from_image(&e->image, es->exposure) : NULL;
         cairo_surface_t *ms = e && e->has_metrics ? eval_surface_from_map(&e->dssim_map, MAP_GAIN) : NULL;
+        cairo_surface_t *fs = e && e->has_metrics ? eval_surface_from_flip(&e->flip_map) : NULL;
+        eval_window worst = e && e->has_metrics ? eval_worst_window(&e->flip_map, crop) : (eval_window){0};
         eval_draw_surface(cr, is, x, y, tw, th);
+        if (is) {
+            outline_window(cr, worst, x, y, st, WORST_RGB);
+            outline_window(cr, sil, x, y, st, SILHOUETTE_RGB);
+        }
         eval_draw_surface(cr, ms, x + tw + GAP, y, tw, th);
+        eval_draw_surface(cr, fs, x + 2 * (tw + GAP), y, tw, th);
+        if (ms) eval_draw_colour_bar(cr, x + tw + GAP, y + th + 3, tw, 8, 0, 1.0 / MAP_GAIN, "DSSIM");
+        if (fs) eval_draw_colour_bar(cr, x + 2 * (tw + GAP), y + th + 3, tw, 8, 1, 1.0, "FLIP");
+        caption(cr, e, res->labels[k], x, y + th + BAR, 3 * tw + 2 * GAP);
+        if (is && e->has_metrics) {
+            double cx = x + 3 * tw + 2 * GAP + 24;
+            crop_pair(cr, rs, is, worst, cx, y, box, "worst FLIP", WORST_RGB);
+            crop_pair(cr, rs, is, sil, cx + 2 * box + GAP + 24, y, box, "silhouette", SILHOUETTE_RGB);
+        }
         if (is) cairo_surface_destroy(is);
         if (ms) cairo_surface_destroy(ms);
-        cairo_set_source_rgb(cr, 0, 0, 0);
-        fit_text(cr, 13, 1, res->labels[k], cell_w, fit, sizeof fit);
-        eval_text(cr, x, y + th + 17, 13, 1, 0, fit);
-        if (!e || !e->ok) {
-            cairo_set_source_rgb(cr, 0.8, 0, 0);
-            snprintf(buf, sizeof buf, "FAILED: %s", e ? e->error : "not run");
-        } else if (e->has_metrics) {
-            snprintf(buf, sizeof buf, "DSSIM %.4f   PSNR %.1f dB   %.1f ms", e->metrics.dssim,
-                     isfinite(e->metrics.psnr) ? e->metrics.psnr : 99.0, e->total_ms);
-            if (!isfinite(e->metrics.psnr))
-                snprintf(buf, sizeof buf, "DSSIM %.4f   PSNR inf   %.1f ms", e->metrics.dssim, e->total_ms);
-        } else {
-            snprintf(buf, sizeof buf, "no reference   %.1f ms", e->total_ms);
-        }
-        fit_text(cr, 11.5, 0, buf, cell_w, fit, sizeof fit);
-        eval_text(cr, x, y + th + 33, 11.5, 0, 0, fit);
+        if (fs) cairo_surface_destroy(fs);
     }
+    if (rs) cairo_surface_destroy(rs);
+    sss_result r = cairo_status(cr) == CAIRO_STATUS_SUCCESS ? eval_write_surface(s, path, err)
+                                                            : sss_error_set(err, SSS_ERROR_UNSUPPORTED, "%s: cairo: %s",
+                                                                            path, cairo_status_to_string(cairo_status(cr)));
+    cairo_destroy(cr);
+    cairo_surface_destroy(s);
+    return r;
+}
+
+sss_result eval_write_crops(const sss_eval_results *res, int scene, int k, const char *path, sss_error *err)
+{
+    if (!res || scene < 0 || scene >= res->scene_count || k < 0 || k >= res->label_count)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: no such technique", path);
+    const sss_eval_scene *es = &res->scenes[scene];
+    int w, h;
+    eval_primary_size(res, scene, &w, &h);
+    const sss_eval_entry *e = eval_find(res, scene, SSS_EVAL_QUALITY, res->labels[k], w, h);
+    if (!e || !e->has_metrics || !e->image.pixels)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: %s was not compared", path, res->labels[k]);
+    const double box = 192;
+    int crop = eval_crop_size(w, h);
+    eval_window worst = eval_worst_window(&e->flip_map, crop), sil = eval_silhouette_window(&es->object_ids, w, h, crop);
+    int W = (int)(2 * MARGIN + 2 * (2 * box + GAP) + 24), H = (int)(MARGIN + box + 24);
+    cairo_surface_t *s;
+    cairo_t *cr;
+    if (!eval_canvas(W, H, &s, &cr)) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: cannot draw", path);
+    cairo_surface_t *rs = eval_surface_from_image(&es->reference, es->exposure);
+    cairo_surface_t *is = eval_surface_from_image(&e->image, es->exposure);
+    crop_pair(cr, rs, is, worst, MARGIN, MARGIN / 2, box, "worst FLIP", WORST_RGB);
+    crop_pair(cr, rs, is, sil, MARGIN + 2 * box + GAP + 24, MARGIN / 2, box, "silhouette", SILHOUETTE_RGB);
+    if (rs) cairo_surface_destroy(rs);
+    if (is) cairo_surface_destroy(is);
     sss_result r = cairo_status(cr) == CAIRO_STATUS_SUCCESS ? eval_write_surface(s, path, err)
                                                             : sss_error_set(err, SSS_ERROR_UNSUPPORTED, "%s: cairo: %s",
                                                                             path, cairo_status_to_string(cairo_status(cr)));

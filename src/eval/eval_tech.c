@@ -117,6 +117,9 @@ sss_result eval_run_technique(eval_gl *rc, const sss_scene *view, double t, cons
         e->frames = series.timed;
     }
     if (ok) ok = sss_gl_renderer_read(r, &img, &err) == SSS_OK;
+    if (ok && rc->object_ids && !rc->object_ids->pixels &&
+        sss_gl_renderer_read_buffer(r, "object_id", rc->object_ids, NULL) != SSS_OK)
+        sss_image_free(rc->object_ids); /* no silhouette crops: not an error of the technique */
     if (ok) {
         sss_gl_timings median;
         sss_gl_timing_series_median(&series, &median);

@@ -195,11 +195,13 @@ void sss_eval_results_free(sss_eval_results *res)
     for (int i = 0; i < res->scene_count; i++) {
         free(res->scenes[i].path);
         sss_image_free(&res->scenes[i].reference);
+        sss_image_free(&res->scenes[i].object_ids);
     }
     free(res->scenes);
     for (int i = 0; i < res->entry_count; i++) {
         sss_image_free(&res->entries[i].image);
         sss_image_free(&res->entries[i].dssim_map);
+        sss_image_free(&res->entries[i].flip_map);
     }
     free(res->entries);
     for (int i = 0; i < res->label_count; i++) free(res->labels[i]);

@@ -354,6 +354,29 @@ sss_result sss_gl_renderer_read(sss_gl_renderer *r, sss_image *out, sss_error *e
     return gl_check(r->ctx, "the read-back", err);
 }
 
+/* The G-buffer's object id + 1 (0: background), from the alpha of the normal target, in all three channels. */
+static sss_result read_object_ids(const sss_gl_renderer *r, sss_image *out, sss_error *err)
+{
+    int w = r->frame.width, h = r->frame.height;
+    sss_result res = sss_image_create(out, w, h, err);
+    if (res != SSS_OK) return res;
+    size_t n = (size_t)w * (size_t)h;
+    float *rgba = malloc(n * 4 * sizeof(float));
+    if (!rgba) {
+        sss_image_free(out);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (read-back of %dx%d)", w, h);
+    }
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(r->frame.nrm, 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * 4 * sizeof(float)), rgba);
+    for (int y = 0; y < h; y++) /* GL rows run bottom-up */
+        for (int x = 0; x < w; x++)
+            for (int c = 0; c < 3; c++)
+                out->pixels[((size_t)y * (size_t)w + (size_t)x) * 3 + (size_t)c] =
+                    rgba[((size_t)(h - 1 - y) * (size_t)w + (size_t)x) * 4 + 3];
+    free(rgba);
+    return gl_check(r->ctx, "the object id read-back", err);
+}
+
 sss_result sss_gl_renderer_read_buffer(sss_gl_renderer *r, const char *name, sss_image *out, sss_error *err)
 {
     if (out) memset(out, 0, sizeof *out);
@@ -365,6 +388,7 @@ sss_result sss_gl_renderer_read_buffer(sss_gl_renderer *r, const char *name, sss
     else if (strcmp(name, "supersampled") == 0) tex = r->frame.final;
     else if (strcmp(name, "reflected") == 0) tex = r->frame.refl;
     else if (strcmp(name, "irradiance") == 0) tex = r->frame.irr;
+    else if (strcmp(name, "object_id") == 0) return read_object_ids(r, out, err);
     else if (r->tech->buffer) tex = r->tech->buffer(r, r->tech_state, name);
     if (!tex)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "technique %s has no buffer '%s'", r->tech->info.name,

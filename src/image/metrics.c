@@ -1,4 +1,5 @@
-/* image/metrics.c — SSIM / DSSIM, PSNR, RMSE and max abs error on tone-mapped 8-bit images (docs/physics.md §5).
+/* image/metrics.c — SSIM / DSSIM, PSNR, RMSE and max abs error on tone-mapped 8-bit images (docs/physics.md §5);
+ * the mean FLIP comes from image/flip.c.
  *
  * SSIM after Wang et al. 2004 as scikit-image 0.19 computes it with gaussian_weights=True, sigma=1.5,
  * use_sample_covariance=False, data_range=255, per channel (channel_axis) and averaged:
@@ -95,9 +96,11 @@ static double ssim_channel(const uint8_t *a, const uint8_t *b, int w, int h, int
     return sum / ((double)(w - 2 * SSIM_RADIUS) * (double)(h - 2 * SSIM_RADIUS));
 }
 
-sss_result sss_image_compare_srgb8(const uint8_t *a, const uint8_t *b, int width, int height,
-                                   sss_image_metrics *out, sss_image *dssim_map, sss_error *err)
+/* sss_image_compare_srgb8 with the FLIP map (optional) of the same computation. */
+static sss_result compare_srgb8(const uint8_t *a, const uint8_t *b, int width, int height, sss_image_metrics *out,
+                                sss_image *dssim_map, sss_image *flip_map, sss_error *err)
 {
+    if (flip_map) flip_map->pixels = NULL, flip_map->width = flip_map->height = 0;
     if (dssim_map) dssim_map->pixels = NULL, dssim_map->width = dssim_map->height = 0;
     if (!a || !b || !out || width <= 0 || height <= 0)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "compare: no images given");
@@ -132,6 +135,12 @@ sss_result sss_image_compare_srgb8(const uint8_t *a, const uint8_t *b, int width
         if (d > maxd) maxd = d;
     }
     double mse = (double)sumsq / (double)n;
+    double flip = 0.0;
+    if ((r = sss_image_flip_srgb8(a, b, width, height, SSS_FLIP_DEFAULT_PPD, &flip, flip_map, err)) != SSS_OK) {
+        if (dssim_map) sss_image_free(dssim_map);
+        return r;
+    }
+    out->flip = flip;
     out->ssim = (mean[0] + mean[1] + mean[2]) / 3.0;
     out->dssim = (1.0 - out->ssim) / 2.0;
     out->psnr = sumsq == 0 ? INFINITY : 10.0 * log10(255.0 * 255.0 / mse);
@@ -140,10 +149,23 @@ sss_result sss_image_compare_srgb8(const uint8_t *a, const uint8_t *b, int width
     return SSS_OK;
 }
 
+sss_result sss_image_compare_srgb8(const uint8_t *a, const uint8_t *b, int width, int height,
+                                   sss_image_metrics *out, sss_image *dssim_map, sss_error *err)
+{
+    return compare_srgb8(a, b, width, height, out, dssim_map, NULL, err);
+}
+
 sss_result sss_image_compare(const sss_image *a, const sss_image *b, double exposure, sss_image_metrics *out,
                              sss_image *dssim_map, sss_error *err)
 {
+    return sss_image_compare_maps(a, b, exposure, out, dssim_map, NULL, err);
+}
+
+sss_result sss_image_compare_maps(const sss_image *a, const sss_image *b, double exposure, sss_image_metrics *out,
+                                  sss_image *dssim_map, sss_image *flip_map, sss_error *err)
+{
     if (dssim_map) dssim_map->pixels = NULL, dssim_map->width = dssim_map->height = 0;
+    if (flip_map) flip_map->pixels = NULL, flip_map->width = flip_map->height = 0;
     if (!a || !b || !a->pixels || !b->pixels || !out)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "compare: no images given");
     if (a->width != b->width || a->height != b->height)
@@ -156,7 +178,7 @@ sss_result sss_image_compare(const sss_image *a, const sss_image *b, double expo
     if (!a8) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "compare: out of memory");
     sss_image_to_srgb8(a, exposure, a8);
     sss_image_to_srgb8(b, exposure, a8 + n);
-    sss_result r = sss_image_compare_srgb8(a8, a8 + n, a->width, a->height, out, dssim_map, err);
+    sss_result r = compare_srgb8(a8, a8 + n, a->width, a->height, out, dssim_map, flip_map, err);
     free(a8);
     return r;
 }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # sss compare: output format, agreement with scikit-image's numbers (tests/data/images/
-# ssim_reference.txt, from tools/ssim_reference.py), exit codes and messages, the --map file.
+# ssim_reference.txt, from tools/ssim_reference.py) and NVIDIA's FLIP (tests/data/flip), exit codes and
+# messages, the --map file.
 # Usage: bash test_compare.sh <sss-binary> <repo-root>
 set -u
 SSS=$1
@@ -34,10 +35,23 @@ while read -r tag a b ssim psnr rmse maxd; do
         'BEGIN { printf "dssim=%.6f psnr=%.3f rmse=%.4f max=%d", (1 - s) / 2, p, r, m }')
     run "$D/$a" "$D/$b"
     [ "$rc" -eq 0 ] || fail "$a $b: exit $rc ($err)"
-    [ "$out" = "$expect" ] || fail "$a vs $b: got '$out', scikit-image gives '$expect'"
+    case "$out" in "$expect flip="*) ;; *) fail "$a vs $b: got '$out', scikit-image gives '$expect'" ;; esac
     npairs=$((${npairs:-0} + 1))
 done <"$D/ssim_reference.txt"
 [ "${npairs:-0}" -ge 5 ] || fail "reference pairs not found"
+
+# FLIP against NVIDIA's reference implementation (tests/data/flip/flip_reference.txt) at the default 67 ppd.
+nflip=0
+while read -r tag a b ppd mean; do
+    [ "$tag" = flip ] && [ "$ppd" != 20 ] || continue
+    run "$ROOT/tests/data/$a" "$ROOT/tests/data/$b"
+    got=$(printf '%s\n' "$out" | sed -n 's/.* flip=\([0-9.]*\)$/\1/p')
+    awk -v g="$got" -v m="$mean" 'BEGIN { exit !(g != "" && (g - m) ^ 2 < 2e-5 ^ 2) }' ||
+        fail "$a vs $b: flip '$got', NVIDIA's FLIP gives $mean"
+    nflip=$((nflip + 1))
+done <"$ROOT/tests/data/flip/flip_reference.txt"
+[ "$nflip" -eq 6 ] || fail "FLIP reference pairs not found ($nflip)"
+case "$("$SSS" compare "$D/base.png" "$D/base.png")" in *" flip=0.000000") ;; *) fail "FLIP of identical images is not 0" ;; esac
 
 # Different sizes: exit 1 naming both sizes.
 run "$D/base.png" "$D/small_a.png"

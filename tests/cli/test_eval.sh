@@ -46,11 +46,13 @@ TECHS="maisch2020,local,nosuch,maisch2020:layers=999"
     --timing-resolutions 96x64 --out "$OUT" >"$T/stdout" 2>"$T/stderr"
 rc=$?
 [ "$rc" -eq 0 ] || fail "sss eval exited $rc: $(head -c 600 "$T/stderr")"
-for f in results.json results.csv report.html sheet_ball.png sheet_knot_t0.5.png plot_dssim.png plot_passes.png \
-    plot_sam_rmse.png plot_resolution.png references/ball_64x64.exr references/ball_64x64.json \
-    references/knot_64x48_t0.5.exr references/knot_64x48_t0.5.json; do
+for f in results.json results.csv report.html sheet_ball.png sheet_knot_t0.5.png plot_dssim.png plot_flip.png \
+    plot_passes.png plot_resolution.png crops_ball_0.png crops_knot_t0.5_1.png references/ball_64x64.exr \
+    references/ball_64x64.json references/knot_64x48_t0.5.exr references/knot_64x48_t0.5.json; do
     [ -s "$OUT/$f" ] || fail "missing output $f"
 done
+# no SAM sweep ran (sam is not among the techniques): no empty plot of it
+[ -e "$OUT/plot_sam_rmse.png" ] && fail "plot_sam_rmse.png written without a SAM sweep"
 for f in "$OUT"/*.png; do
     head -c 8 "$f" | od -An -tx1 | grep -q "89 50 4e 47" || fail "$f is not a PNG"
 done
@@ -132,7 +134,7 @@ assert sorted((r["scene"], r["label"]) for r in timing) == sorted((s, t) for s i
 for r in doc["results"]:
     if r["label"] in ("nosuch", "maisch2020:layers=999"):
         assert r["status"] == "failed" and r["error"], r
-        assert r["dssim"] is None and r["ms_total"] is None
+        assert r["dssim"] is None and r["flip"] is None and r["ms_total"] is None
         assert ("nosuch" in r["error"]) if r["label"] == "nosuch" else ("layers" in r["error"]), r["error"]
     else:
         assert r["status"] == "ok" and r["error"] is None, r
@@ -141,10 +143,10 @@ for r in doc["results"]:
         assert abs(sum(p["ms"] for p in r["passes"]) - r["ms_total"]) <= 1e-6 * r["ms_total"] + 1e-9, r
         assert r["memory"]["gpu_bytes"] == r["memory"]["texture_bytes"] + r["memory"]["buffer_bytes"] > 0
         if r["kind"] == "quality":
-            assert 0 < r["dssim"] < 1 and r["rmse"] > 0 and r["psnr"] > 0, r
+            assert 0 < r["dssim"] < 1 and 0 < r["flip"] < 1 and r["rmse"] > 0 and r["psnr"] > 0, r
             assert (r["width"], r["height"]) == ((64, 64) if r["scene"] == "ball" else (64, 48))
         else:
-            assert r["dssim"] is None and (r["width"], r["height"]) == (96, 64)
+            assert r["dssim"] is None and r["flip"] is None and (r["width"], r["height"]) == (96, 64)
 assert doc["results"][0]["params"] == {} and [r for r in quality if r["label"] == "maisch2020:layers=999"][0]["params"] == {"layers": 999}
 for s in doc["scenes"]:
     assert [(x["source"], x["quality"]) for x in s["references"]] == [("rendered", "final")], s
@@ -158,8 +160,9 @@ entries = doc["results"] + doc["sam_sweep"]["points"]
 assert len(rows) == len(entries), (len(rows), len(entries))
 for row, r in zip(rows, entries):
     assert row["label"] == r["label"] and row["status"] == r["status"] and row["kind"] == r["kind"], (row, r)
-    if r["dssim"] is not None: assert abs(float(row["dssim"]) - r["dssim"]) <= 1e-5 * max(1, r["dssim"])
-    else: assert row["dssim"] == ""
+    for m in ("dssim", "flip"):
+        if r[m] is not None: assert abs(float(row[m]) - r[m]) <= 1e-5 * max(1, r[m]), (m, row, r)
+        else: assert row[m] == ""
     if r["status"] == "failed": assert row["error"] == r["error"]
 # a file for the shell: the DSSIM of the two checks below
 d = {(r["scene"], r["label"]): r["dssim"] for r in quality}

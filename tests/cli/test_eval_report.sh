@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # report.html of sss eval opens in headless Chromium without errors and every image loads: a copy of
 # the page with a small script appended marks the number of images and of broken ones (naturalWidth
-# 0) on <body>, read back with --dump-dom; a screenshot is taken and must not be blank. Skips (exit 0)
+# 0) on <body>, read back with --dump-dom; the same script finds, as laid out by the browser, the FLIP
+# columns with numbers, the zoomed crops of every compared technique (loaded, drawn with a size) and
+# the sheet (whose error maps carry the colour bars); a screenshot is taken and must not be blank. Skips (exit 0)
 # when chromium is not installed (Debian package `chromium`: scripts/install-deps.sh --dev).
 # Usage: bash test_eval_report.sh <sss-binary> <repo-root>
 set -u
@@ -29,7 +31,7 @@ cat >"$T/ball.json" <<'EOF'
   "lights": [{"type": "point", "position": [1.5, 3, -1.5], "intensity": [6, 6, 6]}]
 }
 EOF
-"$SSS" eval "$T/ball.json" --techniques local,nosuch --frames 1 --warmup 0 --reference-quality draft --out "$T/out" \
+"$SSS" eval "$T/ball.json" --techniques local,ssss,nosuch --frames 1 --warmup 0 --reference-quality draft --out "$T/out" \
     >/dev/null 2>"$T/err" || { echo "FAIL: sss eval: $(head -c 400 "$T/err")"; exit 1; }
 [ -s "$T/out/report.html" ] || { echo "FAIL: no report.html"; exit 1; }
 
@@ -45,8 +47,14 @@ chrome() {
 }
 
 # the page as written, plus a script that counts broken images once everything has loaded
-probe='<script>window.addEventListener("load",function(){var im=document.images,b=0;for(var i=0;i<im.length;i++){if(!im[i].complete||im[i].naturalWidth===0)b++;}document.body.setAttribute("data-images",im.length);document.body.setAttribute("data-broken",b);});</script>'
-sed "s#</body>#${probe}</body>#" "$T/out/report.html" >"$T/probe.html"
+probe='<script>window.addEventListener("load",function(){var im=document.images,b=0;for(var i=0;i<im.length;i++){if(!im[i].complete||im[i].naturalWidth===0)b++;}document.body.setAttribute("data-images",im.length);document.body.setAttribute("data-broken",b);'
+# FLIP: header cells of the entry tables, numbers in [0, 1] in their cells, and the FLIP summary table
+probe+='var fh=document.querySelectorAll("th.flip").length,fv=0;document.querySelectorAll("td.flip").forEach(function(c){var v=parseFloat(c.textContent);if(v>=0&&v<=1)fv++;});'
+probe+='document.body.setAttribute("data-flip",fh+"/"+fv+"/"+document.querySelectorAll("table.summary-flip td.best").length);'
+# crops: images in the crops table that loaded and are laid out at a visible size
+probe+='var cr=0;document.querySelectorAll("table.crops img").forEach(function(c){if(c.complete&&c.naturalWidth>200&&c.getBoundingClientRect().width>100)cr++;});document.body.setAttribute("data-crops",cr);'
+probe+='var sh=0;for(var i=0;i<im.length;i++){if(/^ball/.test(im[i].alt)&&im[i].naturalWidth>1000)sh++;}document.body.setAttribute("data-sheets",sh);});</script>'
+sed "s#</body>#${probe//&/\\&}</body>#" "$T/out/report.html" >"$T/probe.html" # & is sed's match
 chrome --virtual-time-budget=10000 --dump-dom "file://$T/probe.html" >"$T/dom.html" 2>"$T/chrome.err" ||
     fail "chromium --dump-dom failed: $(tail -3 "$T/chrome.err")"
 body=$(grep -o '<body[^>]*>' "$T/dom.html" | head -1)
@@ -57,6 +65,14 @@ case "$body" in
 esac
 [ "$n_html" -ge 5 ] || fail "report has only $n_html images"
 grep -q "nosuch" "$T/dom.html" || fail "the failed technique is not in the rendered page"
+# one FLIP header per entry table (scene + SAM sweep not run: 1), two compared entries with a FLIP value
+# (the quality size: local and ssss), the best of the scene marked in the FLIP summary
+case "$body" in *'data-flip="1/2/1"'*) ;; *) fail "FLIP columns: $body" ;; esac
+case "$body" in *'data-crops="2"'*) ;; *) fail "zoomed crops of local and ssss: $body" ;; esac
+case "$body" in *'data-sheets="1"'*) ;; *) fail "the sheet with the error maps and colour bars: $body" ;; esac
+grep -q "colour bars" "$T/dom.html" || fail "the page does not explain the colour bars"
+[ -e "$T/out/plot_sam_rmse.png" ] && fail "an empty SAM plot was written (no sweep ran)"
+grep -q "No SAM plot" "$T/dom.html" || fail "the page does not say why there is no SAM plot"
 
 # the probe must be able to fail: one corrupted image is counted as broken
 sed "0,/base64,iVBOR/s//base64,XXXX/" "$T/probe.html" >"$T/broken.html"

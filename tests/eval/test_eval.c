@@ -153,6 +153,8 @@ static void make_results(sss_eval_results *res)
             e->frames = 3;
             fill_image(&e->image, 40, 30, 0.1 * (k + 1));
             sss_image_compare(&es->reference, &e->image, 0, &e->metrics, &e->dssim_map, NULL);
+            double flip;
+            sss_image_flip(&es->reference, &e->image, 0, SSS_FLIP_DEFAULT_PPD, &flip, &e->flip_map, NULL);
             e->has_metrics = 1;
             e->metrics.dssim = s == 0 ? (k == 0 ? 0.1 : 0.2) : (k == 0 ? 0.05 : 0.06);
             if (s == 1 && k == 0) e->metrics.psnr = INFINITY;
@@ -184,6 +186,40 @@ static int bar_height(const uint8_t *rgb, int w, int h, unsigned colour)
         if (n > best) best = n;
     }
     return best;
+}
+
+/* Connected regions (4-neighbours) of pixels of exactly one colour: markers of a line plot. */
+static int colour_regions(const uint8_t *rgb, int w, int h, unsigned colour)
+{
+    unsigned char *seen = calloc((size_t)w * h, 1);
+    int *stack = malloc(sizeof(int) * (size_t)w * h), regions = 0;
+#define AT(i) ((unsigned)rgb[3 * (i)] << 16 | (unsigned)rgb[3 * (i) + 1] << 8 | rgb[3 * (i) + 2])
+    for (int i = 0; i < w * h; i++) {
+        if (seen[i] || AT(i) != colour) continue;
+        regions++;
+        int top = 0;
+        stack[top++] = i;
+        seen[i] = 1;
+        while (top > 0) {
+            int p = stack[--top], x = p % w, y = p / w;
+            int nb[4] = {x > 0 ? p - 1 : -1, x + 1 < w ? p + 1 : -1, y > 0 ? p - w : -1, y + 1 < h ? p + w : -1};
+            for (int k = 0; k < 4; k++)
+                if (nb[k] >= 0 && !seen[nb[k]] && AT(nb[k]) == colour) seen[nb[k]] = 1, stack[top++] = nb[k];
+        }
+    }
+#undef AT
+    free(seen);
+    free(stack);
+    return regions;
+}
+
+/* Pixels within tol of colour in every channel. */
+static int colour_count(const uint8_t *rgb, int w, int h, int r, int g, int b, int tol)
+{
+    int n = 0;
+    for (int i = 0; i < w * h; i++)
+        n += abs(rgb[3 * i] - r) <= tol && abs(rgb[3 * i + 1] - g) <= tol && abs(rgb[3 * i + 2] - b) <= tol;
+    return n;
 }
 
 static uint8_t *read_png8(const char *path, int *w, int *h)
@@ -271,7 +307,7 @@ static void test_outputs(void)
     }
     free(text);
 
-    /* CSV: header + 6 rows of 19 fields; the error field quoted with doubled quotes */
+    /* CSV: header + 6 rows of 20 fields; the error field quoted with doubled quotes */
     snprintf(path, sizeof path, "%s/results.csv", dir);
     CHECK(sss_read_file(path, 1 << 24, &text, &size, NULL) == SSS_OK);
     if (text) {
@@ -280,7 +316,7 @@ static void test_outputs(void)
             if (*c == '"') in_quotes = !in_quotes;
             else if (!in_quotes && *c == ',') fields++;
             else if (!in_quotes && *c == '\n') {
-                bad_rows += fields != 19;
+                bad_rows += fields != 20;
                 rows++;
                 fields = 1;
             }
@@ -313,18 +349,39 @@ static void test_outputs(void)
         free(rgb);
     }
 
-    /* the sheet shows the reference at least at its own size */
+    /* the sheet shows the reference at least at its own size, and the FLIP maps' colour bars end in
+     * magma's last colour (252, 253, 191), which no FLIP map of these images reaches */
     snprintf(path, sizeof path, "%s/sheet_two_t1.png", dir);
     rgb = read_png8(path, &w, &h);
     CHECK(rgb != NULL && w > 2 * 40 && h > 30);
+    if (rgb) {
+        int top = colour_count(rgb, w, h, 252, 253, 191, 3);
+        CHECK_MSG(top >= 2 * 8, "%d pixels of the end of the FLIP colour bars (2 bars, 8 pixels tall)", top);
+    }
     free(rgb);
+    /* frame time against resolution: one panel per scene, so technique alpha (palette 0) has a marker in
+     * each of the two panels, plus its legend entry (one line through both scenes drew a single point) */
+    snprintf(path, sizeof path, "%s/plot_resolution.png", dir);
+    rgb = read_png8(path, &w, &h);
+    CHECK(rgb != NULL);
+    if (rgb) {
+        int regions = colour_regions(rgb, w, h, 0x4e79a7);
+        CHECK_MSG(regions == 3, "alpha's markers: %d regions (2 panels + legend expected)", regions);
+        free(rgb);
+    }
+    /* no sweep ran: no empty SAM plot */
+    snprintf(path, sizeof path, "%s/plot_sam_rmse.png", dir);
+    FILE *sam = fopen(path, "rb");
+    CHECK_MSG(sam == NULL, "%s was written without a SAM sweep", path);
+    if (sam) fclose(sam);
 
     /* report: each embedded image decodes to the bytes of a PNG file written next to it */
     snprintf(path, sizeof path, "%s/report.html", dir);
     CHECK(sss_read_file(path, 1 << 26, &text, &size, NULL) == SSS_OK);
     if (text) {
-        const char *files[] = {"plot_dssim.png", "plot_passes.png", "plot_sam_rmse.png", "plot_resolution.png",
-                               "sheet_one.png", "sheet_two_t1.png"};
+        const char *files[] = {"plot_dssim.png",    "plot_flip.png",    "plot_passes.png",    "plot_resolution.png",
+                               "sheet_one.png",     "sheet_two_t1.png", "crops_one_0.png",    "crops_one_1.png",
+                               "crops_two_t1_0.png", "crops_two_t1_1.png"};
         int found = 0, images = 0;
         for (const char *p = strstr(text, "base64,"); p; p = strstr(p + 1, "base64,")) {
             images++;
@@ -336,13 +393,16 @@ static void test_outputs(void)
                 snprintf(fp, sizeof fp, "%s/%s", dir, files[f]);
                 char *data = NULL;
                 size_t ds = 0;
-                if (sss_read_file(fp, 1 << 26, &data, &ds, NULL) == SSS_OK && ds == n && memcmp(data, bytes, n) == 0)
-                    found++;
+                int same = sss_read_file(fp, 1 << 26, &data, &ds, NULL) == SSS_OK && ds == n && memcmp(data, bytes, n) == 0;
                 free(data);
+                if (same) { /* counted once: the two scenes' crops may be the same bytes */
+                    found++;
+                    break;
+                }
             }
             free(bytes);
         }
-        CHECK_MSG(images == 6 && found == 6, "%d images, %d match files", images, found);
+        CHECK_MSG(images == 10 && found == 10, "%d images, %d match files", images, found);
         CHECK(strstr(text, "test &lt;renderer&gt; &amp; co") != NULL); /* escaped */
         CHECK(strstr(text, "<script") == NULL && strstr(text, "http://") == NULL && strstr(text, "https://") == NULL);
         free(text);
