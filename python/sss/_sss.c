@@ -91,7 +91,7 @@ PyArrayObject *sss_py_new_image_array(int width, int height, sss_image *view)
 
 int sss_py_image_view(PyObject *obj, const char *what, PyArrayObject **keep, sss_image *view)
 {
-    PyArrayObject *arr = (PyArrayObject *)PyArray_FROMANY(obj, NPY_FLOAT32, 3, 3, NPY_ARRAY_IN_ARRAY);
+    PyArrayObject *arr = (PyArrayObject *)PyArray_FROMANY(obj, NPY_FLOAT32, 3, 3, NPY_ARRAY_IN_ARRAY | NPY_ARRAY_FORCECAST);
     if (!arr) {
         PyErr_Format(PyExc_TypeError, "%s: expected an H x W x 3 array of linear RGB", what);
         return 0;
