@@ -2,8 +2,9 @@
 which sees numpy's array buffers) stay flat, for renders, references, images, metrics, profiles and
 error paths; reference counts of scenes and arrays return to where they were.
 
-The bounds are far below what one leaked image per call adds: 1000 frames of 64 x 64 x 3 floats are
-48 MB, 1000 images of 32 x 24 x 3 are 9 MB."""
+The RSS bound is below what one leaked image per call adds (1000 frames of 64 x 64 x 3 floats are
+48 MB, 1000 references of 24 x 20 are 5.8 MB: both caught with the capsule's free taken out) and above
+the noise seen (at most 1 MB)."""
 import gc
 import os
 import sys
@@ -16,7 +17,7 @@ import sss
 from pyutil import FAST, SCENES, SMALL_SCENE, tempdir
 
 CALLS = 1000
-RSS_BOUND = 8 << 20        # bytes over CALLS calls
+RSS_BOUND = 3 << 20        # bytes over CALLS calls
 TRACED_BOUND = 256 << 10   # bytes over CALLS calls
 
 
