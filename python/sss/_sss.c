@@ -81,7 +81,7 @@ PyObject *sss_py_array_from_image(sss_image *img)
 PyArrayObject *sss_py_new_image_array(int width, int height, sss_image *view)
 {
     npy_intp dims[3] = {height, width, 3};
-    PyArrayObject *arr = (PyArrayObject *)PyArray_ZEROS(3, dims, NPY_FLOAT32, 0);
+    PyArrayObject *arr = (PyArrayObject *)PyArray_EMPTY(3, dims, NPY_FLOAT32, 0);
     if (!arr) return NULL;
     view->width = width;
     view->height = height;

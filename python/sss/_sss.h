@@ -30,8 +30,8 @@ PyObject *sss_py_raisef(sss_result code, const char *fmt, ...);
 /* An image the library allocated, as an array over its pixels (no copy): the array's base is a
  * capsule that frees them. Takes img over (it is emptied) even on failure. */
 PyObject *sss_py_array_from_image(sss_image *img);
-/* A new zero-filled float32 height x width x 3 array and an sss_image over its memory, which the
- * array owns (for the library to fill). */
+/* A new float32 height x width x 3 array and an sss_image over its memory, which the array owns: not
+ * initialised, for a library call that writes every pixel. */
 PyArrayObject *sss_py_new_image_array(int width, int height, sss_image *view);
 /* A read-only view of obj as an image: obj converted (copied only when it is not already a
  * C-contiguous float32 H x W x 3 array) into *keep, which the caller releases after using view.
