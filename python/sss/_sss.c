@@ -20,7 +20,10 @@ PyObject *sss_py_raise(const sss_error *err)
 {
     sss_result code = err->code != SSS_OK ? err->code : SSS_ERROR_INVALID_ARGUMENT;
     const char *message = err->message[0] ? err->message : sss_result_string(code);
-    PyObject *exc = PyObject_CallFunction(sss_py_error, "s", message);
+    /* File names in messages need not be UTF-8: undecodable bytes show as \xNN instead of failing. */
+    PyObject *text = PyUnicode_DecodeUTF8(message, (Py_ssize_t)strlen(message), "backslashreplace");
+    PyObject *exc = text ? PyObject_CallOneArg(sss_py_error, text) : NULL;
+    Py_XDECREF(text);
     if (!exc) return NULL;
     PyObject *code_obj = PyLong_FromLong((long)code), *name = PyUnicode_FromString(sss_result_string(code));
     if (code_obj && name && PyObject_SetAttrString(exc, "code", code_obj) == 0 &&

@@ -140,7 +140,9 @@ static int scene_set_lights(scene_object *self, PyObject *pairs)
         Py_ssize_t index, size;
         const char *text;
         sss_error err = {0};
-        ok = PyArg_ParseTuple(PySequence_Fast_GET_ITEM(seq, i), "ns#", &index, &text, &size);
+        PyObject *pair = PySequence_Fast_GET_ITEM(seq, i);
+        ok = PyTuple_Check(pair) ? PyArg_ParseTuple(pair, "ns#", &index, &text, &size)
+                                 : (PyErr_SetString(PyExc_TypeError, "expected (index, JSON text) pairs"), 0);
         if (ok && (index < 0 || sss_scene_set_light(&self->scene, (size_t)index, text, (size_t)size, &err) != SSS_OK)) {
             if (index < 0) sss_error_set(&err, SSS_ERROR_INVALID_ARGUMENT, "%s: lights[%zd]: no such light",
                                          self->scene.name, index);
