@@ -11,10 +11,11 @@ PKGS=(
   libmeshoptimizer-dev libcjson-dev libstb-dev libopenexr-dev liblapacke-dev
   libcairo2-dev libembree-dev
   libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev xvfb xauth
+  python3-dev python3-numpy python3-setuptools
 )
 case "${1:-}" in
   --ci) PKGS+=(clang libclang-rt-14-dev valgrind chromium) ;;
-  --dev) PKGS+=(clang libclang-rt-14-dev valgrind chromium python3-skimage python3-numpy) ;;
+  --dev) PKGS+=(clang libclang-rt-14-dev valgrind chromium python3-skimage python3-pip) ;;
 esac
 
 missing=()

@@ -375,6 +375,12 @@ sss_result sss_scene_load(const char *path, const sss_scene_load_desc *desc, sss
 sss_result sss_scene_parse(const char *json_text, size_t size, const char *base_dir, const char *name,
                            const sss_scene_load_desc *desc, sss_scene *scene, sss_error *err);
 void sss_scene_free(sss_scene *scene);
+/* Replaces lights[index] of a loaded scene with one light given as JSON text (an element of the scene
+ * file's "lights" array), checked as sss_scene_load checks it; messages read "<scene name>:
+ * lights[index].<field>: ...". The light must keep its type, and an environment light its file (what a
+ * renderer's sss_gl_renderer_update_lights can take over; "file" may be left out, and lights[index].file
+ * stays the same pointer). On any error the scene is unchanged. */
+sss_result sss_scene_set_light(sss_scene *scene, size_t index, const char *json_text, size_t size, sss_error *err);
 
 /* The cached table for (eta, g), or NULL. */
 const sss_pbd_table *sss_scene_find_table(const sss_scene *scene, double eta, double g);

@@ -105,3 +105,50 @@ void scene_light_free(sss_light *l)
     free(l->file);
     l->file = NULL;
 }
+
+/* The light is parsed into a copy by the loader's own parser, so a bad field leaves the scene as it was.
+ * An environment light keeps its file pointer, so that copies of the lights array stay valid. */
+sss_result sss_scene_set_light(sss_scene *scene, size_t index, const char *json_text, size_t size, sss_error *err)
+{
+    scene_ctx ctx;
+    memset(&ctx, 0, sizeof ctx);
+    jr_init(&ctx.r, scene && scene->name ? scene->name : "scene", err);
+    if (!scene || index >= scene->light_count)
+        return jr_fail(&ctx.r, SSS_ERROR_INVALID_ARGUMENT, "lights[%zu]: no such light (the scene has %zu)", index,
+                       scene ? scene->light_count : (size_t)0);
+    ctx.base_dir = scene->base_dir ? scene->base_dir : ".";
+    jr_enter_key(&ctx.r, "lights");
+    jr_enter_index(&ctx.r, index);
+    if (!json_text || size > SSS_SCENE_MAX_FILE_SIZE)
+        return jr_fail(&ctx.r, SSS_ERROR_INVALID_ARGUMENT, "no light text, or more than %u bytes",
+                       (unsigned)SSS_SCENE_MAX_FILE_SIZE);
+    cJSON *item = cJSON_ParseWithLength(json_text, size);
+    if (!item) return jr_fail(&ctx.r, SSS_ERROR_PARSE, "malformed JSON");
+    sss_light *old = &scene->lights[index];
+    if (old->type == SSS_LIGHT_ENVIRONMENT && cJSON_IsObject(item) && !jr_get(item, "file")) {
+        ctx.base_dir = ""; /* the resolved path, as it is */
+        cJSON_AddStringToObject(item, "file", old->file);
+    }
+    sss_light light;
+    memset(&light, 0, sizeof light);
+    sss_result res = scene_parse_light(&ctx, item, &light);
+    cJSON_Delete(item);
+    if (res == SSS_OK && light.type != old->type)
+        res = jr_fail_key(&ctx.r, "type", SSS_ERROR_INVALID_ARGUMENT, "is %s, but the light is %s (a light keeps its type)",
+                          sss_light_type_name(light.type), sss_light_type_name(old->type));
+    if (res == SSS_OK && light.type == SSS_LIGHT_ENVIRONMENT && strcmp(light.file, old->file) != 0)
+        res = jr_fail_key(&ctx.r, "file", SSS_ERROR_INVALID_ARGUMENT, "differs from the light's %s (a map is loaded once)",
+                          old->file);
+    if (res == SSS_OK && light.type == SSS_LIGHT_ENVIRONMENT) {
+        free(light.file);
+        light.file = old->file;
+    } else if (res == SSS_OK) {
+        scene_light_free(old);
+    }
+    if (res != SSS_OK) {
+        scene_light_free(&light);
+        return res;
+    }
+    *old = light;
+    return SSS_OK;
+}
