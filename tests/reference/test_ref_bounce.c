@@ -3,7 +3,10 @@
  * at equal angles at both ends, so bounce k + 1 is bounce k times a constant q everywhere:
  *  - diffuse walls of reflectance rho: q = rho (radiosity's closed enclosure);
  *  - subsurface walls: the exitance rho_eff T leaves through F_t(cos) / (pi c) and enters the far wall
- *    with F_t(cos), so q = rho_eff 2 / c int_0^1 F_t(mu)^2 mu dmu (F_t by independent quadrature).
+ *    with F_t(cos); the F_r(cos) its smooth interface reflects meets the wall again at the same angle
+ *    (as in PBRT-v3's path tracer), so all of it enters after 1 + F_r + F_r^2 + ... reflections and
+ *    q = rho_eff 2 / c int_0^1 F_t(mu) mu dmu (F_t by independent quadrature; 2 / c int F_t^2 mu dmu,
+ *    5.5% less at eta 1.33, if the reflected light were lost).
  * N bounces give single (1 - q^N) / (1 - q), the default single / (1 - q) (within what the stopping
  * rule leaves out); each bounce adds less than the one before; bounces = 1 is the single-event image
  * of the old renderer bit for bit (tests/data/reference/bounces1.pfm, rendered before interreflection
@@ -120,12 +123,12 @@ static void test_subsurface_sphere(void)
     sss_error err;
     CHECK(sss_profile_init(&phys, SSS_PROFILE_PBD, &mat, table, &err) == SSS_OK);
     double eta = mat.eta, c = 1.0 - 2.0 * sss_fresnel_moment1(1.0 / eta);
-    /* int_0^1 F_t(mu)^2 mu dmu by the midpoint rule */
-    double ft2 = 0.0;
+    /* int_0^1 F_t(mu) mu dmu by the midpoint rule */
+    double ft1 = 0.0;
     const int steps = 100000;
     for (int i = 0; i < steps; i++) {
-        double mu = (i + 0.5) / steps, ft = 1.0 - sss_fresnel_dielectric(mu, 1.0, eta);
-        ft2 += ft * ft * mu / steps;
+        double mu = (i + 0.5) / steps;
+        ft1 += (1.0 - sss_fresnel_dielectric(mu, 1.0, eta)) * mu / steps;
     }
     double ft0 = 1.0 - sss_fresnel_dielectric(1.0, 1.0, eta);
     for (int b = 0; b < 2; b++) {
@@ -139,7 +142,7 @@ static void test_subsurface_sphere(void)
         int n = (int)st.bounces;
         double expect[3], mean_dev;
         for (int ch = 0; ch < 3; ch++) {
-            double rho_eff = sss_profile_total(&phys, ch), q = rho_eff * 2.0 / c * ft2;
+            double rho_eff = sss_profile_total(&phys, ch), q = rho_eff * 2.0 / c * ft1;
             /* The camera at the centre sees the wall at normal incidence. */
             double single = ft0 / (T_PI * c) * rho_eff * ft0 * INTENSITY / (RADIUS * RADIUS);
             expect[ch] = single * (1.0 - pow(q, n)) / (1.0 - q);
