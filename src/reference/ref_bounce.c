@@ -468,13 +468,16 @@ void ref_indirect_sum(const ref_ctx *ctx, size_t o, const float xo[3], double ou
         ref_tree_sum_angle(&ro->itree, &ro->prof, xo, ro->iabs_tol, BOUNCE_TREE_ANGLE, out, visits);
 }
 
-/* Light of bounce k relative to bounce 1 (or 2 when larger: objects lit indirectly only), the largest
- * over the objects a pixel centre sees. */
+/* Light of bounce k relative to bounce 2, the first interreflected one (or to STOP x bounce 1 when
+ * that is more), the largest over the objects a pixel centre sees. Not relative to bounce 1: on a
+ * back-lit object bounce 1 is mostly on the lit side, which radiates into the void, while the side
+ * the camera sees is lit by bounces 2.. (stopping at 1% of bounce 1 left 4% of the back-lit eval
+ * dragon's light out). */
 static double bounce_fraction(const ref_ctx *ctx, const double *first, const double *second, const double *now)
 {
     double f = 0.0;
     for (size_t o = 0; o < ctx->object_count; o++) {
-        double ref = fmax(first[o], second[o]);
+        double ref = fmax(second[o], SSS_REFERENCE_BOUNCE_STOP * first[o]);
         if (ctx->objects[o].visible && ref > 0.0) f = fmax(f, now[o] / ref);
     }
     return f;
