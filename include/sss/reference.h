@@ -72,8 +72,9 @@
  *    pixels add E_ind of the transport cell under them.
  *  - stopping: desc.bounces = N computes bounces 1..N; 0 stops after the first bounce k whose light
  *    entering the surfaces (sum over the transport samples of T_k A, or E_k A, luminance) is below
- *    SSS_REFERENCE_BOUNCE_STOP of that of bounce 1 (or 2, if larger) on every object a pixel centre
- *    sees, or at SSS_REFERENCE_MAX_BOUNCES. stats.bounce_fraction holds that fraction per bounce.
+ *    SSS_REFERENCE_BOUNCE_STOP of that of bounce 2 (or of STOP x bounce 1, if that is more) on every
+ *    object a pixel centre sees, or at SSS_REFERENCE_MAX_BOUNCES. stats.bounce_fraction holds that
+ *    fraction per bounce (bounce 1 against itself: 1).
  *  - error bounds (tests/reference/test_ref_bounce.c): inside a closed sphere of diffuse walls
  *    (reflectance rho) or subsurface walls lit by a point light at its centre, N bounces give
  *    single (1 - q^N) / (1 - q) with q = rho, or rho_eff 2 / c int_0^1 F_t(mu)^2 mu dmu: within 1%

@@ -44,7 +44,7 @@ static void print_help(void)
            "  --spp N        base samples per pixel (rounded up to a square)\n"
            "  --density D    multiply the surface-sample density by D (> 0; 4 = half the spacing)\n"
            "  --bounces N    surface-to-surface bounces, 1..%d: 1 = the single-event integral (direct\n"
-           "                 light only); default: until a bounce adds less than %g%% of bounce 1's light\n"
+           "                 light only); default: until a bounce adds less than %g%% of bounce 2's light\n"
            "  --stats        print sample counts, tree statistics and timings to stdout\n"
            "  --quiet        no progress on stderr\n"
            "\n"
@@ -225,7 +225,7 @@ int sss_cmd_reference(int argc, char **argv)
                st.seconds_samples, st.seconds_tree, st.seconds_pixels, st.seconds_total);
         printf("bounces=%u transport_samples=%llu\n", st.bounces, (unsigned long long)st.transport_samples);
         for (uint32_t k = 0; k < st.bounces && k < SSS_REFERENCE_MAX_BOUNCES; k++)
-            printf("bounce %u: seconds=%.3f light=%.4f (of bounce 1)\n", k + 1, st.seconds_bounce[k],
+            printf("bounce %u: seconds=%.3f light=%.4f (of bounce 2)\n", k + 1, st.seconds_bounce[k],
                    st.bounce_fraction[k]);
     }
 done:
