@@ -193,6 +193,7 @@ static const struct {
     {"ssim", offsetof(sss_image_metrics, ssim)},
     {"dssim", offsetof(sss_image_metrics, dssim)},
     {"psnr", offsetof(sss_image_metrics, psnr)},
+    {"flip", offsetof(sss_image_metrics, flip)},
     {"rmse", offsetof(sss_image_metrics, rmse)},
     {"max_abs", offsetof(sss_image_metrics, max_abs)},
 };

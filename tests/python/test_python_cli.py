@@ -148,7 +148,7 @@ class ImagesAndMetrics(unittest.TestCase):
         self.assertAlmostEqual(m["psnr"], 20 * math.log10(255 / rmse), delta=1e-6)
         self.assertAlmostEqual(m["dssim"], (1 - m["ssim"]) / 2, delta=1e-12)
         same = sss.compare(self.a, self.a.copy())
-        self.assertEqual((same["dssim"], same["rmse"], same["psnr"]), (0.0, 0.0, math.inf))
+        self.assertEqual((same["dssim"], same["rmse"], same["psnr"], same["flip"]), (0.0, 0.0, math.inf, 0.0))
         with_map = sss.compare(self.a, self.b, dssim_map=True)
         self.assertEqual(with_map["dssim_map"].shape, self.a.shape)
 
@@ -161,6 +161,7 @@ class ImagesAndMetrics(unittest.TestCase):
         m = sss.compare(self.a, self.b)
         self.assertAlmostEqual(m["dssim"], float(fields["dssim"]), delta=1e-6)
         self.assertAlmostEqual(m["rmse"], float(fields["rmse"]), delta=1e-4)
+        self.assertAlmostEqual(m["flip"], float(fields["flip"]), delta=1e-6)
 
     def test_round_trips(self):
         with tempdir() as tmp:
