@@ -5,12 +5,18 @@
  * `kdsubsurface` / `matte` materials, world-space `plymesh` shapes written next to the .pbrt file
  * (posed at the given time, so animated objects match `sss reference --time`), and the lights of
  * docs/scene-format.md with their PBRT equivalents (area lights as a two-triangle `trianglemesh`, since PBRT-v3
- * has no bilinear patch). The integrator is `path` with maxdepth N (desc.maxdepth, default 16): with
- * maxdepth 1 the camera ray refracts, the BSSRDF probe finds the entry point and direct light is
- * gathered there, which is exactly the single-event subsurface integral of docs/physics.md §1
- * (`sss reference --bounces 1`); each further depth adds one more surface-to-surface bounce, so the
- * default matches `sss reference`'s default (bounces until converged, at most 16). Film scale
- * carries render.exposure (2^exposure).
+ * has no bilinear patch). The integrator is `path` with maxdepth N (desc.maxdepth, default 16).
+ * PBRT-v3's PathIntegrator::Li counts one depth per surface hit of the path: at a subsurface hit the
+ * interface's refraction, the BSSRDF probe to the entry point, direct light there (next-event
+ * estimation, no depth of its own) and the exit direction drawn from S_w are all one depth. So
+ * maxdepth 1 is exactly the single-event integral of docs/physics.md §1 (`sss reference --bounces 1`)
+ * and maxdepth N holds N subsurface or diffuse events (`--bounces N`), except that PBRT also spends a
+ * depth on every smooth reflection off a subsurface interface, which `sss reference` folds into the
+ * bounce it belongs to (docs/reference.md), so from N = 2 on the two differ by those reflections;
+ * converged (the default 16 against the default) they differ only by the mirror image of the scene
+ * in the camera ray's reflection, which `sss reference` leaves out (`--specular` adds that of
+ * environment maps and area lights).
+ * Film scale carries render.exposure (2^exposure).
  * Does not: textures (PBRT would need its own texture statements; a scene with a texture exports
  * without it and says so in a comment), the specular interface of `specular` (PBRT's subsurface
  * material always has its smooth dielectric interface; our reference leaves it out by default),

@@ -85,7 +85,8 @@ static void write_camera(FILE *f, const sss_scene *scene, const char *image_name
     fprintf(f, "Sampler \"halton\" \"integer pixelsamples\" [%d]\n", spp);
     fprintf(f, "# maxdepth 1: refraction at the camera hit, BSSRDF probe, direct light at the entry point\n"
                "# (the single-event subsurface integral: sss reference --bounces 1); each further depth adds\n"
-               "# one surface-to-surface bounce (sss reference --bounces N).\n");
+               "# one surface hit: a subsurface or diffuse event (sss reference --bounces N) or a mirror\n"
+               "# reflection off a subsurface interface (which sss reference counts within its bounce).\n");
     fprintf(f, "Integrator \"path\" \"integer maxdepth\" [%d]\n\n", maxdepth);
 }
 
