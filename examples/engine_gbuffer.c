@@ -1,8 +1,10 @@
 /* examples/engine_gbuffer.c — a minimal deferred "engine" that runs an sss technique as a pass over
  * its own G-buffer (sss/gl_pass.h, docs/integration.md).
  *
- *   engine_gbuffer SCENE.json -o OUT.png [--technique T]
+ *   engine_gbuffer SCENE.json -o OUT.png [--technique T] [--frames N]
  *
+ * --frames N renders N frames and prints the median wall time of the engine's frame and of the sss
+ * pass in it (glFinish around each; the first frames include shader compilation).
  * The engine owns everything but the subsurface pass: its G-buffer shaders, its lighting, its shadow
  * maps (a distance cube map per point or spot light, an orthographic depth map per directional
  * light), written here from scratch; meshes, materials and lights come from the scene file through
@@ -17,6 +19,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <epoxy/gl.h>
 #include <sss/sss.h>
@@ -421,8 +424,15 @@ static void create_targets(engine *e, const sss_gl_pass_info *info)
     }
 }
 
-/* The engine's frame: G-buffer, shadow maps, lighting; then the sss pass. */
-static sss_result render_frame(engine *e, sss_gl_pass *pass, sss_gl_pass_frame *f, sss_error *err)
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+/* The engine's frame: G-buffer, shadow maps, lighting; then the sss pass (its time in *pass_ms). */
+static sss_result render_frame(engine *e, sss_gl_pass *pass, sss_gl_pass_frame *f, double *pass_ms, sss_error *err)
 {
     sss_camera_basis b;
     sss_result res = sss_camera_basis_init(&e->scene->camera, &b, err);
@@ -493,7 +503,24 @@ static sss_result render_frame(engine *e, sss_gl_pass *pass, sss_gl_pass_frame *
     f->reflected = e->refl;
     f->output = e->out;
     f->time = 0.0;
-    return sss_gl_pass_execute(pass, f, err);
+    glFinish();
+    double t0 = now_ms();
+    res = sss_gl_pass_execute(pass, f, err);
+    glFinish();
+    *pass_ms = now_ms() - t0;
+    return res;
+}
+
+static int by_value(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, by_value);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 static int write_output(engine *e, const char *path, sss_error *err)
@@ -518,14 +545,17 @@ static int write_output(engine *e, const char *path, sss_error *err)
 int main(int argc, char **argv)
 {
     const char *scene_path = NULL, *output = NULL, *technique = NULL;
+    int frames = 1;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) output = argv[++i];
+        else if (strcmp(argv[i], "--frames") == 0 && i + 1 < argc && atoi(argv[i + 1]) >= 1 && atoi(argv[i + 1]) <= 1000)
+            frames = atoi(argv[++i]);
         else if (strcmp(argv[i], "--technique") == 0 && i + 1 < argc) technique = argv[++i];
         else if (argv[i][0] != '-' && !scene_path) scene_path = argv[i];
         else scene_path = NULL, i = argc;
     }
     if (!scene_path || !output) {
-        fprintf(stderr, "usage: %s SCENE.json -o OUT.png [--technique T]\n", argv[0]);
+        fprintf(stderr, "usage: %s SCENE.json -o OUT.png [--technique T] [--frames N (1..1000)]\n", argv[0]);
         return 2;
     }
     sss_error err = {0};
@@ -568,7 +598,15 @@ int main(int argc, char **argv)
     scene_sphere(&e);
     create_targets(&e, &info);
     sss_gl_pass_frame frame = {0};
-    if (render_frame(&e, pass, &frame, &err) != SSS_OK) goto done;
+    double frame_ms[1000], pass_ms[1000];
+    for (int k = 0; k < frames; k++) {
+        double t0 = now_ms();
+        if (render_frame(&e, pass, &frame, &pass_ms[k], &err) != SSS_OK) goto done;
+        frame_ms[k] = now_ms() - t0;
+    }
+    if (frames > 1)
+        printf("%d frames %dx%d: median engine frame %.1f ms, of which the sss pass %.1f ms\n", frames, e.width,
+               e.height, median(frame_ms, frames), median(pass_ms, frames));
     if (!write_output(&e, output, &err)) goto done;
     status = 0;
 done:

@@ -17,6 +17,7 @@
 #ifndef SSS_GL_INTERNAL_H
 #define SSS_GL_INTERNAL_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include <epoxy/egl.h>
@@ -133,6 +134,16 @@ typedef struct gl_light_record {
     float shadow[4];    /* x: near, y: far (cube: distances), z: world texel size at distance 1 (or
                            absolute for orthographic), w: 1 orthographic */
 } gl_light_record;
+
+/* The std430 layouts of common.glsl's Object, Material and Light: vec4 and mat4 members only, so
+ * std430 packs them without padding; these tie the C records to that. */
+_Static_assert(sizeof(gl_object_record) == 2 * 64 + 3 * 16, "gl_object_record != common.glsl Object (std430)");
+_Static_assert(offsetof(gl_object_record, anim) == 160, "Object.anim offset");
+_Static_assert(sizeof(gl_material_record) == 4 * 16, "gl_material_record != common.glsl Material (std430)");
+_Static_assert(offsetof(gl_material_record, spec) == 48, "Material.spec offset");
+_Static_assert(sizeof(gl_light_record) == 4 * 16 + 64 + 16, "gl_light_record != common.glsl Light (std430)");
+_Static_assert(offsetof(gl_light_record, shadow_matrix) == 64 && offsetof(gl_light_record, shadow) == 128,
+               "Light.shadow_matrix / Light.shadow offsets");
 
 typedef struct gl_object {
     GLuint vao, pos, nrm, uv, idx;
