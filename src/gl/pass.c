@@ -130,6 +130,7 @@ sss_result sss_gl_pass_update_materials(sss_gl_pass *pass, sss_error *err)
 sss_result sss_gl_pass_update_lights(sss_gl_pass *pass, sss_error *err)
 {
     if (!pass) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_update_lights: pass is NULL");
+    if (!(pass->r->tech->needs & GL_NEED_LIGHTS)) return SSS_OK; /* the technique reads no lights */
     gl_pass_state saved;
     gl_pass_state_save(&saved);
     gl_pass_state_defaults();

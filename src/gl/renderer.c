@@ -79,17 +79,19 @@ double sss_gl_renderer_get_param(const sss_gl_renderer *r, const char *name)
 
 /* ---- Creation ------------------------------------------------------------------------------- */
 
+/* A pass over the caller's frame (frame.external) has no G-buffer, illumination or window of its own. */
 static sss_result build_programs(sss_gl_renderer *r, sss_error *err)
 {
-    sss_result res = gl_program_vf("gbuffer.vert.glsl", "gbuffer.frag.glsl", NULL, &r->prog_gbuffer, err);
-    if (res == SSS_OK) res = gl_program_vf("shadow.vert.glsl", "shadow.frag.glsl", NULL, &r->prog_shadow, err);
-    if (res == SSS_OK)
+    int own = !r->frame.external;
+    sss_result res = gl_program_vf("shadow.vert.glsl", "shadow.frag.glsl", NULL, &r->prog_shadow, err);
+    if (res == SSS_OK && own) res = gl_program_vf("gbuffer.vert.glsl", "gbuffer.frag.glsl", NULL, &r->prog_gbuffer, err);
+    if (res == SSS_OK && own)
         res = gl_program_vf("fullscreen.vert.glsl", "illumination.frag.glsl", NULL, &r->prog_illum, err);
     if (res == SSS_OK)
         res = gl_program_compute("mip_reduce.comp.glsl",
                                  (r->tech->needs & GL_NEED_NORMAL_MIPS) ? "#define WITH_NORMALS 1\n" : NULL,
                                  &r->prog_reduce, err);
-    if (res == SSS_OK)
+    if (res == SSS_OK && own)
         res = gl_program_vf("fullscreen.vert.glsl", "present.frag.glsl", NULL, &r->prog_present, err);
     return res;
 }
@@ -97,7 +99,8 @@ static sss_result build_programs(sss_gl_renderer *r, sss_error *err)
 static sss_result build_scene(sss_gl_renderer *r, sss_error *err)
 {
     sss_result res = gl_scene_upload(r, err);
-    if (res == SSS_OK) res = gl_lights_build(r, err);
+    /* as a pass, only techniques that light the registered meshes themselves need lights and shadow maps */
+    if (res == SSS_OK && (!r->frame.external || (r->tech->needs & GL_NEED_LIGHTS))) res = gl_lights_build(r, err);
     if (res == SSS_OK && (r->tech->needs & GL_NEED_SPLAT_MESHES)) res = gl_scene_prepare_splats(r, err);
     return res;
 }

@@ -205,12 +205,19 @@ static int read_rgba(GLuint tex, int w, int h, float *out)
 static void check_technique(const sss_scene *scene, const char *technique)
 {
     sss_error err = {0};
-    sss_gl_renderer_desc rd = gt_desc(technique, NULL, 0, 0);
+    /* small shadow maps, LUTs and light-view buffers: the same for both, and fast */
+    sss_gl_param_value params[4] = {{"shadow_size", 256}, {"shadow_cube_size", 128}, {"lut_size", 128}, {NULL, 0}};
+    int nparams = 3;
+    if (strcmp(technique, "chen2012") == 0) params[nparams++] = (sss_gl_param_value){"buffer_size", 256};
+    if (strcmp(technique, "mertens2003") == 0) params[nparams++] = (sss_gl_param_value){"light_view_size", 256};
+    sss_gl_renderer_desc rd = gt_desc(technique, params, nparams, 0);
     sss_gl_renderer *r = NULL;
     sss_gl_pass *pass = NULL;
     sss_gl_pass_desc pd;
     memset(&pd, 0, sizeof pd);
     pd.technique = technique;
+    pd.params = params;
+    pd.param_count = nparams;
     pd.scene = scene;
     pd.width = scene->camera.width;
     pd.height = scene->camera.height;
@@ -261,6 +268,11 @@ static void check_technique(const sss_scene *scene, const char *technique)
     CHECK_MSG(sum > 0.0, "%s: black image", technique);
     CHECK_MSG(diff <= 1e-4 * sum, "%s: the pass differs from the renderer (%.3g of the image)", technique,
               diff / (sum > 0 ? sum : 1));
+    sss_gl_stats st;
+    sss_gl_pass_stats(pass, &st);
+    printf("%-12s pass-owned memory: %zu B per pixel, %zu B per splat, %zu splats, textures %zu B, buffers %zu B\n",
+           technique, st.per_pixel_bytes, st.per_splat_bytes, (size_t)st.splat_total, st.texture_bytes,
+           st.buffer_bytes);
     free(a);
     free(b);
     glDeleteTextures(1, &f.output);
@@ -287,10 +299,13 @@ static void check_bad_frames(const sss_scene *scene)
 {
     sss_error err = {0};
     int w = scene->camera.width, h = scene->camera.height;
-    sss_gl_renderer_desc rd = gt_desc("maisch2020", NULL, 0, 0);
+    sss_gl_param_value params[3] = {{"shadow_size", 256}, {"shadow_cube_size", 128}, {"lut_size", 128}};
+    sss_gl_renderer_desc rd = gt_desc("maisch2020", params, 3, 0);
     sss_gl_pass_desc pd;
     memset(&pd, 0, sizeof pd);
     pd.technique = "maisch2020";
+    pd.params = params;
+    pd.param_count = 3;
     pd.scene = scene;
     pd.width = w;
     pd.height = h;
