@@ -1,8 +1,7 @@
 /* The pass API (sss/gl_pass.h) on G-buffer textures the test owns:
  *  - same image: a pass fed with the renderer's own G-buffer, irradiance and reflected light (its
  *    textures, by name) and the camera as plain OpenGL matrices from the public camera functions
- *    writes the renderer's image, for every technique the pass supports (sam needs a data file: its
- *    own tests);
+ *    writes the renderer's image, for every technique (sam with few links, built at creation);
  *  - GL state: every state sss/gl_pass.h lists, set to non-default values before the pass, reads back
  *    unchanged after it (queried here, independently of the library's save/restore);
  *  - bad frames: wrong size, format, a name that is not a texture, missing mip levels, a projection
@@ -206,8 +205,12 @@ static void check_technique(const sss_scene *scene, const char *technique)
 {
     sss_error err = {0};
     /* small shadow maps, LUTs and light-view buffers: the same for both, and fast */
-    sss_gl_param_value params[4] = {{"shadow_size", 256}, {"shadow_cube_size", 128}, {"lut_size", 128}, {NULL, 0}};
+    sss_gl_param_value params[5] = {{"shadow_size", 256}, {"shadow_cube_size", 128}, {"lut_size", 128}};
     int nparams = 3;
+    if (strcmp(technique, "sam") == 0) { /* few links: its maps are built at creation, twice here */
+        params[nparams++] = (sss_gl_param_value){"samples", 16};
+        params[nparams++] = (sss_gl_param_value){"n", 4};
+    }
     if (strcmp(technique, "chen2012") == 0) params[nparams++] = (sss_gl_param_value){"buffer_size", 256};
     if (strcmp(technique, "mertens2003") == 0) params[nparams++] = (sss_gl_param_value){"light_view_size", 256};
     sss_gl_renderer_desc rd = gt_desc(technique, params, nparams, 0);
@@ -370,7 +373,7 @@ int main(int argc, char **argv)
     sss_scene scene;
     CHECK(gt_load("gl_spot.json", &scene));
     static const char *const techniques[] = {"maisch2020", "screen", "local", "ssss", "ssss-gauss6", "ssss-svd",
-                                             "mertens2003", "dss", "chen2012"};
+                                             "mertens2003", "dss", "chen2012", "sam"};
     for (size_t i = 0; i < sizeof techniques / sizeof techniques[0]; i++)
         if (argc < 2 || strcmp(argv[1], techniques[i]) == 0) check_technique(&scene, techniques[i]); /* argv: one */
     check_bad_frames(&scene);
