@@ -70,7 +70,8 @@ sss_result sss_gl_pass_create(sss_gl_context *ctx, const sss_gl_pass_desc *desc,
 void sss_gl_pass_destroy(sss_gl_pass *pass);
 
 /* Runs the technique on one frame. Checks every texture (exists, size, format, mip levels) and names
- * the field that is wrong; on error nothing is written. Restores the GL state listed below. */
+ * the field that is wrong; on error nothing is written. Restores the GL state listed below; GL errors
+ * pending before the call are cleared (glGetError), so check yours before it. */
 sss_result sss_gl_pass_execute(sss_gl_pass *pass, const sss_gl_pass_frame *frame, sss_error *err);
 
 /* New input/output size (the pass's own targets follow); the next frame's textures must have it. */

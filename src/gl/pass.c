@@ -13,6 +13,7 @@
 struct sss_gl_pass {
     sss_gl_renderer *r;    /* the runtime, with r->frame.external = 1 */
     GLuint attached;       /* the output texture attached to r->frame.fbo_final */
+    size_t object_count;   /* the registered scene's at creation (surface ids 1..object_count) */
 };
 
 sss_result gl_frame_run(sss_gl_renderer *r, const gl_camera *cam, double time, sss_error *err)
@@ -82,6 +83,7 @@ sss_result sss_gl_pass_create(sss_gl_context *ctx, const sss_gl_pass_desc *desc,
         free(pass);
         return res;
     }
+    pass->object_count = desc->scene->object_count;
     *out = pass;
     return SSS_OK;
 }
@@ -119,10 +121,10 @@ sss_result sss_gl_pass_set_param(sss_gl_pass *pass, const char *name, double val
 sss_result sss_gl_pass_update_materials(sss_gl_pass *pass, sss_error *err)
 {
     if (!pass) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_update_materials: pass is NULL");
-    if ((size_t)pass->r->gs.object_count != pass->r->scene->object_count)
+    if (pass->r->scene->object_count != pass->object_count)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
-                             "sss_gl_pass_update_materials: the scene has %zu objects, the pass was created with %d",
-                             pass->r->scene->object_count, pass->r->gs.object_count);
+                             "sss_gl_pass_update_materials: the scene has %zu objects, the pass was created with %zu",
+                             pass->r->scene->object_count, pass->object_count);
     pass->r->scene_dirty = 1; /* LUTs and records are rebuilt at the next execute */
     return SSS_OK;
 }
