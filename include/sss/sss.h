@@ -16,6 +16,7 @@
 #include "sss/reference.h"
 #include "sss/export.h"
 #include "sss/gl.h"
+#include "sss/gl_pass.h"
 #include "sss/sam.h"
 #include "sss/eval.h"
 #include "sss/view.h"

@@ -108,8 +108,31 @@ sss_result gl_frame_create(gl_frame *f, int width, int height, int normal_mips, 
     return SSS_OK;
 }
 
+sss_result gl_frame_create_external(gl_frame *f, int width, int height, int normal_mips, sss_error *err)
+{
+    memset(f, 0, sizeof *f);
+    f->external = 1;
+    f->width = width;
+    f->height = height;
+    f->levels = gl_mip_levels(width, height);
+    f->normal_mips = normal_mips;
+    f->black = gl_texture_2d(GL_RGBA16F, width, height, 1, &f->bytes);
+    const float zero[4] = {0, 0, 0, 0};
+    glClearTexImage(f->black, 0, GL_RGBA, GL_FLOAT, zero);
+    glCreateFramebuffers(1, &f->fbo_final);
+    glNamedFramebufferDrawBuffer(f->fbo_final, GL_COLOR_ATTACHMENT0);
+    (void)err;
+    return SSS_OK;
+}
+
 void gl_frame_free(gl_frame *f)
 {
+    if (f->external) {
+        glDeleteFramebuffers(1, &f->fbo_final);
+        glDeleteTextures(1, &f->black);
+        memset(f, 0, sizeof *f);
+        return;
+    }
     GLuint fb[3] = {f->fbo_gbuffer, f->fbo_light, f->fbo_final};
     glDeleteFramebuffers(3, fb);
     GLuint t[7] = {f->pos, f->nrm, f->albedo, f->depth, f->irr, f->refl, f->final};
@@ -178,14 +201,7 @@ static int mat_inverse(const float m[16], float out[16])
     return 1;
 }
 
-typedef struct frame_ubo {
-    float view[16], proj[16], view_proj[16], inv_view_proj[16];
-    float camera_pos[4], camera_fwd[4], viewport[4];
-    int32_t counts[4];
-    float misc[4];
-} frame_ubo;
-
-void gl_update_frame_ubo(sss_gl_renderer *r)
+void gl_camera_from_scene(sss_gl_renderer *r, gl_camera *c)
 {
     sss_camera cam = r->scene->camera;
     cam.width = r->width;
@@ -195,40 +211,86 @@ void gl_update_frame_ubo(sss_gl_renderer *r)
     /* Depth range from the scene bounds (padded for animations): far beyond the farthest corner. */
     double far_d = 0.0;
     for (int i = 0; i < 8; i++) {
-        double c[3] = {(i & 1) ? r->gs.bounds_max[0] : r->gs.bounds_min[0],
+        double p[3] = {(i & 1) ? r->gs.bounds_max[0] : r->gs.bounds_min[0],
                        (i & 2) ? r->gs.bounds_max[1] : r->gs.bounds_min[1],
                        (i & 4) ? r->gs.bounds_max[2] : r->gs.bounds_min[2]};
         double d = 0.0;
-        for (int k = 0; k < 3; k++) d += (c[k] - b.origin[k]) * (c[k] - b.origin[k]);
+        for (int k = 0; k < 3; k++) d += (p[k] - b.origin[k]) * (p[k] - b.origin[k]);
         if (sqrt(d) > far_d) far_d = sqrt(d);
     }
     if (!(far_d > 0.0)) far_d = 1.0;
     r->far_plane = far_d * 1.05;
-    r->near_plane = r->far_plane * 1e-5;
+    double near_plane = r->far_plane * 1e-5;
     double v[16], p[16];
     sss_camera_view_matrix(&b, v);
-    sss_camera_projection_matrix(&b, r->near_plane, r->far_plane, p);
+    sss_camera_projection_matrix(&b, near_plane, r->far_plane, p);
     /* Reversed-Z with an infinite far plane (depth = near / distance along the view axis, used with
      * glClipControl(ZERO_TO_ONE), a GREATER test and a 32-bit float depth buffer): nearly uniform
      * relative precision. The standard mapping with near = 1e-5 far resolves only ~0.1% of the
      * distance and let the inner and outer layers of thin shells fight. */
     p[10] = 0.0;
-    p[11] = r->near_plane;
+    p[11] = near_plane;
+    memset(c, 0, sizeof *c);
+    to_col_major(v, c->view);
+    to_col_major(p, c->proj);
+    for (int k = 0; k < 3; k++) {
+        c->position[k] = b.origin[k];
+        c->forward[k] = b.forward[k];
+    }
+    c->near_plane = near_plane;
+    c->pixel_size = 2.0 * b.tan_half[1] / r->height;
+}
+
+int gl_camera_from_matrices(const float view[16], const float proj[16], int height, gl_camera *c)
+{
+    memset(c, 0, sizeof *c);
+    /* a perspective projection: w = -z_eye, focal lengths on the diagonal */
+    if (proj[11] != -1.0f || proj[15] != 0.0f || !(proj[0] > 0.0f) || !(proj[5] > 0.0f)) return 0;
+    double near_plane = proj[10] == 0.0f ? proj[14] : proj[14] / (proj[10] - 1.0);
+    if (!(near_plane > 0.0) || !isfinite(near_plane)) return 0;
+    memcpy(c->view, view, sizeof c->view);
+    memcpy(c->proj, proj, sizeof c->proj);
+    c->proj[10] = 0.0f; /* reversed-Z, infinite far plane (gl_camera_from_scene) */
+    c->proj[14] = (float)near_plane;
+    /* eye -> world: the position is -R^T t, the view axis -(third row of R) */
+    for (int i = 0; i < 3; i++) {
+        double d = 0.0;
+        for (int j = 0; j < 3; j++) d += (double)view[4 * i + j] * view[12 + j];
+        c->position[i] = -d;
+        c->forward[i] = -(double)view[4 * i + 2];
+    }
+    c->near_plane = near_plane;
+    c->pixel_size = 2.0 / (proj[5] * (double)height);
+    return 1;
+}
+
+/* Mirrors common.glsl FrameBlock (std140). */
+typedef struct frame_ubo {
+    float view[16], proj[16], view_proj[16], inv_view_proj[16];
+    float camera_pos[4], camera_fwd[4], viewport[4];
+    int32_t counts[4];
+    float misc[4];
+} frame_ubo;
+_Static_assert(sizeof(frame_ubo) == 4 * 64 + 5 * 16, "frame_ubo must match common.glsl FrameBlock (std140)");
+
+void gl_frame_ubo_write(sss_gl_renderer *r, const gl_camera *c)
+{
     frame_ubo u;
     memset(&u, 0, sizeof u);
-    to_col_major(v, u.view);
-    to_col_major(p, u.proj);
+    memcpy(u.view, c->view, sizeof u.view);
+    memcpy(u.proj, c->proj, sizeof u.proj);
     mat_mul_cm(u.proj, u.view, u.view_proj);
     if (!mat_inverse(u.view_proj, u.inv_view_proj)) memset(u.inv_view_proj, 0, sizeof u.inv_view_proj);
     memcpy(r->view, u.view, sizeof r->view);
     memcpy(r->proj, u.proj, sizeof r->proj);
     memcpy(r->view_proj, u.view_proj, sizeof r->view_proj);
+    r->near_plane = c->near_plane;
     for (int k = 0; k < 3; k++) {
-        u.camera_pos[k] = (float)b.origin[k];
-        u.camera_fwd[k] = (float)b.forward[k];
+        u.camera_pos[k] = (float)c->position[k];
+        u.camera_fwd[k] = (float)c->forward[k];
     }
     u.camera_pos[3] = (float)r->time;
-    u.camera_fwd[3] = (float)(2.0 * b.tan_half[1] / r->height);
+    u.camera_fwd[3] = (float)c->pixel_size;
     u.viewport[0] = (float)r->width;
     u.viewport[1] = (float)r->height;
     u.viewport[2] = 1.0f / (float)r->width;
@@ -246,6 +308,8 @@ void gl_update_frame_ubo(sss_gl_renderer *r)
     glNamedBufferSubData(r->ubo_frame, 0, sizeof u, &u);
     glBindBufferBase(GL_UNIFORM_BUFFER, GL_UBO_FRAME, r->ubo_frame);
 }
+
+size_t gl_frame_ubo_size(void) { return sizeof(frame_ubo); }
 
 void gl_draw_objects(sss_gl_renderer *r, GLint object_uniform, int subsurface_only)
 {

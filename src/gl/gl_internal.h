@@ -17,12 +17,14 @@
 #ifndef SSS_GL_INTERNAL_H
 #define SSS_GL_INTERNAL_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
 #include "sss/gl.h"
+#include "sss/gl_pass.h"
 #include "sss/kernel.h"
 #include "sss/scene.h"
 
@@ -133,6 +135,16 @@ typedef struct gl_light_record {
                            absolute for orthographic), w: 1 orthographic */
 } gl_light_record;
 
+/* The std430 layouts of common.glsl's Object, Material and Light: vec4 and mat4 members only, so
+ * std430 packs them without padding; these tie the C records to that. */
+_Static_assert(sizeof(gl_object_record) == 2 * 64 + 3 * 16, "gl_object_record != common.glsl Object (std430)");
+_Static_assert(offsetof(gl_object_record, anim) == 160, "Object.anim offset");
+_Static_assert(sizeof(gl_material_record) == 4 * 16, "gl_material_record != common.glsl Material (std430)");
+_Static_assert(offsetof(gl_material_record, spec) == 48, "Material.spec offset");
+_Static_assert(sizeof(gl_light_record) == 4 * 16 + 64 + 16, "gl_light_record != common.glsl Light (std430)");
+_Static_assert(offsetof(gl_light_record, shadow_matrix) == 64 && offsetof(gl_light_record, shadow) == 128,
+               "Light.shadow_matrix / Light.shadow offsets");
+
 typedef struct gl_object {
     GLuint vao, pos, nrm, uv, idx;
     uint32_t vertex_count, triangle_count;
@@ -187,6 +199,11 @@ typedef struct gl_frame {
     GLuint fbo_gbuffer, fbo_light, fbo_final;
     size_t bytes;    /* all of the above */
     int normal_mips;
+    /* A pass in the caller's frame (gl_pass.h): pos, nrm, albedo, irr, refl and final are the caller's
+     * textures of the current frame (never freed here); depth, fbo_gbuffer and fbo_light are 0;
+     * fbo_final is ours, with the caller's output attached; black stands in for a missing refl. */
+    int external;
+    GLuint black;
 } gl_frame;
 
 /* ---- Techniques -------------------------------------------------------------------------------
@@ -222,6 +239,9 @@ typedef struct gl_frame {
 #define GL_NEED_MIPS 8u
 #define GL_NEED_NORMAL_MIPS 16u
 #define GL_NEED_SPLAT_MESHES 32u
+/* The technique's own shaders read lights and shadow maps (not only the illumination pass): as a pass
+ * in a caller's frame (gl_pass.h) it then renders its own shadow maps of the registered meshes. */
+#define GL_NEED_LIGHTS 64u
 
 #define GL_MAX_PARAMS 48
 
@@ -320,12 +340,27 @@ sss_result gl_lights_update(sss_gl_renderer *r, sss_error *err);
 void gl_env_cache_free(gl_scene *gs); /* the environment maps read by gl_lights_build */
 sss_result gl_shadows_render(sss_gl_renderer *r, sss_error *err);
 /* frame.c */
+/* The camera of one frame: matrices (column-major; proj reversed-Z with an infinite far plane, as
+ * every pass rasterises with it) and what the frame block derives from them. */
+typedef struct gl_camera {
+    float view[16], proj[16];
+    double position[3], forward[3];
+    double near_plane;
+    double pixel_size; /* image-plane size of one pixel at distance 1 */
+} gl_camera;
+/* The scene camera's at the render size (far plane beyond the scene bounds). */
+void gl_camera_from_scene(sss_gl_renderer *r, gl_camera *c);
+/* The caller's matrices (gl_pass.h conventions); 0 when proj is not a perspective projection. */
+int gl_camera_from_matrices(const float view[16], const float proj[16], int height, gl_camera *c);
+/* Writes the frame block (common.glsl FrameBlock) for camera c and binds it. */
+void gl_frame_ubo_write(sss_gl_renderer *r, const gl_camera *c);
+size_t gl_frame_ubo_size(void); /* bytes of the frame block (the UBO is created with it) */
+sss_result gl_frame_create_external(gl_frame *f, int width, int height, int normal_mips, sss_error *err);
 sss_result gl_frame_create(gl_frame *f, int width, int height, int normal_mips, sss_error *err);
 void gl_frame_free(gl_frame *f);
 sss_result gl_pass_gbuffer(sss_gl_renderer *r, sss_error *err);
 sss_result gl_pass_illumination(sss_gl_renderer *r, sss_error *err);
 sss_result gl_pass_mipmaps(sss_gl_renderer *r, sss_error *err);
-void gl_update_frame_ubo(sss_gl_renderer *r);
 /* Draws every object (G-buffer style vertex stage must be bound); mask: 1 subsurface only, 2 all. */
 void gl_draw_objects(sss_gl_renderer *r, GLint object_uniform, int subsurface_only);
 void gl_draw_fullscreen(sss_gl_renderer *r);
@@ -341,5 +376,40 @@ int gl_mip_levels(int width, int height);
 
 /* Reads an RGBA float texture level into an RGB image (created here). */
 sss_result gl_read_texture_rgb(GLuint tex, int level, int width, int height, sss_image *out, sss_error *err);
+
+/* ---- The pass over a G-buffer (pass.c, pass_state.c) ------------------------------------------ */
+
+/* Creates the runtime of a technique (scene resources, programs, technique state); external: the frame
+ * inputs are the caller's (gl_pass.h), else the renderer's own targets. */
+sss_result gl_runtime_create(sss_gl_context *ctx, const sss_scene *scene, const sss_gl_renderer_desc *desc,
+                             int external, sss_gl_renderer **out, sss_error *err);
+/* One frame through the technique: rebuilds scene resources after parameter changes, writes the frame
+ * block for cam, then the shared passes the frame needs (G-buffer and illumination only for the
+ * renderer's own targets), the mip chains, the technique, the SSAA resolve. Shared by
+ * sss_gl_renderer_render and sss_gl_pass_execute. */
+/* Rebuilds the scene resources and the technique after a scene-level change (r->scene_dirty). */
+sss_result gl_runtime_rebuild_if_dirty(sss_gl_renderer *r, sss_error *err);
+sss_result gl_frame_run(sss_gl_renderer *r, const gl_camera *cam, double time, sss_error *err);
+
+#define GL_PASS_TEXTURE_TARGETS 5
+#define GL_PASS_GENERIC_BUFFERS 7
+#define GL_PASS_CAPABILITIES 5
+typedef struct gl_pass_state {
+    GLint draw_fbo, read_fbo, program, vertex_array, viewport[4];
+    GLboolean enabled[GL_PASS_CAPABILITIES], depth_mask, color_mask[4];
+    GLint depth_func, blend[6], clip[2], alignment[2];
+    GLfloat polygon_offset[2];
+    GLint active_texture;
+    GLint texture[SSS_GL_PASS_TEXTURE_UNITS][GL_PASS_TEXTURE_TARGETS], sampler[SSS_GL_PASS_TEXTURE_UNITS];
+    GLint image[SSS_GL_PASS_IMAGE_UNITS][6]; /* name, level, layered, layer, access, format */
+    GLint indexed_buffer[2][SSS_GL_PASS_BUFFER_BINDINGS]; /* uniform, shader storage */
+    GLint64 indexed_start[2][SSS_GL_PASS_BUFFER_BINDINGS], indexed_size[2][SSS_GL_PASS_BUFFER_BINDINGS];
+    GLint generic_buffer[GL_PASS_GENERIC_BUFFERS];
+} gl_pass_state;
+void gl_pass_state_save(gl_pass_state *s);
+void gl_pass_state_restore(const gl_pass_state *s);
+/* The GL defaults the passes assume (no scissor, cull, blend or depth test, full write masks, OpenGL
+ * clip control, no sampler objects or pixel buffers, alignment 4), set after saving the caller's. */
+void gl_pass_state_defaults(void);
 
 #endif

@@ -79,17 +79,19 @@ double sss_gl_renderer_get_param(const sss_gl_renderer *r, const char *name)
 
 /* ---- Creation ------------------------------------------------------------------------------- */
 
+/* A pass over the caller's frame (frame.external) has no G-buffer, illumination or window of its own. */
 static sss_result build_programs(sss_gl_renderer *r, sss_error *err)
 {
-    sss_result res = gl_program_vf("gbuffer.vert.glsl", "gbuffer.frag.glsl", NULL, &r->prog_gbuffer, err);
-    if (res == SSS_OK) res = gl_program_vf("shadow.vert.glsl", "shadow.frag.glsl", NULL, &r->prog_shadow, err);
-    if (res == SSS_OK)
+    int own = !r->frame.external;
+    sss_result res = gl_program_vf("shadow.vert.glsl", "shadow.frag.glsl", NULL, &r->prog_shadow, err);
+    if (res == SSS_OK && own) res = gl_program_vf("gbuffer.vert.glsl", "gbuffer.frag.glsl", NULL, &r->prog_gbuffer, err);
+    if (res == SSS_OK && own)
         res = gl_program_vf("fullscreen.vert.glsl", "illumination.frag.glsl", NULL, &r->prog_illum, err);
     if (res == SSS_OK)
         res = gl_program_compute("mip_reduce.comp.glsl",
                                  (r->tech->needs & GL_NEED_NORMAL_MIPS) ? "#define WITH_NORMALS 1\n" : NULL,
                                  &r->prog_reduce, err);
-    if (res == SSS_OK)
+    if (res == SSS_OK && own)
         res = gl_program_vf("fullscreen.vert.glsl", "present.frag.glsl", NULL, &r->prog_present, err);
     return res;
 }
@@ -97,7 +99,8 @@ static sss_result build_programs(sss_gl_renderer *r, sss_error *err)
 static sss_result build_scene(sss_gl_renderer *r, sss_error *err)
 {
     sss_result res = gl_scene_upload(r, err);
-    if (res == SSS_OK) res = gl_lights_build(r, err);
+    /* as a pass, only techniques that light the registered meshes themselves need lights and shadow maps */
+    if (res == SSS_OK && (!r->frame.external || (r->tech->needs & GL_NEED_LIGHTS))) res = gl_lights_build(r, err);
     if (res == SSS_OK && (r->tech->needs & GL_NEED_SPLAT_MESHES)) res = gl_scene_prepare_splats(r, err);
     return res;
 }
@@ -118,12 +121,38 @@ static void destroy_technique(sss_gl_renderer *r)
     r->tech_state = NULL;
 }
 
-sss_result sss_gl_renderer_create(sss_gl_context *ctx, const sss_scene *scene, const sss_gl_renderer_desc *desc_in,
+sss_result gl_runtime_rebuild_if_dirty(sss_gl_renderer *r, sss_error *err)
+{
+    if (!r->scene_dirty) return SSS_OK;
+    destroy_technique(r);
+    gl_scene_free(&r->gs);
+    r->scene_dirty = 0;
+    sss_result res = build_scene(r, err);
+    if (res == SSS_OK) res = create_technique(r, err);
+    if (res != SSS_OK) r->scene_dirty = 1;
+    return res;
+}
+
+/* The frame targets: the renderer's own, or (a pass) the slots for the caller's textures. */
+static sss_result create_frame(sss_gl_renderer *r, sss_error *err)
+{
+    int normal_mips = (r->tech->needs & GL_NEED_NORMAL_MIPS) != 0;
+    if (r->frame.external) return gl_frame_create_external(&r->frame, r->width, r->height, normal_mips, err);
+    return gl_frame_create(&r->frame, r->width, r->height, normal_mips, err);
+}
+
+sss_result sss_gl_renderer_create(sss_gl_context *ctx, const sss_scene *scene, const sss_gl_renderer_desc *desc,
                                   sss_gl_renderer **out, sss_error *err)
 {
     if (!out) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_renderer_create: out is NULL");
     *out = NULL;
     if (!ctx || !scene) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_renderer_create: no context or scene");
+    return gl_runtime_create(ctx, scene, desc, 0, out, err);
+}
+
+sss_result gl_runtime_create(sss_gl_context *ctx, const sss_scene *scene, const sss_gl_renderer_desc *desc_in,
+                             int external, sss_gl_renderer **out, sss_error *err)
+{
     sss_gl_renderer_desc desc;
     memset(&desc, 0, sizeof desc);
     if (desc_in) desc = *desc_in;
@@ -159,6 +188,7 @@ sss_result sss_gl_renderer_create(sss_gl_context *ctx, const sss_scene *scene, c
     r->ctx = ctx;
     r->scene = scene;
     r->tech = tech;
+    r->frame.external = external;
     r->data_file = desc.data_file;
     r->supersample = k;
     r->out_width = width;
@@ -176,12 +206,11 @@ sss_result sss_gl_renderer_create(sss_gl_context *ctx, const sss_scene *scene, c
     if (res == SSS_OK) res = build_programs(r, err);
     if (res == SSS_OK) {
         glCreateBuffers(1, &r->ubo_frame);
-        glNamedBufferStorage(r->ubo_frame, 1024, NULL, GL_DYNAMIC_STORAGE_BIT);
+        glNamedBufferStorage(r->ubo_frame, (GLsizeiptr)gl_frame_ubo_size(), NULL, GL_DYNAMIC_STORAGE_BIT);
         glCreateVertexArrays(1, &r->vao_empty);
         res = build_scene(r, err);
     }
-    if (res == SSS_OK)
-        res = gl_frame_create(&r->frame, r->width, r->height, (tech->needs & GL_NEED_NORMAL_MIPS) != 0, err);
+    if (res == SSS_OK) res = create_frame(r, err);
     if (res == SSS_OK) res = gl_ssaa_resize(r, err);
     if (res == SSS_OK) res = create_technique(r, err);
     if (res == SSS_OK) res = gl_check(ctx, "renderer creation", err);
@@ -238,14 +267,16 @@ static sss_result apply_size(sss_gl_renderer *r, int width, int height, int k, s
 {
     if (width == r->out_width && height == r->out_height && k == r->supersample) return SSS_OK;
     sss_gl_context_make_current(r->ctx);
+    int external = r->frame.external;
     gl_frame_free(&r->frame);
+    r->frame.external = external;
     r->supersample = k;
     r->out_width = width;
     r->out_height = height;
     r->width = width * k;
     r->height = height * k;
     r->frame_rendered = 0;
-    sss_result res = gl_frame_create(&r->frame, r->width, r->height, (r->tech->needs & GL_NEED_NORMAL_MIPS) != 0, err);
+    sss_result res = create_frame(r, err);
     if (res == SSS_OK) res = gl_ssaa_resize(r, err);
     if (res == SSS_OK && r->tech->resize) res = r->tech->resize(r, r->tech_state, err);
     return res;
@@ -286,45 +317,13 @@ sss_result sss_gl_renderer_render(sss_gl_renderer *r, double time, sss_error *er
     if (!r) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "renderer is NULL");
     if (!isfinite(time)) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "render time %g is not finite", time);
     sss_gl_context_make_current(r->ctx);
-    sss_result res = SSS_OK;
-    if (r->scene_dirty) {
-        destroy_technique(r);
-        gl_scene_free(&r->gs);
-        r->scene_dirty = 0;
-        res = build_scene(r, err);
-        if (res == SSS_OK) res = create_technique(r, err);
-        if (res != SSS_OK) {
-            r->scene_dirty = 1;
-            return res;
-        }
-    }
-    r->time = time;
     r->frame_rendered = 0;
-    gl_update_frame_ubo(r);
-    gl_bind_scene(r);
-    gl_timer *t = &r->timer;
-    gl_timer_frame_begin(t);
-    unsigned needs = r->tech->needs;
-    if (needs & GL_NEED_GBUFFER) {
-        gl_timer_begin(t, "gbuffer");
-        res = gl_pass_gbuffer(r, err);
-    }
-    if (res == SSS_OK && (needs & GL_NEED_SHADOWS)) {
-        gl_timer_begin(t, "shadows");
-        res = gl_shadows_render(r, err);
-    }
-    if (res == SSS_OK && (needs & GL_NEED_ILLUMINATION)) {
-        gl_timer_begin(t, "illumination");
-        res = gl_pass_illumination(r, err);
-    }
-    if (res == SSS_OK && (needs & GL_NEED_MIPS)) {
-        gl_timer_begin(t, "mipmaps");
-        res = gl_pass_mipmaps(r, err);
-    }
-    gl_timer_end(t);
-    if (res == SSS_OK) res = r->tech->render(r, r->tech_state, err);
-    if (res == SSS_OK) res = gl_ssaa_resolve(r, err);
-    gl_timer_frame_end(t);
+    sss_result res = gl_runtime_rebuild_if_dirty(r, err); /* the camera's depth range needs the bounds */
+    if (res != SSS_OK) return res;
+    r->time = time;
+    gl_camera cam;
+    gl_camera_from_scene(r, &cam);
+    res = gl_frame_run(r, &cam, time, err);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (res == SSS_OK) res = gl_check(r->ctx, "the end of the frame", err);
     if (res == SSS_OK) r->frame_rendered = 1;

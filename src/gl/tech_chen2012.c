@@ -341,7 +341,7 @@ const gl_technique gl_technique_chen2012 = {
              "Chen et al. 2012 as Maisch & Ropinski 2020 compare it: splats from a 2048^2 light-view irradiance buffer "
              "(3 mip levels) per light, multiresolution additive splatting",
              params, P_COUNT},
-    .needs = GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION,
+    .needs = GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION | GL_NEED_LIGHTS,
     .state_size = sizeof(chen_state),
     .create = chen_create,
     .resize = chen_resize,

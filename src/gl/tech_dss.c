@@ -173,7 +173,7 @@ const gl_technique gl_technique_dss = {
              "Nalbach et al. 2014 Deep Screen Space as Maisch & Ropinski 2020 compare it: tessellated surfels of every "
              "triangle, shell splatting into a 3-level G-buffer",
              params, P_COUNT},
-    .needs = GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION | GL_NEED_SPLAT_MESHES,
+    .needs = GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION | GL_NEED_SPLAT_MESHES | GL_NEED_LIGHTS,
     .state_size = sizeof(dss_state),
     .create = dss_create,
     .resize = dss_resize,

@@ -365,7 +365,7 @@ const gl_technique gl_technique_maisch2020 = {
              "Maisch & Ropinski 2020: layered screen-space pattern + quarter-resolution splat translucency, "
              "disc-integrated kernel",
              params, P_COUNT},
-    .needs = GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION | GL_NEED_MIPS | GL_NEED_SPLAT_MESHES,
+    .needs = GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION | GL_NEED_MIPS | GL_NEED_SPLAT_MESHES | GL_NEED_LIGHTS,
     .state_size = sizeof(maisch_state),
     .create = maisch_create,
     .resize = maisch_resize,

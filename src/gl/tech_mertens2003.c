@@ -293,7 +293,7 @@ const gl_technique gl_technique_mertens2003 = {
              "Mertens et al. 2003: tangent-plane samples with exact importance sampling of R_d, projected into "
              "the camera's (and the lights') irradiance images",
              params, P_COUNT},
-    .needs = GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION,
+    .needs = GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION | GL_NEED_LIGHTS,
     .state_size = sizeof(mertens_state),
     .create = mertens_create,
     .resize = mertens_resize,

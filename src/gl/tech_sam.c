@@ -480,7 +480,7 @@ const gl_technique gl_technique_sam = {
              "Maisch & Ropinski 2017: per-vertex translucency from n back-side links with precomputed form "
              "factors (Spatial Adjacency Maps) + ssss for the front side",
              params, P_COUNT},
-    .needs = GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION | GL_NEED_MIPS,
+    .needs = GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION | GL_NEED_MIPS | GL_NEED_LIGHTS,
     .state_size = sizeof(sam_state),
     .create = sam_create,
     .resize = sam_resize,

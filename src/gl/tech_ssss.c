@@ -321,7 +321,7 @@ static void ssss_stats(sss_gl_renderer *r, void *state, sss_gl_stats *out)
     out->per_pixel_bytes += s->target_bytes / ((size_t)r->width * (size_t)r->height);
 }
 
-#define SSSS_NEEDS (GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION)
+#define SSSS_NEEDS (GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION | GL_NEED_LIGHTS)
 
 const gl_technique gl_technique_ssss = {
     .info = {"ssss",

@@ -1,0 +1,271 @@
+/* gl/pass.c — a technique as a pass over the caller's G-buffer (sss/gl_pass.h), and the frame loop
+ * that every frame goes through, the renderer's own (renderer.c) included (gl_frame_run).
+ *
+ * A pass is the renderer's runtime (gl_internal.h) with an external frame: the technique reads the
+ * caller's textures through the same gl_frame fields it reads the renderer's targets through, so the
+ * techniques have one code path for both. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl/gl_internal.h"
+
+struct sss_gl_pass {
+    sss_gl_renderer *r;    /* the runtime, with r->frame.external = 1 */
+    GLuint attached;       /* the output texture attached to r->frame.fbo_final */
+    size_t object_count;   /* the registered scene's at creation (surface ids 1..object_count) */
+};
+
+sss_result gl_frame_run(sss_gl_renderer *r, const gl_camera *cam, double time, sss_error *err)
+{
+    sss_result res = gl_runtime_rebuild_if_dirty(r, err);
+    if (res != SSS_OK) return res;
+    r->time = time;
+    gl_frame_ubo_write(r, cam);
+    gl_bind_scene(r);
+    gl_timer *t = &r->timer;
+    gl_timer_frame_begin(t);
+    unsigned needs = r->tech->needs;
+    int own = !r->frame.external; /* the renderer's G-buffer and illumination, else the caller's */
+    if (own && (needs & GL_NEED_GBUFFER)) {
+        gl_timer_begin(t, "gbuffer");
+        res = gl_pass_gbuffer(r, err);
+    }
+    if (res == SSS_OK && (needs & GL_NEED_SHADOWS) && (own || (needs & GL_NEED_LIGHTS))) {
+        gl_timer_begin(t, "shadows");
+        res = gl_shadows_render(r, err);
+    }
+    if (res == SSS_OK && own && (needs & GL_NEED_ILLUMINATION)) {
+        gl_timer_begin(t, "illumination");
+        res = gl_pass_illumination(r, err);
+    }
+    if (res == SSS_OK && (needs & GL_NEED_MIPS)) {
+        gl_timer_begin(t, "mipmaps");
+        res = gl_pass_mipmaps(r, err);
+    }
+    gl_timer_end(t);
+    if (res == SSS_OK) res = r->tech->render(r, r->tech_state, err);
+    if (res == SSS_OK) res = gl_ssaa_resolve(r, err);
+    gl_timer_frame_end(t);
+    return res;
+}
+
+/* ---- Creation and updates -------------------------------------------------------------------- */
+
+sss_result sss_gl_pass_create(sss_gl_context *ctx, const sss_gl_pass_desc *desc, sss_gl_pass **out, sss_error *err)
+{
+    if (!out) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_create: out is NULL");
+    *out = NULL;
+    if (!ctx || !desc) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_create: no context or desc");
+    if (!desc->scene)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "sss_gl_pass_create: desc.scene is NULL (it registers the surfaces' materials)");
+    if (desc->width < 1 || desc->height < 1)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_create: desc.width x desc.height is %dx%d",
+                             desc->width, desc->height);
+    sss_gl_pass *pass = calloc(1, sizeof *pass);
+    if (!pass) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (pass)");
+    sss_gl_renderer_desc rd;
+    memset(&rd, 0, sizeof rd);
+    rd.technique = desc->technique;
+    rd.width = desc->width;
+    rd.height = desc->height;
+    rd.params = desc->params;
+    rd.param_count = desc->param_count;
+    rd.timings = desc->timings;
+    rd.data_file = desc->data_file;
+    gl_pass_state saved;
+    gl_pass_state_save(&saved);
+    gl_pass_state_defaults();
+    sss_result res = gl_runtime_create(ctx, desc->scene, &rd, 1, &pass->r, err);
+    gl_pass_state_restore(&saved);
+    if (res != SSS_OK) {
+        free(pass);
+        return res;
+    }
+    pass->object_count = desc->scene->object_count;
+    *out = pass;
+    return SSS_OK;
+}
+
+void sss_gl_pass_destroy(sss_gl_pass *pass)
+{
+    if (!pass) return;
+    sss_gl_renderer_destroy(pass->r);
+    free(pass);
+}
+
+sss_result sss_gl_pass_resize(sss_gl_pass *pass, int width, int height, sss_error *err)
+{
+    if (!pass) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_resize: pass is NULL");
+    gl_pass_state saved;
+    gl_pass_state_save(&saved);
+    gl_pass_state_defaults();
+    sss_result res = sss_gl_renderer_resize(pass->r, width, height, err);
+    pass->attached = 0; /* a new framebuffer when the size changed */
+    gl_pass_state_restore(&saved);
+    return res;
+}
+
+sss_result sss_gl_pass_set_param(sss_gl_pass *pass, const char *name, double value, sss_error *err)
+{
+    if (!pass) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_set_param: pass is NULL");
+    gl_pass_state saved;
+    gl_pass_state_save(&saved);
+    gl_pass_state_defaults();
+    sss_result res = sss_gl_renderer_set_param(pass->r, name, value, err);
+    gl_pass_state_restore(&saved);
+    return res;
+}
+
+sss_result sss_gl_pass_update_materials(sss_gl_pass *pass, sss_error *err)
+{
+    if (!pass) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_update_materials: pass is NULL");
+    if (pass->r->scene->object_count != pass->object_count)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "sss_gl_pass_update_materials: the scene has %zu objects, the pass was created with %zu",
+                             pass->r->scene->object_count, pass->object_count);
+    pass->r->scene_dirty = 1; /* LUTs and records are rebuilt at the next execute */
+    return SSS_OK;
+}
+
+sss_result sss_gl_pass_update_lights(sss_gl_pass *pass, sss_error *err)
+{
+    if (!pass) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_update_lights: pass is NULL");
+    if (!(pass->r->tech->needs & GL_NEED_LIGHTS)) return SSS_OK; /* the technique reads no lights */
+    gl_pass_state saved;
+    gl_pass_state_save(&saved);
+    gl_pass_state_defaults();
+    sss_result res = sss_gl_renderer_update_lights(pass->r, err);
+    gl_pass_state_restore(&saved);
+    return res;
+}
+
+void sss_gl_pass_get_info(const sss_gl_pass *pass, sss_gl_pass_info *out)
+{
+    if (!out) return;
+    memset(out, 0, sizeof *out);
+    if (!pass) return;
+    unsigned needs = pass->r->tech->needs;
+    out->needs_mips = (needs & GL_NEED_MIPS) != 0;
+    out->needs_normal_mips = (needs & GL_NEED_NORMAL_MIPS) != 0;
+    out->uses_lights = (needs & GL_NEED_LIGHTS) != 0;
+    out->uses_geometry = (needs & (GL_NEED_SPLAT_MESHES | GL_NEED_LIGHTS)) != 0;
+}
+
+void sss_gl_pass_timings(const sss_gl_pass *pass, sss_gl_timings *out)
+{
+    sss_gl_renderer_timings(pass ? pass->r : NULL, out);
+}
+
+void sss_gl_pass_stats(sss_gl_pass *pass, sss_gl_stats *out)
+{
+    sss_gl_renderer_stats(pass ? pass->r : NULL, out);
+}
+
+/* ---- Frames ---------------------------------------------------------------------------------- */
+
+/* One input texture: a 2D texture of the pass's size in one of `formats` (0-terminated) with at least
+ * `levels` mip levels; `field` names it in the message. */
+static sss_result check_texture(const sss_gl_renderer *r, GLuint tex, const char *field, const GLenum *formats,
+                                int levels, sss_error *err)
+{
+    if (!tex || !glIsTexture(tex))
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_execute: frame.%s (%u) is not a texture",
+                             field, tex);
+    GLint target = 0, w = 0, h = 0, format = 0, immutable = 0, count = 1;
+    glGetTextureParameteriv(tex, GL_TEXTURE_TARGET, &target);
+    if (target != GL_TEXTURE_2D)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_execute: frame.%s (%u) is not a GL_TEXTURE_2D",
+                             field, tex);
+    glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_WIDTH, &w);
+    glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_HEIGHT, &h);
+    glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    if (w != r->width || h != r->height)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_execute: frame.%s (%u) is %dx%d, the pass %dx%d",
+                             field, tex, w, h, r->width, r->height);
+    int ok = 0;
+    for (const GLenum *f = formats; *f; f++) ok |= (GLenum)format == *f;
+    if (!ok)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "sss_gl_pass_execute: frame.%s (%u) has internal format 0x%x (see sss/gl_pass.h)", field, tex,
+                             (unsigned)format);
+    glGetTextureParameteriv(tex, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
+    if (immutable) glGetTextureParameteriv(tex, GL_TEXTURE_IMMUTABLE_LEVELS, &count);
+    if (levels > 1 && count < levels)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "sss_gl_pass_execute: frame.%s (%u) needs %d mip levels (immutable storage), has %d", field,
+                             tex, levels, immutable ? count : 1);
+    return SSS_OK;
+}
+
+static sss_result check_frame(const sss_gl_renderer *r, const sss_gl_pass_frame *f, sss_error *err)
+{
+    static const GLenum f32[] = {GL_RGBA32F, 0}, f16_32[] = {GL_RGBA16F, GL_RGBA32F, 0},
+                        albedo[] = {GL_RGBA16F, GL_RGBA32F, GL_RGBA8, 0};
+    int mips = (r->tech->needs & GL_NEED_MIPS) ? r->frame.levels : 1;
+    int normal_mips = (r->tech->needs & GL_NEED_NORMAL_MIPS) ? r->frame.levels : 1;
+    sss_result res = check_texture(r, f->position, "position", f32, mips, err);
+    if (res == SSS_OK) res = check_texture(r, f->normal, "normal", normal_mips > 1 ? f32 : f16_32, normal_mips, err);
+    if (res == SSS_OK) res = check_texture(r, f->albedo, "albedo", albedo, 1, err);
+    if (res == SSS_OK) res = check_texture(r, f->irradiance, "irradiance", f32, mips, err);
+    if (res == SSS_OK && f->reflected) res = check_texture(r, f->reflected, "reflected", f16_32, 1, err);
+    if (res == SSS_OK) res = check_texture(r, f->output, "output", f16_32, 1, err);
+    if (res == SSS_OK && !isfinite(f->time))
+        res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_execute: frame.time %g is not finite", f->time);
+    for (int i = 0; i < 16 && res == SSS_OK; i++)
+        if (!isfinite(f->view[i]) || !isfinite(f->proj[i]))
+            res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_execute: frame.%s[%d] is not finite",
+                                isfinite(f->view[i]) ? "proj" : "view", i);
+    return res;
+}
+
+/* Points the frame at the caller's textures; the output is attached when it changes. */
+static sss_result bind_inputs(sss_gl_pass *pass, const sss_gl_pass_frame *f, sss_error *err)
+{
+    gl_frame *fr = &pass->r->frame;
+    fr->pos = f->position;
+    fr->nrm = f->normal;
+    fr->albedo = f->albedo;
+    fr->irr = f->irradiance;
+    fr->refl = f->reflected ? f->reflected : fr->black;
+    fr->final = f->output;
+    if (pass->attached == f->output) return SSS_OK;
+    glNamedFramebufferTexture(fr->fbo_final, GL_COLOR_ATTACHMENT0, f->output, 0);
+    GLenum st = glCheckNamedFramebufferStatus(fr->fbo_final, GL_FRAMEBUFFER);
+    if (st != GL_FRAMEBUFFER_COMPLETE) {
+        glNamedFramebufferTexture(fr->fbo_final, GL_COLOR_ATTACHMENT0, 0, 0);
+        pass->attached = 0;
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "sss_gl_pass_execute: frame.output (%u) cannot be rendered to (status 0x%x)", f->output,
+                             (unsigned)st);
+    }
+    pass->attached = f->output;
+    return SSS_OK;
+}
+
+sss_result sss_gl_pass_execute(sss_gl_pass *pass, const sss_gl_pass_frame *frame, sss_error *err)
+{
+    if (!pass || !frame) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_execute: no pass or frame");
+    sss_gl_renderer *r = pass->r;
+    if (!sss_gl_context_make_current(r->ctx))
+        return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "sss_gl_pass_execute: cannot make the GL context current");
+    sss_result res = check_frame(r, frame, err);
+    if (res != SSS_OK) return res;
+    gl_camera cam;
+    if (!gl_camera_from_matrices(frame->view, frame->proj, r->height, &cam))
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "sss_gl_pass_execute: frame.proj is not a perspective projection (OpenGL or reversed-Z "
+                             "infinite, column-major)");
+    gl_pass_state saved;
+    gl_pass_state_save(&saved);
+    gl_pass_state_defaults();
+    while (glGetError() != GL_NO_ERROR) {} /* the caller's pending errors are not ours */
+    r->frame_rendered = 0;
+    res = bind_inputs(pass, frame, err);
+    if (res == SSS_OK) res = gl_frame_run(r, &cam, frame->time, err);
+    if (res == SSS_OK) res = gl_check(r->ctx, "the pass", err);
+    if (res == SSS_OK) r->frame_rendered = 1;
+    gl_pass_state_restore(&saved);
+    return res;
+}
