@@ -32,6 +32,7 @@ enum {
     P_SPLIT,
     P_GRAZING_SOURCES,
     P_SUPPORT_CUTOFF,
+    P_OFFSCREEN,
     P_COUNT
 };
 
@@ -79,6 +80,9 @@ static const sss_gl_param_info params[P_COUNT] = {
     [P_SUPPORT_CUTOFF] = {"support_cutoff", SSS_GL_PARAM_BOOL, 1, 0, 1,
                           "skip outer layers wholly beyond the kernel's support r_max at the pixel's depth (exact: "
                           "their samples add 0; needs layer_distance_bound); 0: read every layer"},
+    [P_OFFSCREEN] = {"offscreen_splats", SSS_GL_PARAM_BOOL, 1, 0, 1,
+                     "also splat surface outside the view (front-facing parts off the image, which neither part "
+                     "gathers otherwise: colour drifts under zoom); 0: off (the paper: the back side only)"},
 };
 
 /* preset=paper: Maisch & Ropinski 2020 as published (docs/maisch2020.md lists each departure). */
@@ -94,6 +98,7 @@ static const sss_gl_param_value paper[] = {
     {"lut_levels", 1},
     {"lut_energy", 0},           /* r_max from Q(r_max) = 1e-7 alone (section 7.1) */
     {"splat_energy", 1},         /* splats reach r_max */
+    {"offscreen_splats", 0},     /* splats: surface hidden on screen, not off it */
 };
 
 #define SPLAT_BYTES 48 /* three vec4: centre + area, normal + object, F_t E + disc radius */
@@ -209,6 +214,7 @@ static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, sss_error *er
     set_f(s->prog_gen, "u_irradiance_cull", (float)gl_param(r, P_IRRADIANCE_CULL));
     set_f(s->prog_gen, "u_shadow_offset", (float)gl_param(r, P_SHADOW_OFFSET));
     set_f(s->prog_gen, "u_occluded_margin", (float)gl_param(r, P_OCCLUDED));
+    set_i(s->prog_gen, "u_offscreen", (int)gl_param(r, P_OFFSCREEN));
     set_f(s->prog_gen, "u_grazing_sources", (float)gl_param(r, P_GRAZING_SOURCES));
     glUniform1ui(glGetUniformLocation(s->prog_gen, "u_capacity"), s->capacity);
     gl_dispatch_splat_triangles(r, s->prog_gen);

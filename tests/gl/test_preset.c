@@ -21,6 +21,7 @@ static const sss_gl_param_value maisch_paper[] = {
     {"grazing_sources", 0},    /* Eq. 8: grazing pixels leave the sum */
     {"occluded_margin", 0},    /* section 5: the back side only */
     {"layer_distance_bound", 0},
+    {"offscreen_splats", 0},   /* section 5: splats for the hidden side, none off the image */
     {"lut_size", 512},         /* 7.1 */
     {"lut_sqrt_axes", 0},      /* 7.1: one linear table */
     {"lut_levels", 1},
