@@ -33,6 +33,7 @@ enum {
     P_GRAZING_SOURCES,
     P_SUPPORT_CUTOFF,
     P_OFFSCREEN,
+    P_LAYERS_TO_REACH,
     P_COUNT
 };
 
@@ -83,6 +84,9 @@ static const sss_gl_param_info params[P_COUNT] = {
     [P_OFFSCREEN] = {"offscreen_splats", SSS_GL_PARAM_BOOL, 1, 0, 1,
                      "also splat surface outside the view (front-facing parts off the image, which neither part "
                      "gathers otherwise: colour drifts under zoom); 0: off (the paper: the back side only)"},
+    [P_LAYERS_TO_REACH] = {"layers_to_reach", SSS_GL_PARAM_BOOL, 1, 0, 1,
+                           "continue the pattern past `layers` until it covers the image or (support_cutoff) the kernel's support, " \
+                           "at most 64 layers: a close object's kernel reaches farther; 0: exactly `layers` (the paper)"},
 };
 
 /* preset=paper: Maisch & Ropinski 2020 as published (docs/maisch2020.md lists each departure). */
@@ -99,6 +103,7 @@ static const sss_gl_param_value paper[] = {
     {"lut_energy", 0},           /* r_max from Q(r_max) = 1e-7 alone (section 7.1) */
     {"splat_energy", 1},         /* splats reach r_max */
     {"offscreen_splats", 0},     /* splats: surface hidden on screen, not off it */
+    {"layers_to_reach", 0},      /* 4.2: ten layers */
 };
 
 #define SPLAT_BYTES 48 /* three vec4: centre + area, normal + object, F_t E + disc radius */
@@ -322,6 +327,7 @@ static sss_result maisch_render(sss_gl_renderer *r, void *state, sss_error *err)
         set_i(prog, "u_filtered", filtered);
         set_i(prog, "u_screen_bound", (int)gl_param(r, P_SCREEN_BOUND));
         set_i(prog, "u_support_cutoff", (int)gl_param(r, P_SUPPORT_CUTOFF));
+        set_i(prog, "u_layers_to_reach", (int)gl_param(r, P_LAYERS_TO_REACH));
         /* the pattern's sizes count output pixels (docs/supersampling.md) */
         set_i(prog, "u_supersample", gl_supersample(r));
         gl_draw_fullscreen(r);

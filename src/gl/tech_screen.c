@@ -37,6 +37,9 @@ static const sss_gl_param_info params[] = {
     {"support_cutoff", SSS_GL_PARAM_BOOL, 1, 0, 1,
      "skip outer layers wholly beyond the kernel's support r_max at the pixel's depth (exact: "
      "their samples add 0; needs layer_distance_bound); 0: read every layer"},
+    {"layers_to_reach", SSS_GL_PARAM_BOOL, 1, 0, 1,
+     "continue the pattern past `layers` until it covers the image or (support_cutoff) the kernel's support, " \
+     "at most 64 layers: a close object's kernel reaches farther; 0: exactly `layers` (the paper)"},
 };
 #define PARAM_COUNT ((int)(sizeof params / sizeof params[0]))
 
@@ -44,6 +47,7 @@ static const sss_gl_param_info params[] = {
 static const sss_gl_param_value paper[] = {
     {"brightening", 1},  {"layer_distance_bound", 0}, {"footprint_split", 1}, {"grazing_sources", 0},
     {"support_cutoff", 0}, {"lut_sqrt_axes", 0},      {"lut_levels", 1},      {"lut_energy", 0},
+    {"layers_to_reach", 0},
 };
 
 typedef struct screen_state {

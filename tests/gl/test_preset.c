@@ -22,6 +22,7 @@ static const sss_gl_param_value maisch_paper[] = {
     {"occluded_margin", 0},    /* section 5: the back side only */
     {"layer_distance_bound", 0},
     {"offscreen_splats", 0},   /* section 5: splats for the hidden side, none off the image */
+    {"layers_to_reach", 0},    /* 4.2: ten layers */
     {"lut_size", 512},         /* 7.1 */
     {"lut_sqrt_axes", 0},      /* 7.1: one linear table */
     {"lut_levels", 1},
