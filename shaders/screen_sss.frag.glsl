@@ -34,6 +34,7 @@ uniform int u_preintegrated;
 uniform int u_filtered;
 uniform int u_screen_bound;
 uniform int u_support_cutoff; // skip layers past r_max (exact; needs u_screen_bound)
+uniform int u_layers_to_reach; // layers past u_layers until the image (or r_max) ends the pattern
 uniform int u_supersample;
 uniform int u_split; // footprint_split: most pieces per oblique full-resolution sample (<= 1: one disc)
 
@@ -159,7 +160,13 @@ void main()
     float grow = float(u_nl) / float(u_nl - 2);
     int max_level = u_counts.w - 1;
     float z_o = dot(xo - u_camera_pos.xyz, u_camera_fwd.xyz);
-    for (int i = 1; i <= u_layers; i++) {
+    // layers_to_reach: the paper's ten layers span 826 pixels; a close object's kernel reaches farther
+    // (issue 15), so the pattern goes on until its previous square covers the image (the ring would
+    // lie wholly outside it) or, with support_cutoff, past r_max.
+    vec2 to_edge = max(centre, vec2(size0) - centre);
+    int layers = u_layers_to_reach != 0 && u_layers > 0 ? 64 : u_layers; // layers = 0: the inner kernel alone
+    for (int i = 1; i <= layers; i++) {
+        if (i > u_layers && 0.5 * d_prev >= max(to_edge.x, to_edge.y)) break;
         float w = d_prev / float(u_nl - 2);
         if (u_support_cutoff != 0 && u_screen_bound != 0) {
             // Layers beyond the kernel's support add exactly nothing (lut_eval is 0 past r_max): with

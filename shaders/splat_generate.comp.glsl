@@ -14,6 +14,11 @@
 //    parts not visible on screen"). Tested on 16 sub-triangles; the splat is the hidden ones' union.
 //    The margin keeps visible surface out: the splat mesh's chords lie a fraction of sqrt(area) off
 //    the rendered surface.
+//  - u_offscreen (a departure, docs/maisch2020.md): also the front-facing part of a triangle that
+//    projects outside the image (off the view frustum's sides): the screen-space pass gathers only
+//    surface on the image, so without it the kernel's light from beyond the image's edge is lost, more
+//    the more the camera zooms in. Tested on the same 16 sub-triangles; splats whose reach misses the
+//    image get an empty quad (splat.vert.glsl).
 #include "common.glsl"
 
 layout(local_size_x = 64) in;
@@ -39,6 +44,7 @@ uniform uint u_capacity;
 uniform int u_cull_rule;
 uniform float u_irradiance_cull;
 uniform float u_occluded_margin; // 0: off (the paper); in units of sqrt(triangle area)
+uniform int u_offscreen;         // 1: splat front-facing surface outside the image too
 uniform float u_shadow_offset; // in units of sqrt(triangle area)
 uniform float u_grazing_sources; // > 0: Eq. 8's cut-off for splats (the screen pass gathers the rest)
 uniform int u_has_uv;          // the splat mesh has texture coordinates
@@ -57,6 +63,15 @@ bool gbuffer_at(vec3 p, out float in_front)
     vec3 xo = texelFetch(g_pos, px, 0).xyz;
     in_front = dot(xo - p, normalize(u_camera_pos.xyz - p));
     return true;
+}
+
+// Whether p lies in front of the camera but projects outside the image.
+bool off_image(vec3 p)
+{
+    vec4 clip = u_view_proj * vec4(p, 1.0);
+    if (!(clip.w > 0.0)) return false;
+    vec2 ndc = clip.xy / clip.w;
+    return any(lessThan(ndc, vec2(-1.0))) || any(greaterThanEqual(ndc, vec2(1.0)));
 }
 
 // Sub-triangle i (0..3) of the midpoint subdivision of (a, b, c): the three corners, then the middle.
@@ -109,7 +124,7 @@ void main()
     // (One splat per hidden quarter instead cut the excess next to a thin occluder's edge, where a
     // disc of the hidden part's area reaches past the edge onto visible surface, from 13% to 9.5%
     // (test_maisch_occluded), but cost DSSIM at the bust's self-occlusions: eval_front +1.1e-4.)
-    if (!keep && u_occluded_margin > 0.0) {
+    if (!keep && (u_occluded_margin > 0.0 || u_offscreen != 0)) {
         float margin = u_occluded_margin * sqrt(area);
         vec3 sum = vec3(0.0);
         int count = 0;
@@ -120,7 +135,8 @@ void main()
                 quarter(j, a, b, d);
                 vec3 q = (a + b + d) / 3.0;
                 float dz;
-                if (gbuffer_at(q, dz) && dz > margin) {
+                bool occluded = u_occluded_margin > 0.0 && gbuffer_at(q, dz) && dz > margin;
+                if (occluded || (u_offscreen != 0 && off_image(q))) {
                     sum += q;
                     count++;
                 }

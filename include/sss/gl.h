@@ -79,7 +79,7 @@ typedef enum sss_gl_param_type {
 typedef struct sss_gl_param_info {
     const char *name;      /* e.g. "layers" */
     sss_gl_param_type type;
-    double default_value;  /* the paper's default where the paper names one */
+    double default_value;  /* the best-measured value (docs/maisch2020.md); preset=paper gives the paper's */
     double min_value, max_value; /* inclusive range */
     const char *doc;       /* one line, citing the paper's section or equation */
 } sss_gl_param_info;
@@ -99,6 +99,20 @@ const sss_gl_technique_info *sss_gl_technique_find(const char *name); /* NULL wh
 /* Parameters shared by every technique (shadow map sizes, light sampling of area and environment
  * lights, LUT construction, splat meshes, timing). Accepted by sss_gl_renderer_set_param too. */
 const sss_gl_param_info *sss_gl_shared_params(int *count);
+
+/* Presets: the shared parameter "preset" sets every parameter of the technique, its own and the shared
+ * ones, to the preset's values: SSS_GL_PRESET_MEASURED (0, the defaults: what measures best on the
+ * evaluation scenes) or SSS_GL_PRESET_PAPER (1, the published configuration of the technique's paper).
+ * In a renderer desc the preset is applied first, wherever it stands, so the other parameters given
+ * with it override it; sss_gl_renderer_set_param("preset", ...) resets every parameter. */
+#define SSS_GL_PRESET_MEASURED 0
+#define SSS_GL_PRESET_PAPER 1
+/* The value a parameter (technique or shared) takes under preset=paper for a technique: the paper's
+ * where it departs from the default, else the default. NaN for an unknown technique or parameter. */
+double sss_gl_paper_value(const char *technique, const char *param);
+/* Parses the text of a parameter value (--param NAME=TEXT): a finite number, or for "preset" also the
+ * names "paper" and "measured". SSS_ERROR_INVALID_ARGUMENT naming the parameter otherwise. */
+sss_result sss_gl_param_parse(const char *name, const char *text, double *out, sss_error *err);
 
 /* ---- Renderer -------------------------------------------------------------------------------- */
 

@@ -110,7 +110,9 @@ int sss_cmd_view(int argc, char **argv)
             memcpy(names[nparams], v, (size_t)(eq - v));
             names[nparams][eq - v] = '\0';
             params[nparams].name = names[nparams];
-            if (!cli_parse_double(CMD, "--param", eq + 1, &params[nparams].value)) return CLI_EXIT_USAGE;
+            sss_error perr = {0};
+            if (sss_gl_param_parse(names[nparams], eq + 1, &params[nparams].value, &perr) != SSS_OK)
+                return cli_usage_error(CMD, "--param: %s", perr.message);
             nparams++;
         } else if (a[0] == '-' && a[1]) {
             return cli_usage_error(CMD, "unknown option '%s'", a);

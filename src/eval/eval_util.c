@@ -59,14 +59,12 @@ sss_result eval_parse_spec(const char *text, eval_spec *out, sss_error *err)
             return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "technique spec '%s': bad value", text);
         memcpy(value, eq + 1, vlen);
         value[vlen] = '\0';
-        char *end = NULL;
-        errno = 0;
-        double v = strtod(value, &end);
-        if (end == value || *end != '\0' || errno == ERANGE || !isfinite(v))
-            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "technique spec '%s': '%s' is not a finite number",
-                                 text, value);
         memcpy(out->names[out->param_count], p, klen);
         out->names[out->param_count][klen] = '\0';
+        double v = 0.0;
+        sss_error perr = {0};
+        if (sss_gl_param_parse(out->names[out->param_count], value, &v, &perr) != SSS_OK)
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "technique spec '%s': %s", text, perr.message);
         out->params[out->param_count].name = out->names[out->param_count];
         out->params[out->param_count].value = v;
         out->param_count++;

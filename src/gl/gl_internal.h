@@ -256,6 +256,10 @@ typedef struct gl_technique {
     /* optional: intermediate buffers by name (sss_gl_renderer_read_buffer), statistics */
     GLuint (*buffer)(sss_gl_renderer *r, void *state, const char *name);
     void (*stats)(sss_gl_renderer *r, void *state, sss_gl_stats *out);
+    /* preset=paper: the published values of the parameters (technique or shared, by name) whose
+     * defaults depart from them; the others are the paper's already */
+    const sss_gl_param_value *paper;
+    int paper_count;
 } gl_technique;
 
 /* The registry (registry.c). */
@@ -276,6 +280,7 @@ enum {
     GL_P_SPLAT_TRIANGLES,
     GL_P_LUT_LEVELS,
     GL_P_SPLAT_ENERGY,
+    GL_P_PRESET, /* not stored as a setting: applying it sets the others (renderer.c) */
     GL_P_SHARED_COUNT
 };
 

@@ -1,5 +1,7 @@
 /* gl/registry.c — the techniques, selected by name. A new technique is one file defining a
  * `const gl_technique gl_technique_<name>` (see gl_internal.h) plus one line in the table below. */
+#include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "gl/gl_internal.h"
@@ -69,10 +71,42 @@ static const sss_gl_param_info shared_params[GL_P_SHARED_COUNT] = {
                            "splats reach the radius holding this fraction of R_d's integral (<= r_max)"},
     [GL_P_SPLAT_TRIANGLES] = {"splat_triangles", SSS_GL_PARAM_INT, 4096, 4, 16777216,
                               "triangle budget of simplified splat meshes (objects without splat_mesh)"},
+    [GL_P_PRESET] = {"preset", SSS_GL_PARAM_INT, SSS_GL_PRESET_MEASURED, 0, 1,
+                     "sets every parameter: 0 (measured) the defaults, best on the eval scenes; 1 (paper) the "
+                     "published configuration (`--param preset=paper`); parameters given with it override it"},
 };
 
 const sss_gl_param_info *sss_gl_shared_params(int *count)
 {
     if (count) *count = GL_P_SHARED_COUNT;
     return shared_params;
+}
+
+double sss_gl_paper_value(const char *technique, const char *param)
+{
+    const gl_technique *t = gl_technique_lookup(technique);
+    if (!t || !param) return NAN;
+    for (int i = 0; i < t->paper_count; i++)
+        if (strcmp(t->paper[i].name, param) == 0) return t->paper[i].value;
+    for (int i = 0; i < t->info.param_count; i++)
+        if (strcmp(t->info.params[i].name, param) == 0) return t->info.params[i].default_value;
+    for (int i = 0; i < GL_P_SHARED_COUNT; i++)
+        if (strcmp(shared_params[i].name, param) == 0)
+            return i == GL_P_PRESET ? SSS_GL_PRESET_PAPER : shared_params[i].default_value;
+    return NAN;
+}
+
+sss_result sss_gl_param_parse(const char *name, const char *text, double *out, sss_error *err)
+{
+    if (!name || !text || !out) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_param_parse: NULL argument");
+    int is_preset = strcmp(name, shared_params[GL_P_PRESET].name) == 0;
+    if (is_preset && strcmp(text, "paper") == 0) return *out = SSS_GL_PRESET_PAPER, SSS_OK;
+    if (is_preset && strcmp(text, "measured") == 0) return *out = SSS_GL_PRESET_MEASURED, SSS_OK;
+    char *end = NULL;
+    double v = strtod(text, &end);
+    if (end == text || *end != '\0' || !isfinite(v))
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "parameter %s: '%s' is not a finite number%s", name, text,
+                             is_preset ? " nor 'paper' or 'measured'" : "");
+    *out = v;
+    return SSS_OK;
 }

@@ -42,6 +42,23 @@ static sss_result unknown_param(const sss_gl_renderer *r, const char *name, sss_
                          r->tech->info.name, name, list);
 }
 
+static sss_result set_param_value(sss_gl_renderer *r, const char *name, double value, int *scene_level,
+                                  sss_error *err);
+
+/* preset: every parameter back to its default, then (paper) the technique's published values. */
+static sss_result apply_preset(sss_gl_renderer *r, double preset, sss_error *err)
+{
+    for (int i = 0; i < r->tech->info.param_count; i++) r->params[i] = r->tech->info.params[i].default_value;
+    int n = 0;
+    const sss_gl_param_info *sp = sss_gl_shared_params(&n);
+    for (int i = 0; i < n; i++) r->shared[i] = sp[i].default_value;
+    r->shared[GL_P_PRESET] = preset;
+    sss_result res = SSS_OK;
+    for (int i = 0; preset == SSS_GL_PRESET_PAPER && i < r->tech->paper_count && res == SSS_OK; i++)
+        res = set_param_value(r, r->tech->paper[i].name, r->tech->paper[i].value, NULL, err);
+    return res;
+}
+
 /* Sets a parameter value; *scene_level tells whether scene resources depend on it. */
 static sss_result set_param_value(sss_gl_renderer *r, const char *name, double value, int *scene_level,
                                   sss_error *err)
@@ -61,8 +78,9 @@ static sss_result set_param_value(sss_gl_renderer *r, const char *name, double v
     if (i < 0) return unknown_param(r, name, err);
     sss_result res = check_value(&sp[i], value, err);
     if (res != SSS_OK) return res;
-    r->shared[i] = value;
     if (scene_level) *scene_level = i != GL_P_SHADOW_BIAS;
+    if (i == GL_P_PRESET) return apply_preset(r, value, err);
+    r->shared[i] = value;
     return SSS_OK;
 }
 
@@ -199,8 +217,12 @@ sss_result gl_runtime_create(sss_gl_context *ctx, const sss_scene *scene, const 
     int n = 0;
     const sss_gl_param_info *sp = sss_gl_shared_params(&n);
     for (int i = 0; i < n; i++) r->shared[i] = sp[i].default_value;
-    for (int i = 0; i < desc.param_count && res == SSS_OK; i++)
-        res = set_param_value(r, desc.params[i].name, desc.params[i].value, NULL, err);
+    /* the preset first, so that the parameters given with it override it */
+    for (int pass = 0; pass < 2; pass++)
+        for (int i = 0; i < desc.param_count && res == SSS_OK; i++) {
+            int is_preset = desc.params[i].name && strcmp(desc.params[i].name, sp[GL_P_PRESET].name) == 0;
+            if (is_preset == (pass == 0)) res = set_param_value(r, desc.params[i].name, desc.params[i].value, NULL, err);
+        }
     gl_timer_init(&r->timer, desc.timings, ctx->software);
     while (glGetError() != GL_NO_ERROR) {}
     if (res == SSS_OK) res = build_programs(r, err);

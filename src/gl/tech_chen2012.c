@@ -336,6 +336,9 @@ static void chen_stats(sss_gl_renderer *r, void *state, sss_gl_stats *out)
     out->splat_drawn = r->frame_rendered ? shell_splat_count(s->cmd, s->capacity) : 0;
 }
 
+/* preset=paper: Chen et al.'s splats carry the kernel's value at their centre. */
+static const sss_gl_param_value paper[] = {{"preintegrated", 0}};
+
 const gl_technique gl_technique_chen2012 = {
     .info = {"chen2012",
              "Chen et al. 2012 as Maisch & Ropinski 2020 compare it: splats from a 2048^2 light-view irradiance buffer "
@@ -349,4 +352,6 @@ const gl_technique gl_technique_chen2012 = {
     .destroy = chen_destroy,
     .buffer = chen_buffer,
     .stats = chen_stats,
+    .paper = paper,
+    .paper_count = (int)(sizeof paper / sizeof paper[0]),
 };

@@ -168,6 +168,10 @@ static void dss_stats(sss_gl_renderer *r, void *state, sss_gl_stats *out)
     out->splat_drawn = r->frame_rendered ? shell_splat_count(s->cmd, s->capacity) : 0;
 }
 
+/* preset=paper: DSS's own surfels (docs/dss.md): the kernel at the surfel centre, surfels on the splat
+ * mesh, one disc each. */
+static const sss_gl_param_value paper[] = {{"preintegrated", 0}, {"surface_snap", 0}, {"footprint", 0}};
+
 const gl_technique gl_technique_dss = {
     .info = {"dss",
              "Nalbach et al. 2014 Deep Screen Space as Maisch & Ropinski 2020 compare it: tessellated surfels of every "
@@ -181,4 +185,6 @@ const gl_technique gl_technique_dss = {
     .destroy = dss_destroy,
     .buffer = dss_buffer,
     .stats = dss_stats,
+    .paper = paper,
+    .paper_count = (int)(sizeof paper / sizeof paper[0]),
 };

@@ -32,6 +32,8 @@ enum {
     P_SPLIT,
     P_GRAZING_SOURCES,
     P_SUPPORT_CUTOFF,
+    P_OFFSCREEN,
+    P_LAYERS_TO_REACH,
     P_COUNT
 };
 
@@ -39,7 +41,7 @@ static const sss_gl_param_info params[P_COUNT] = {
     [P_N] = {"n", SSS_GL_PARAM_INT, 2, 0, 32, "inner kernel of (2n+1)^2 full-resolution samples (Maisch & Ropinski 2020, 4.2)"},
     [P_NL] = {"n_l", SSS_GL_PARAM_INT, 5, 3, 33, "layer width in samples: 4(n_l - 1) samples per layer (Eq. 7)"},
     [P_LAYERS] = {"layers", SSS_GL_PARAM_INT, 10, 0, 64, "outer layers of the screen-space pattern (4.2: 10)"},
-    [P_BRIGHTENING] = {"brightening", SSS_GL_PARAM_BOOL, 1, 0, 1, "multiply layer i by sqrt(i) (section 6.1)"},
+    [P_BRIGHTENING] = {"brightening", SSS_GL_PARAM_BOOL, 0, 0, 1, "multiply layer i by sqrt(i) (section 6.1; the paper: 1)"},
     [P_PREINTEGRATED] = {"preintegrated", SSS_GL_PARAM_BOOL, 1, 0, 1,
                          "1: disc-integrated kernel R'_d(r, A) (Eq. 5-6); 0: naive centre sample R_d(r) (Fig. 2)"},
     [P_SCREEN] = {"screen_space", SSS_GL_PARAM_BOOL, 1, 0, 1, "include the screen-space part (section 4)"},
@@ -79,6 +81,29 @@ static const sss_gl_param_info params[P_COUNT] = {
     [P_SUPPORT_CUTOFF] = {"support_cutoff", SSS_GL_PARAM_BOOL, 1, 0, 1,
                           "skip outer layers wholly beyond the kernel's support r_max at the pixel's depth (exact: "
                           "their samples add 0; needs layer_distance_bound); 0: read every layer"},
+    [P_OFFSCREEN] = {"offscreen_splats", SSS_GL_PARAM_BOOL, 1, 0, 1,
+                     "also splat surface outside the view (front-facing parts off the image, which neither part "
+                     "gathers otherwise: colour drifts under zoom); 0: off (the paper: the back side only)"},
+    [P_LAYERS_TO_REACH] = {"layers_to_reach", SSS_GL_PARAM_BOOL, 1, 0, 1,
+                           "continue the pattern past `layers` until it covers the image or (support_cutoff) the kernel's support, " \
+                           "at most 64 layers: a close object's kernel reaches farther; 0: exactly `layers` (the paper)"},
+};
+
+/* preset=paper: Maisch & Ropinski 2020 as published (docs/maisch2020.md lists each departure). */
+static const sss_gl_param_value paper[] = {
+    {"brightening", 1},          /* section 6.1: layer i times sqrt(i) */
+    {"layer_distance_bound", 0}, /* outer samples at their cell's mean position */
+    {"disc_adjust", 1},          /* Eq. 9 as printed */
+    {"occluded_margin", 0},      /* splats: back-facing or grazing only (Eq. 2 and 8) */
+    {"footprint_split", 1},      /* one disc per sample (Eq. 6) */
+    {"grazing_sources", 0},      /* pixels with n.v < 0.2 leave the screen-space sum (Eq. 8) */
+    {"support_cutoff", 0},       /* every layer read at every pixel (exact either way) */
+    {"lut_sqrt_axes", 0},        /* one linear table (section 7.1) */
+    {"lut_levels", 1},
+    {"lut_energy", 0},           /* r_max from Q(r_max) = 1e-7 alone (section 7.1) */
+    {"splat_energy", 1},         /* splats reach r_max */
+    {"offscreen_splats", 0},     /* splats: surface hidden on screen, not off it */
+    {"layers_to_reach", 0},      /* 4.2: ten layers */
 };
 
 #define SPLAT_BYTES 48 /* three vec4: centre + area, normal + object, F_t E + disc radius */
@@ -194,6 +219,7 @@ static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, sss_error *er
     set_f(s->prog_gen, "u_irradiance_cull", (float)gl_param(r, P_IRRADIANCE_CULL));
     set_f(s->prog_gen, "u_shadow_offset", (float)gl_param(r, P_SHADOW_OFFSET));
     set_f(s->prog_gen, "u_occluded_margin", (float)gl_param(r, P_OCCLUDED));
+    set_i(s->prog_gen, "u_offscreen", (int)gl_param(r, P_OFFSCREEN));
     set_f(s->prog_gen, "u_grazing_sources", (float)gl_param(r, P_GRAZING_SOURCES));
     glUniform1ui(glGetUniformLocation(s->prog_gen, "u_capacity"), s->capacity);
     gl_dispatch_splat_triangles(r, s->prog_gen);
@@ -301,6 +327,7 @@ static sss_result maisch_render(sss_gl_renderer *r, void *state, sss_error *err)
         set_i(prog, "u_filtered", filtered);
         set_i(prog, "u_screen_bound", (int)gl_param(r, P_SCREEN_BOUND));
         set_i(prog, "u_support_cutoff", (int)gl_param(r, P_SUPPORT_CUTOFF));
+        set_i(prog, "u_layers_to_reach", (int)gl_param(r, P_LAYERS_TO_REACH));
         /* the pattern's sizes count output pixels (docs/supersampling.md) */
         set_i(prog, "u_supersample", gl_supersample(r));
         gl_draw_fullscreen(r);
@@ -373,4 +400,6 @@ const gl_technique gl_technique_maisch2020 = {
     .destroy = maisch_destroy,
     .buffer = maisch_buffer,
     .stats = maisch_stats,
+    .paper = paper,
+    .paper_count = (int)(sizeof paper / sizeof paper[0]),
 };

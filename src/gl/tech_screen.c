@@ -17,7 +17,7 @@ static const sss_gl_param_info params[] = {
     {"n", SSS_GL_PARAM_INT, 2, 0, 32, "inner kernel of (2n+1)^2 full-resolution samples (Maisch & Ropinski 2020, 4.2)"},
     {"n_l", SSS_GL_PARAM_INT, 5, 3, 33, "layer width in samples: 4(n_l - 1) samples per layer (Eq. 7)"},
     {"layers", SSS_GL_PARAM_INT, 10, 0, 64, "outer layers of the screen-space pattern (4.2: 10)"},
-    {"brightening", SSS_GL_PARAM_BOOL, 1, 0, 1, "multiply layer i by sqrt(i) (section 6.1)"},
+    {"brightening", SSS_GL_PARAM_BOOL, 0, 0, 1, "multiply layer i by sqrt(i) (section 6.1; the paper: 1)"},
     {"preintegrated", SSS_GL_PARAM_BOOL, 1, 0, 1,
      "1: disc-integrated kernel R'_d(r, A) (Eq. 5-6); 0: naive centre sample R_d(r) (Fig. 2)"},
     {"grazing_cutoff", SSS_GL_PARAM_FLOAT, 0.2, 0, 1,
@@ -37,8 +37,18 @@ static const sss_gl_param_info params[] = {
     {"support_cutoff", SSS_GL_PARAM_BOOL, 1, 0, 1,
      "skip outer layers wholly beyond the kernel's support r_max at the pixel's depth (exact: "
      "their samples add 0; needs layer_distance_bound); 0: read every layer"},
+    {"layers_to_reach", SSS_GL_PARAM_BOOL, 1, 0, 1,
+     "continue the pattern past `layers` until it covers the image or (support_cutoff) the kernel's support, " \
+     "at most 64 layers: a close object's kernel reaches farther; 0: exactly `layers` (the paper)"},
 };
 #define PARAM_COUNT ((int)(sizeof params / sizeof params[0]))
+
+/* preset=paper: maisch2020's published screen-space part (the same departures as tech_maisch2020.c). */
+static const sss_gl_param_value paper[] = {
+    {"brightening", 1},  {"layer_distance_bound", 0}, {"footprint_split", 1}, {"grazing_sources", 0},
+    {"support_cutoff", 0}, {"lut_sqrt_axes", 0},      {"lut_levels", 1},      {"lut_energy", 0},
+    {"layers_to_reach", 0},
+};
 
 typedef struct screen_state {
     void *inner; /* maisch2020's state */
@@ -135,4 +145,6 @@ const gl_technique gl_technique_screen = {
     .destroy = screen_destroy,
     .buffer = screen_buffer,
     .stats = screen_stats,
+    .paper = paper,
+    .paper_count = (int)(sizeof paper / sizeof paper[0]),
 };

@@ -39,7 +39,7 @@ static void test_equal_to_maisch(void)
         return;
     }
     sss_gl_param_value none[1] = {{"translucency", 0}};
-    sss_gl_param_value changed[6] = {{"n", 1},           {"layers", 6},          {"brightening", 0},
+    sss_gl_param_value changed[6] = {{"n", 1},           {"layers", 6},          {"brightening", 1},
                                      {"grazing_sources", 0.1}, {"footprint_split", 3}, {"translucency", 0}};
     for (int k = 0; k < 2; k++) {
         sss_image a, b;
