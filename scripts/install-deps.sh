@@ -10,7 +10,7 @@ PKGS=(
   build-essential cmake pkg-config git
   libmeshoptimizer-dev libcjson-dev libstb-dev libopenexr-dev liblapacke-dev
   libcairo2-dev libembree-dev
-  libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev xvfb xauth
+  libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev libimgui-dev xvfb xauth
 )
 case "${1:-}" in
   --ci) PKGS+=(clang libclang-rt-14-dev valgrind chromium) ;;

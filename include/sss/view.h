@@ -35,7 +35,10 @@ typedef struct sss_view_desc {
      * named in sss_view_help_text ("tab", "shift+tab", "1", "m", "+", "l", "space", ...),
      * "orbit:DX:DY" / "pan:DX:DY" (a left / right drag by DX, DY pixels, y down), "zoom:STEPS". */
     const char *input;
-    int no_overlay;                   /* start with the text overlay hidden */
+    int no_overlay;                   /* start with the panel (or the text overlay) hidden */
+    /* A file of panel actions, one per line (docs/viewer.md): runs them without input, then returns
+     * (instead of frames / input / screenshot). */
+    const char *script;
     int reference;                    /* render the reference of the first view at once; with frames,
                                          wait for it and report the DSSIM of the last frame (log) */
     int reference_draft;              /* references at draft quality (R; Shift+R is always draft) */
