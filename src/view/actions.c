@@ -249,6 +249,7 @@ sss_result view_reload_scene(viewer *v, sss_error *err)
     sss_result res = s ? view_edited_json(v, &json, err) : sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
     if (res == SSS_OK) res = sss_scene_parse(json, strlen(json), old->base_dir, old->name, NULL, s, err);
     free(json);
+    double parsed = sss_time_seconds();
     if (res == SSS_OK) {
         v->scene = s;
         res = view_make_renderer(v, v->tech, err);
@@ -265,6 +266,7 @@ sss_result view_reload_scene(viewer *v, sss_error *err)
     sss_scene_free(old);
     free(old);
     v->rebuild_ms = 1000.0 * (sss_time_seconds() - start);
+    v->rebuild_scene_ms = 1000.0 * (parsed - start);
     view_invalidate(v);
     return SSS_OK;
 }

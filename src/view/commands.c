@@ -87,7 +87,8 @@ sss_result view_cmd_material(viewer *v, int object, const char *field, const cha
         return res;
     }
     free(old);
-    view_message(v, "objects[%d].material.%s set (rebuilt in %.1f ms)", object, field, v->rebuild_ms);
+    view_message(v, "objects[%d].material.%s set (rebuilt in %.1f ms: scene %.1f ms, renderer %.1f ms)", object,
+                 field, v->rebuild_ms, v->rebuild_scene_ms, v->rebuild_ms - v->rebuild_scene_ms);
     return SSS_OK;
 }
 

@@ -90,6 +90,7 @@ struct viewer {
     const sss_image *composed_ref;
     sss_image other_img, composed_img, map_img;
     double rebuild_ms;            /* the last material edit: scene reloaded, LUTs, kernels, renderer */
+    double rebuild_scene_ms;      /* of which the scene loader (PBD tables, materials) */
     const char *shot_path;        /* a script's screenshot, taken after the panel is drawn */
 };
 
