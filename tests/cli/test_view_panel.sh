@@ -3,7 +3,7 @@
 # are checked for properties, each against an image made independently: the panel is drawn where it
 # is (pixels differ there and nowhere else) and absent when hidden; with the panel hidden the window
 # equals `sss render`; a material edit changes the image and equals `sss render` of the scene edited
-# here; a parameter set in the panel equals `sss render --param`; a split view holds the left half
+# here, and so does a light edit; a parameter set in the panel equals `sss render --param`; a split view holds the left half
 # of one technique and the right half of the other (or of `sss reference`); the error map holds the
 # colour bar. Errors: a bad script line (exit 1, file and line named, before any window), --script
 # with --frames (exit 2).
@@ -137,6 +137,20 @@ echo "material Ketchup x0.5: DSSIM vs sss render of the edited scene $d, vs the 
 below "$d" 0.01 || fail "material edit: differs from sss render of the edited scene (DSSIM $d)"
 below 0.02 "$changed" || fail "material edit: the image did not change (DSSIM $changed)"
 grep -q "rebuilt in" "$T/mat.log" || fail "material edit: no rebuild time reported"
+
+# 2b. light edits (moved in place, no rebuild): equal `sss render` of the scene edited here
+view "$T/light.log" "panel off
+light 0 position -0.5 1.5 0.8
+light 0 intensity 3
+light 0 colour 1 0.5 0.25
+screenshot light.png"
+edit "$SC" "$T/light.json" "l = s['lights'][0]; l.update(center=[-0.5, 1.5, 0.8], radiance=[3, 1.5, 0.75])"
+render "$T/light.json" -o "$T/light_render.png"
+d=$(dssim "$T/light.png" "$T/light_render.png")
+changed=$(dssim "$T/light.png" "$T/render.png")
+echo "light moved, dimmed, coloured: DSSIM vs sss render of the edited scene $d, vs the unedited scene $changed"
+below "$d" 0.01 || fail "light edit: differs from sss render of the edited scene (DSSIM $d)"
+below 0.02 "$changed" || fail "light edit: the image did not change (DSSIM $changed)"
 
 # 3. a parameter set by the panel equals `sss render --param`
 view "$T/param.log" "panel off
