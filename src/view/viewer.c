@@ -181,8 +181,12 @@ static sss_result frame(viewer *v, int fixed, const char *screenshot, sss_error 
         else if (view_gl_screenshot(v->width, v->height, name, &serr) != SSS_OK) view_message(v, "%s", serr.message);
         else view_message(v, "saved %s", name);
     }
+    if (fixed) glFinish(); /* scripts time the panel alone: the frame's own work done first */
+    double overlay_start = sss_time_seconds();
     if (v->overlay && v->panel) res = view_panel_draw(v, err);
     else if (v->overlay) res = draw_overlay(v, err);
+    if (fixed) glFinish();
+    v->overlay_ms = v->overlay ? 1000.0 * (sss_time_seconds() - overlay_start) : 0.0;
     if (res != SSS_OK) {
         if (fixed) return res;
         view_message(v, "%s", err->message);
@@ -280,11 +284,20 @@ static sss_result run_script(viewer *v, const view_script *script, sss_error *er
                 wait_reference(v);
                 v->shot_path = c->text;
             }
+            double *ms = calloc(2 * (size_t)n, sizeof *ms), *overlay_ms = ms + n;
+            if (!ms) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (frame times)");
             for (int k = 0; k < n && res == SSS_OK; k++) {
                 glfwPollEvents();
                 res = frame(v, 1, NULL, &cerr);
+                ms[k] = v->frame_ms;
+                overlay_ms[k] = v->overlay_ms;
             }
             if (res == SSS_OK && c->kind == VIEW_CMD_SCREENSHOT) view_message(v, "saved %s", c->text);
+            else if (res == SSS_OK) /* wall time from render to swap, the panel (when shown) included */
+                view_message(v, "%d frames: median frame time %.2f ms, of which %s %.2f ms", n, sss_median(ms, n),
+                             v->overlay ? (v->panel ? "panel" : "text overlay") : "hidden panel",
+                             sss_median(overlay_ms, n));
+            free(ms);
         } else {
             res = view_cmd_run(v, c, &cerr);
         }

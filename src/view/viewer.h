@@ -59,6 +59,7 @@ struct viewer {
     unsigned shown_gen;    /* image_gen of the buffer uploaded for display */
     const char *shown_name; /* and its name */
     double frame_ms;
+    double overlay_ms;     /* drawing the panel or text overlay in the last frame (scripts: GL finished) */
     sss_gl_timings timings;              /* medians of timing_series */
     sss_gl_timing_series timing_series; /* the renderer's frames after warm-up, the latest few */
     char message[256];
