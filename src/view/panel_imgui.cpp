@@ -343,6 +343,7 @@ sss_result view_panel_draw(viewer *v, sss_error *err)
     ImGui::SetNextWindowSize(ImVec2(w, (float)v->height), ImGuiCond_Once);
     ImGui::SetNextWindowBgAlpha(0.85f);
     if (ImGui::Begin("sss view")) {
+        ImGui::PushItemWidth(ImGui::GetWindowWidth() * 0.55f); /* room for the labels */
         if (v->message[0] && sss_time_seconds() < v->message_until) ImGui::TextWrapped("%s", v->message);
         technique_section(v);
         params_section(v);
@@ -351,6 +352,7 @@ sss_result view_panel_draw(viewer *v, sss_error *err)
         materials_section(v);
         lights_section(v);
         if (ImGui::CollapsingHeader("Keys")) ImGui::TextUnformatted(sss_view_help_text());
+        ImGui::PopItemWidth();
     }
     ImGui::End();
     ImGui::Render();

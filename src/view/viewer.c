@@ -317,7 +317,7 @@ static void run_interactive(viewer *v)
         int busy = v->need_render || v->playing || v->act_tech || v->act_part || v->act_buffer || v->act_medium ||
                    v->act_light || v->act_reference || v->act_screenshot || v->act_scale != 0.0;
         if (busy) glfwPollEvents();
-        else glfwWaitEventsTimeout(v->job ? 0.25 : 1.0);
+        else glfwWaitEventsTimeout(v->job ? 0.25 : v->panel && v->overlay ? 0.1 : 1.0); /* ImGui settles in a few frames */
         sss_error err = {0};
         frame(v, 0, NULL, &err);
     }
