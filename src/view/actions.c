@@ -71,9 +71,12 @@ sss_result view_create_renderer(viewer *v, const sss_gl_technique_info *info, ss
     d.supersample = v->desc->supersample;
     sss_result res = sss_gl_renderer_create(v->ctx, v->scene, &d, out, err);
     free(params);
-    for (int i = 0; res == SSS_OK && i < info->param_count; i++) {
-        double set = view_set_param_value(v, info->name, info->params[i].name);
-        if (!isnan(set)) res = sss_gl_renderer_set_param(*out, info->params[i].name, set, err);
+    int shared_count = 0;
+    const sss_gl_param_info *shared = sss_gl_shared_params(&shared_count);
+    for (int i = 0; res == SSS_OK && i < info->param_count + shared_count; i++) {
+        const char *name = i < info->param_count ? info->params[i].name : shared[i - info->param_count].name;
+        double set = view_set_param_value(v, info->name, name);
+        if (!isnan(set)) res = sss_gl_renderer_set_param(*out, name, set, err);
     }
     if (res != SSS_OK) {
         sss_gl_renderer_destroy(*out);

@@ -156,7 +156,7 @@ sss_result view_cmd_buffer(viewer *v, int buffer, sss_error *err)
     if (buffer < 0 || buffer >= VIEW_BUFFER_COUNT)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "no buffer %d", buffer);
     sss_image tmp = {0};
-    if (buffer > 0) {
+    if (buffer > 0 && !v->need_render) { /* a renderer without a frame yet is checked when shown */
         sss_result res = sss_gl_renderer_read_buffer(v->r, view_buffer_names[buffer], &tmp, err);
         sss_image_free(&tmp);
         if (res != SSS_OK) return res;
@@ -188,10 +188,15 @@ sss_result view_cmd_split(viewer *v, const char *what, double position, sss_erro
     const sss_gl_technique_info *info = mode == VIEW_SPLIT_TECHNIQUE ? sss_gl_technique_find(what) : NULL;
     if (mode == VIEW_SPLIT_TECHNIQUE && !info)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "split: unknown technique '%s'", what);
+    int tech = v->split_tech;
     for (int i = 0; info && i < sss_gl_technique_count(); i++)
-        if (sss_gl_technique_at(i) == info) v->split_tech = i;
-    v->split = mode;
+        if (sss_gl_technique_at(i) == info) tech = i;
+    int same = mode == v->split && (mode != VIEW_SPLIT_TECHNIQUE || tech == v->split_tech);
     v->split_pos = position;
+    v->composed_gen = 0;
+    if (same) return SSS_OK; /* the wipe moved: nothing to rebuild */
+    v->split = mode;
+    v->split_tech = tech;
     view_split_refresh(v);
     if (mode == VIEW_SPLIT_TECHNIQUE && !v->split_r)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "split: %s", v->message);

@@ -35,6 +35,8 @@ struct view_panel {
     int pass_count;
     int at;                 /* next slot of the ring */
     unsigned recorded_gen;  /* image_gen of the last recorded frame */
+    ImGuiID edit_id;        /* the material field being edited (its values live here until applied) */
+    double edit_values[3];
 };
 
 static void report(viewer *v, sss_result res, const sss_error &err)
@@ -129,12 +131,24 @@ static void material_apply(viewer *v, int object, const char *field, const char 
     report(v, view_cmd_material(v, object, field, medium, values, n, &err), err);
 }
 
-/* A field edited as doubles, applied when the edit ends. */
+/* A field edited as doubles, applied when the edit ends; while it lasts the values are the panel's. */
 static void material_values(viewer *v, int object, const char *field, double *values, int n, double lo, double hi)
 {
-    const double speed = 0.01;
-    ImGui::DragScalarN(field, ImGuiDataType_Double, values, n, (float)speed, &lo, &hi, "%.4g");
-    if (ImGui::IsItemDeactivatedAfterEdit()) material_apply(v, object, field, NULL, values, n);
+    view_panel *p = v->panel;
+    ImGuiID id = ImGui::GetID(field);
+    if (p->edit_id == id) memcpy(values, p->edit_values, sizeof(double) * (size_t)n);
+    float speed = (float)(0.005 * (fabs(values[0]) > 1e-3 ? fabs(values[0]) : 1.0));
+    ImGui::DragScalarN(field, ImGuiDataType_Double, values, n, speed, &lo, &hi, "%.4g");
+    if (ImGui::IsItemActive()) {
+        p->edit_id = id;
+        memcpy(p->edit_values, values, sizeof(double) * (size_t)n);
+    }
+    if (ImGui::IsItemDeactivatedAfterEdit()) {
+        p->edit_id = 0;
+        material_apply(v, object, field, NULL, values, n);
+    } else if (!ImGui::IsItemActive() && p->edit_id == id) {
+        p->edit_id = 0;
+    }
 }
 
 static void material_object(viewer *v, int i)
@@ -280,8 +294,8 @@ static void view_section(viewer *v)
     }
     const double lo = 0.02, hi = 0.98;
     if (v->split && ImGui::SliderScalar("wipe", ImGuiDataType_Double, &pos, &lo, &hi, "%.2f")) {
-        v->split_pos = pos;
-        v->composed_gen = 0;
+        sss_error err = {};
+        report(v, view_cmd_split(v, split, pos, &err), err);
     }
     bool map = v->errormap != 0;
     if (ImGui::Checkbox("error map (DSSIM vs reference)", &map)) view_cmd_errormap(v, map);
