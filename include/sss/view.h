@@ -1,11 +1,14 @@
 /* sss/view.h — the interactive viewer: a GLFW window showing a scene with a real-time technique, an
  * orbit camera, technique switching, translucency / screen-space parts alone, measured-media presets,
  * the light moved around the object, the animation, screenshots and the DSSIM against a CPU reference
- * rendered in the background at the current view.
+ * rendered in the background at the current view; a Dear ImGui panel (parameters, per-object materials,
+ * lights, frame time per pass, buffers, a split view, an error map) that a script can drive
+ * (docs/viewer.md).
  *
  * Does: everything in one call (sss_view_run) that returns when the window is closed, or after a fixed
- * number of frames without input (for tests under Xvfb). Does not: print (messages go through the
- * desc's callback), run without a display (an error that suggests `sss render`).
+ * number of frames without input or after a script's actions (for tests under Xvfb). Does not: print
+ * (messages go through the desc's callback), run without a display (an error that suggests
+ * `sss render`).
  * Threading: call from one thread; the reference renders in a worker thread of its own.
  */
 #ifndef SSS_VIEW_H

@@ -25,7 +25,7 @@ static const char help_text[] =
     "Space             start / stop the animation\n"
     "S or F12          screenshot sss-view-NNNN.png (the image without the overlay)\n"
     "C                 camera back to the scene's\n"
-    "O                 overlay on / off      H or F1  this help on / off\n"
+    "O                 panel on / off        H or F1  this help on / off (text overlay)\n"
     "Esc or Q          quit\n";
 
 const char *sss_view_help_text(void) { return help_text; }
