@@ -64,7 +64,10 @@ static int show_composed(viewer *v, sss_error *err, sss_result *res)
         sss_image_metrics m;
         sss_image_free(&v->map_img);
         *res = sss_image_compare(&v->frame_img, v->ref, v->scene->render.exposure, &m, &v->map_img, err);
+        double before = v->error_range;
         if (*res == SSS_OK) *res = view_error_map(&v->map_img, &v->composed_img, &v->error_range, err);
+        if (*res == SSS_OK && v->error_range != before) /* the scale of the colour bar, also without the panel */
+            view_message(v, "error map: DSSIM %.6f, colour bar from 0 (left) to %g (right)", m.dssim, v->error_range);
         shown = &v->composed_img;
     } else {
         const sss_image *other = v->ref;
