@@ -165,6 +165,30 @@ static int parse_split(char **w, int n, view_command *c, char *why, size_t cap)
     return 1;
 }
 
+static int parse_buffer(char **w, int n, view_command *c, char *why, size_t cap)
+{
+    if (n != 2) return bad(why, cap, "buffer: expected one name");
+    for (int i = 0; i < VIEW_BUFFER_COUNT; i++)
+        if (strcmp(w[1], view_buffer_names[i]) == 0) {
+            c->index = i;
+            snprintf(c->name, sizeof c->name, "%s", w[1]);
+            return 1;
+        }
+    return bad(why, cap, "buffer: unknown buffer '%s' (final, reflected, irradiance, translucency, translucency_full, "
+               "screen)", w[1]);
+}
+
+static int parse_screenshot(char **w, int n, view_command *c, char *why, size_t cap)
+{
+    if (n != 2) return bad(why, cap, "screenshot: expected one file name (no blanks)");
+    char ext[16];
+    sss_path_extension(w[1], ext, sizeof ext);
+    if (strcmp(ext, "png") != 0) return bad(why, cap, "screenshot: needs a .png file name, got '%s'", w[1]);
+    if (strlen(w[1]) >= sizeof c->text) return bad(why, cap, "screenshot: file name too long");
+    snprintf(c->text, sizeof c->text, "%s", w[1]);
+    return 1;
+}
+
 static int parse_words(char **w, int n, view_command *c, char *why, size_t cap)
 {
     const char *verb = w[0];
@@ -181,16 +205,7 @@ static int parse_words(char **w, int n, view_command *c, char *why, size_t cap)
     if (strcmp(verb, "split") == 0) return c->kind = VIEW_CMD_SPLIT, parse_split(w, n, c, why, cap);
     if (strcmp(verb, "errormap") == 0) return c->kind = VIEW_CMD_ERRORMAP, parse_switch(w, n, c, why, cap);
     if (strcmp(verb, "panel") == 0) return c->kind = VIEW_CMD_PANEL, parse_switch(w, n, c, why, cap);
-    if (strcmp(verb, "buffer") == 0) {
-        c->kind = VIEW_CMD_BUFFER;
-        if (n != 2) return bad(why, cap, "buffer: expected one name");
-        for (int i = 0; i < VIEW_BUFFER_COUNT; i++)
-            if (strcmp(w[1], view_buffer_names[i]) == 0) c->index = i, n = 0;
-        if (n) return bad(why, cap, "buffer: unknown buffer '%s' (final, reflected, irradiance, translucency, "
-                                    "translucency_full, screen)", w[1]);
-        snprintf(c->name, sizeof c->name, "%s", w[1]);
-        return 1;
-    }
+    if (strcmp(verb, "buffer") == 0) return c->kind = VIEW_CMD_BUFFER, parse_buffer(w, n, c, why, cap);
     if (strcmp(verb, "reference") == 0) {
         c->kind = VIEW_CMD_REFERENCE;
         if (n > 2 || (n == 2 && strcmp(w[1], "draft"))) return bad(why, cap, "reference: expected 'reference [draft]'");
@@ -209,16 +224,7 @@ static int parse_words(char **w, int n, view_command *c, char *why, size_t cap)
             return bad(why, cap, "frames: expected a count in 1..%d", SCRIPT_MAX_FRAMES);
         return 1;
     }
-    if (strcmp(verb, "screenshot") == 0) {
-        c->kind = VIEW_CMD_SCREENSHOT;
-        if (n != 2) return bad(why, cap, "screenshot: expected one file name (no blanks)");
-        char ext[16];
-        sss_path_extension(w[1], ext, sizeof ext);
-        if (strcmp(ext, "png") != 0) return bad(why, cap, "screenshot: needs a .png file name, got '%s'", w[1]);
-        if (strlen(w[1]) >= sizeof c->text) return bad(why, cap, "screenshot: file name too long");
-        snprintf(c->text, sizeof c->text, "%s", w[1]);
-        return 1;
-    }
+    if (strcmp(verb, "screenshot") == 0) return c->kind = VIEW_CMD_SCREENSHOT, parse_screenshot(w, n, c, why, cap);
     return bad(why, cap,
                "unknown action '%s' (technique, param, material, light, buffer, split, errormap, panel, reference, "
                "key, frames, screenshot)",
