@@ -1,11 +1,14 @@
 /* sss/view.h — the interactive viewer: a GLFW window showing a scene with a real-time technique, an
  * orbit camera, technique switching, translucency / screen-space parts alone, measured-media presets,
  * the light moved around the object, the animation, screenshots and the DSSIM against a CPU reference
- * rendered in the background at the current view.
+ * rendered in the background at the current view; a Dear ImGui panel (parameters, per-object materials,
+ * lights, frame time per pass, buffers, a split view, an error map) that a script can drive
+ * (docs/viewer.md).
  *
  * Does: everything in one call (sss_view_run) that returns when the window is closed, or after a fixed
- * number of frames without input (for tests under Xvfb). Does not: print (messages go through the
- * desc's callback), run without a display (an error that suggests `sss render`).
+ * number of frames without input or after a script's actions (for tests under Xvfb). Does not: print
+ * (messages go through the desc's callback), run without a display (an error that suggests
+ * `sss render`).
  * Threading: call from one thread; the reference renders in a worker thread of its own.
  */
 #ifndef SSS_VIEW_H
@@ -35,7 +38,10 @@ typedef struct sss_view_desc {
      * named in sss_view_help_text ("tab", "shift+tab", "1", "m", "+", "l", "space", ...),
      * "orbit:DX:DY" / "pan:DX:DY" (a left / right drag by DX, DY pixels, y down), "zoom:STEPS". */
     const char *input;
-    int no_overlay;                   /* start with the text overlay hidden */
+    int no_overlay;                   /* start with the panel (or the text overlay) hidden */
+    /* A file of panel actions, one per line (docs/viewer.md): runs them without input, then returns
+     * (instead of frames / input / screenshot). */
+    const char *script;
     int reference;                    /* render the reference of the first view at once; with frames,
                                          wait for it and report the DSSIM of the last frame (log) */
     int reference_draft;              /* references at draft quality (R; Shift+R is always draft) */

@@ -19,10 +19,12 @@ static void print_usage(FILE *f)
             "usage: sss view SCENE.json [--technique NAME] [--width W --height H] [--param NAME=VALUE ...]\n"
             "                [--time T] [--animate] [--frames N [--screenshot FILE.png]] [--no-overlay]\n"
             "                [--reference] [--draft-reference] [--supersample K] [--input EVENTS]\n"
+            "                [--script FILE]\n"
             "\n"
             "Shows SCENE.json in a window with a real-time technique (needs a display; without one use\n"
-            "`sss render`, or run under `xvfb-run -a`). An overlay shows the technique, the frame time,\n"
-            "milliseconds per pass and the keys; the window title shows the frame time.\n"
+            "`sss render`, or run under `xvfb-run -a`). A panel (Dear ImGui) lists the techniques and\n"
+            "their parameters, materials, lights, frame time per pass, buffers, the split view and the\n"
+            "error map; the window title shows the frame time.\n"
             "\n"
             "options:\n"
             "  --technique NAME    first technique (default: the scene's render.technique)\n"
@@ -34,7 +36,12 @@ static void print_usage(FILE *f)
             "  --frames N          render N frames without input, then exit\n"
             "  --screenshot FILE   with --frames: write the last frame as PNG (the window's image without\n"
             "                      the overlay, the same image as `sss render` of that view)\n"
-            "  --no-overlay        start with the overlay hidden (O toggles it)\n"
+            "  --no-overlay        start with the panel hidden (O toggles it)\n"
+            "  --script FILE       run the panel actions of FILE, one per line, then exit (docs/viewer.md):\n"
+            "                      technique NAME, param [TECH.]NAME VALUE, material OBJ FIELD VALUE...,\n"
+            "                      light I position|intensity|colour VALUE..., buffer NAME,\n"
+            "                      split off|reference|TECH [POS], errormap on|off, panel on|off,\n"
+            "                      reference [draft], key EVENT, frames N, screenshot FILE.png\n"
             "  --reference         render the CPU reference of the first view in the background at once;\n"
             "                      with --frames, wait for it and print the DSSIM of the last frame\n"
             "  --draft-reference   references at draft quality (faster, noisier)\n"
@@ -85,6 +92,8 @@ int sss_cmd_view(int argc, char **argv)
             if (d.frames < 1 || d.frames > MAX_FRAMES) return cli_usage_error(CMD, "--frames must be in 1..%d", MAX_FRAMES);
         } else if (strcmp(a, "--screenshot") == 0) {
             if (!(d.screenshot = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
+        } else if (strcmp(a, "--script") == 0) {
+            if (!(d.script = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
         } else if (strcmp(a, "--input") == 0) {
             if (!(d.input = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
         } else if (strcmp(a, "--animate") == 0) {
@@ -125,6 +134,9 @@ int sss_cmd_view(int argc, char **argv)
     if (!d.scene_path) return cli_usage_error(CMD, "missing SCENE.json");
     if (d.screenshot && d.frames < 1) return cli_usage_error(CMD, "--screenshot needs --frames N");
     if (d.input && d.frames < 1) return cli_usage_error(CMD, "--input needs --frames N");
+    if (d.script && (d.frames || d.input || d.screenshot))
+        return cli_usage_error(CMD, "--script replaces --frames, --input and --screenshot (use its frames, key "
+                                    "and screenshot lines)");
     if (d.screenshot) {
         char ext[16];
         sss_path_extension(d.screenshot, ext, sizeof ext);

@@ -40,18 +40,20 @@ static int technique_knows(const sss_gl_technique_info *info, const char *name)
     return find_param(info->params, info->param_count, name) >= 0 || find_param(shared, n, name) >= 0;
 }
 
-/* The value the user asked for (--param) or the technique's default. */
+/* The value the user asked for (panel or script, else --param) or the technique's default. */
 static double user_value(const viewer *v, const sss_gl_technique_info *info, int index)
 {
+    double set = view_set_param_value(v, info->name, info->params[index].name);
+    if (!isnan(set)) return set;
     for (int i = 0; i < v->desc->param_count; i++)
         if (strcmp(v->desc->params[i].name, info->params[index].name) == 0) return v->desc->params[i].value;
     return info->params[index].default_value;
 }
 
-sss_result view_make_renderer(viewer *v, int tech, sss_error *err)
+/* A renderer of technique `info` for the viewer's scene and size: --param values, then the panel's. */
+sss_result view_create_renderer(viewer *v, const sss_gl_technique_info *info, sss_gl_renderer **out,
+                                sss_error *err)
 {
-    const sss_gl_technique_info *info = sss_gl_technique_at(tech);
-    if (!info) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "no technique %d", tech);
     /* --param values go to the techniques that know them (switching must not fail on another's). */
     int n = v->desc->param_count, kept = 0;
     sss_gl_param_value *params = calloc((size_t)(n > 0 ? n : 1), sizeof *params);
@@ -67,9 +69,28 @@ sss_result view_make_renderer(viewer *v, int tech, sss_error *err)
     d.param_count = kept;
     d.timings = 1;
     d.supersample = v->desc->supersample;
-    sss_gl_renderer *r = NULL;
-    sss_result res = sss_gl_renderer_create(v->ctx, v->scene, &d, &r, err);
+    sss_result res = sss_gl_renderer_create(v->ctx, v->scene, &d, out, err);
     free(params);
+    int shared_count = 0;
+    const sss_gl_param_info *shared = sss_gl_shared_params(&shared_count);
+    for (int i = 0; res == SSS_OK && i < info->param_count + shared_count; i++) {
+        const char *name = i < info->param_count ? info->params[i].name : shared[i - info->param_count].name;
+        double set = view_set_param_value(v, info->name, name);
+        if (!isnan(set)) res = sss_gl_renderer_set_param(*out, name, set, err);
+    }
+    if (res != SSS_OK) {
+        sss_gl_renderer_destroy(*out);
+        *out = NULL;
+    }
+    return res;
+}
+
+sss_result view_make_renderer(viewer *v, int tech, sss_error *err)
+{
+    const sss_gl_technique_info *info = sss_gl_technique_at(tech);
+    if (!info) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "no technique %d", tech);
+    sss_gl_renderer *r = NULL;
+    sss_result res = view_create_renderer(v, info, &r, err);
     if (res == SSS_OK) {
         sss_gl_timing_series_free(&v->timing_series);
         res = sss_gl_timing_series_init(&v->timing_series, SSS_GL_WARMUP_FRAMES, SSS_GL_TIMED_FRAMES, err);
@@ -206,10 +227,11 @@ void view_light_changed(viewer *v)
         err.message[0] = 0;
         if (view_make_renderer(v, v->tech, &err) != SSS_OK) view_message(v, "light: %s", err.message);
     }
+    if (v->split_r && sss_gl_renderer_update_lights(v->split_r, NULL) != SSS_OK) view_split_refresh(v);
     view_invalidate(v);
 }
 
-static sss_result edited_json(viewer *v, char **json, sss_error *err)
+sss_result view_edited_json(viewer *v, char **json, sss_error *err)
 {
     view_edits e;
     memset(&e, 0, sizeof e);
@@ -220,18 +242,20 @@ static sss_result edited_json(viewer *v, char **json, sss_error *err)
     return view_scene_json(v->text, v->text_size, v->scene->name, &e, json, err);
 }
 
-/* Materials changed: the edited file goes through the loader again, then a renderer for it. */
-static void rebuild_scene(viewer *v, int old_medium, double old_scale)
+/* Materials changed: the edited file goes through the loader again (PBD tables, LUTs), then a renderer
+ * for it (kernels, uploads). On failure the old scene and renderer stay. */
+sss_result view_reload_scene(viewer *v, sss_error *err)
 {
-    sss_error err = {0};
+    double start = sss_time_seconds();
     char *json = NULL;
     sss_scene *s = calloc(1, sizeof *s), *old = v->scene;
-    sss_result res = s ? edited_json(v, &json, &err) : sss_error_set(&err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
-    if (res == SSS_OK) res = sss_scene_parse(json, strlen(json), old->base_dir, old->name, NULL, s, &err);
+    sss_result res = s ? view_edited_json(v, &json, err) : sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (res == SSS_OK) res = sss_scene_parse(json, strlen(json), old->base_dir, old->name, NULL, s, err);
     free(json);
+    double parsed = sss_time_seconds();
     if (res == SSS_OK) {
         v->scene = s;
-        res = view_make_renderer(v, v->tech, &err);
+        res = view_make_renderer(v, v->tech, err);
         if (res != SSS_OK) {
             v->scene = old;
             sss_scene_free(s);
@@ -239,14 +263,26 @@ static void rebuild_scene(viewer *v, int old_medium, double old_scale)
     }
     if (res != SSS_OK) {
         free(s);
+        return res;
+    }
+    view_split_refresh(v); /* it read the old scene */
+    sss_scene_free(old);
+    free(old);
+    v->rebuild_ms = 1000.0 * (sss_time_seconds() - start);
+    v->rebuild_scene_ms = 1000.0 * (parsed - start);
+    view_invalidate(v);
+    return SSS_OK;
+}
+
+static void rebuild_scene(viewer *v, int old_medium, double old_scale)
+{
+    sss_error err = {0};
+    if (view_reload_scene(v, &err) != SSS_OK) {
         v->medium = old_medium;
         v->scale_factor = old_scale;
         view_message(v, "material change failed: %s", err.message);
         return;
     }
-    sss_scene_free(old);
-    free(old);
-    view_invalidate(v);
     if (v->medium >= 0)
         view_message(v, "medium %s, scale x%g", sss_measured_medium_at((size_t)v->medium)->name, v->scale_factor);
     else
@@ -259,7 +295,7 @@ sss_result view_current_key(viewer *v, char **key, char **json, sss_error *err)
 {
     *key = NULL;
     char *j = NULL;
-    sss_result res = edited_json(v, &j, err);
+    sss_result res = view_edited_json(v, &j, err);
     if (res != SSS_OK) return res;
     size_t n = strlen(j) + 64;
     *key = malloc(n);

@@ -7,6 +7,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include "view/panel.h"
 #include "view/viewer.h"
 
 #define ORBIT_DEG_PER_PIXEL 0.3
@@ -24,7 +25,7 @@ static const char help_text[] =
     "Space             start / stop the animation\n"
     "S or F12          screenshot sss-view-NNNN.png (the image without the overlay)\n"
     "C                 camera back to the scene's\n"
-    "O                 overlay on / off      H or F1  this help on / off\n"
+    "O                 panel on / off        H or F1  this help on / off (text overlay)\n"
     "Esc or Q          quit\n";
 
 const char *sss_view_help_text(void) { return help_text; }
@@ -83,7 +84,14 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
 {
     (void)scancode;
     viewer *v = get(w);
-    if (v && action != GLFW_RELEASE) handle_key(v, key, action, mods);
+    if (v && v->panel) view_panel_key(v, key, scancode, action, mods);
+    if (v && action != GLFW_RELEASE && !view_panel_wants(v, 0)) handle_key(v, key, action, mods);
+}
+
+static void on_char(GLFWwindow *w, unsigned codepoint)
+{
+    viewer *v = get(w);
+    if (v && v->panel) view_panel_char(v, codepoint);
 }
 
 /* A drag by (dx, dy) framebuffer pixels with a mouse button. */
@@ -106,10 +114,10 @@ static void wheel(viewer *v, double steps)
 
 static void on_button(GLFWwindow *w, int button, int action, int mods)
 {
-    (void)mods;
     viewer *v = get(w);
     if (!v) return;
-    if (action == GLFW_PRESS && v->drag_button < 0) {
+    if (v->panel) view_panel_button(v, button, action, mods);
+    if (action == GLFW_PRESS && v->drag_button < 0 && !view_panel_wants(v, 1)) {
         v->drag_button = button;
         glfwGetCursorPos(w, &v->mouse_x, &v->mouse_y);
     } else if (action == GLFW_RELEASE && button == v->drag_button) {
@@ -133,9 +141,9 @@ static void on_cursor(GLFWwindow *w, double x, double y)
 
 static void on_scroll(GLFWwindow *w, double dx, double dy)
 {
-    (void)dx;
     viewer *v = get(w);
-    if (v) wheel(v, dy);
+    if (v && v->panel) view_panel_scroll(v, dx, dy);
+    if (v && !view_panel_wants(v, 1)) wheel(v, dy);
 }
 
 /* ---- Scripted input (the fixed-frame mode of tests) ------------------------------------------- */
@@ -190,4 +198,5 @@ void view_install_callbacks(viewer *v)
     glfwSetMouseButtonCallback(v->window, on_button);
     glfwSetCursorPosCallback(v->window, on_cursor);
     glfwSetScrollCallback(v->window, on_scroll);
+    glfwSetCharCallback(v->window, on_char);
 }

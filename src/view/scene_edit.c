@@ -11,6 +11,7 @@
 
 #include "core/text.h"
 #include "sss/material.h"
+#include "sss/scene.h"
 #include "view/view_internal.h"
 
 static int set_number(cJSON *obj, const char *key, double v)
@@ -90,19 +91,41 @@ static int edit_material(cJSON *m, int medium, double factor)
     return 0;
 }
 
+static sss_result parse_root(const char *text, size_t size, const char *name, cJSON **root, sss_error *err)
+{
+    char nul_path[256];
+    if (sss_json_find_nul(text, size, nul_path, sizeof nul_path))
+        return sss_error_set(err, SSS_ERROR_PARSE, "%s: %s: a string holds a NUL character (\\u0000)", name, nul_path);
+    *root = cJSON_ParseWithLength(text, size);
+    if (!cJSON_IsObject(*root)) {
+        cJSON_Delete(*root);
+        *root = NULL;
+        return sss_error_set(err, SSS_ERROR_PARSE, "%s: not a JSON object", name);
+    }
+    return SSS_OK;
+}
+
+/* Prints and deletes root; *out is malloc'ed. */
+static sss_result print_root(cJSON *root, char **out, sss_error *err)
+{
+    char *printed = cJSON_PrintUnformatted(root);
+    cJSON_Delete(root);
+    if (!printed) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene JSON)");
+    *out = malloc(strlen(printed) + 1);
+    if (*out) strcpy(*out, printed);
+    cJSON_free(printed);
+    if (!*out) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene JSON)");
+    return SSS_OK;
+}
+
 sss_result view_scene_json(const char *text, size_t size, const char *name, const view_edits *edits, char **out,
                            sss_error *err)
 {
     *out = NULL;
     if (!name) name = "scene";
-    char nul_path[256];
-    if (sss_json_find_nul(text, size, nul_path, sizeof nul_path))
-        return sss_error_set(err, SSS_ERROR_PARSE, "%s: %s: a string holds a NUL character (\\u0000)", name, nul_path);
-    cJSON *root = cJSON_ParseWithLength(text, size);
-    if (!cJSON_IsObject(root)) {
-        cJSON_Delete(root);
-        return sss_error_set(err, SSS_ERROR_PARSE, "%s: not a JSON object", name);
-    }
+    cJSON *root = NULL;
+    sss_result res = parse_root(text, size, name, &root, err);
+    if (res != SSS_OK) return res;
     const char *what = NULL;
     if (edits->camera && !edit_camera(root, edits->camera)) what = "camera";
     if (!what && edits->light0 && !edit_light(root, edits->light0)) what = "lights[0]";
@@ -123,12 +146,97 @@ sss_result view_scene_json(const char *text, size_t size, const char *name, cons
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: cannot apply the viewer's change to %s", name,
                              what);
     }
-    char *printed = cJSON_PrintUnformatted(root);
-    cJSON_Delete(root);
-    if (!printed) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene JSON)");
-    *out = malloc(strlen(printed) + 1);
-    if (*out) strcpy(*out, printed);
-    cJSON_free(printed);
-    if (!*out) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene JSON)");
-    return SSS_OK;
+    return print_root(root, out, err);
+}
+
+/* ---- Panel and script edits of one material or light ------------------------------------------ */
+
+static void drop_fields(cJSON *m, const char *const *keys, size_t n)
+{
+    for (size_t i = 0; i < n; i++) cJSON_DeleteItemFromObjectCaseSensitive(m, keys[i]);
+}
+
+static int set_values(cJSON *obj, const char *key, const double *v, int n)
+{
+    if (n == 1) return set_number(obj, key, v[0]);
+    return set_vec3(obj, key, v);
+}
+
+/* Puts m into the form of `field` (coefficients or reflectance) when it is in another one. */
+static int switch_form(cJSON *m, const char *field, const sss_scene_material *resolved)
+{
+    int coeff = strcmp(field, "sigma_a") == 0 || strcmp(field, "sigma_s") == 0;
+    int refl = strcmp(field, "reflectance") == 0 || strcmp(field, "mfp") == 0;
+    if (!coeff && !refl) return 1;
+    if (coeff && cJSON_HasObjectItem(m, "sigma_a")) return 1;
+    if (refl && cJSON_HasObjectItem(m, "reflectance")) return 1;
+    if (!resolved) return 0;
+    static const char *const forms[] = {"medium", "sigma_a", "sigma_s", "reflectance", "mfp", "scale", "g"};
+    drop_fields(m, forms, sizeof forms / sizeof forms[0]);
+    const sss_material *o = &resolved->optical;
+    if (coeff)
+        return set_vec3(m, "sigma_a", o->sigma_a) && set_vec3(m, "sigma_s", o->sigma_s) && set_number(m, "g", o->g);
+    double mfp[3];
+    for (int c = 0; c < 3; c++) mfp[c] = 1.0 / (o->sigma_a[c] + o->sigma_s[c]);
+    return set_vec3(m, "reflectance", resolved->albedo) && set_vec3(m, "mfp", mfp);
+}
+
+sss_result view_material_json(const char *text, size_t size, const char *name, int object, const char *field,
+                              const char *medium, const double *values, int value_count,
+                              const sss_scene_material *resolved, char **out, sss_error *err)
+{
+    *out = NULL;
+    if (!name) name = "scene";
+    cJSON *root = NULL;
+    sss_result res = parse_root(text, size, name, &root, err);
+    if (res != SSS_OK) return res;
+    cJSON *objects = cJSON_GetObjectItemCaseSensitive(root, "objects");
+    cJSON *m = cJSON_GetObjectItemCaseSensitive(cJSON_GetArrayItem(objects, object), "material");
+    const cJSON *type = cJSON_GetObjectItemCaseSensitive(m, "type");
+    if (!cJSON_IsString(type) || strcmp(type->valuestring, "subsurface") != 0) {
+        cJSON_Delete(root);
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: objects[%d].material: %s", name, object,
+                             cJSON_IsObject(m) ? "not a subsurface material" : "no such object");
+    }
+    int ok = 1;
+    if (strcmp(field, "medium") == 0) {
+        static const char *const forms[] = {"medium", "sigma_a", "sigma_s", "reflectance", "mfp", "g"};
+        drop_fields(m, forms, sizeof forms / sizeof forms[0]);
+        ok = medium && cJSON_AddStringToObject(m, "medium", medium) != NULL;
+    } else {
+        ok = switch_form(m, field, resolved) && value_count >= 1 && set_values(m, field, values, value_count);
+    }
+    if (!ok) {
+        cJSON_Delete(root);
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: objects[%d].material.%s: cannot set it", name,
+                             object, field);
+    }
+    return print_root(root, out, err);
+}
+
+sss_result view_light_json(const char *text, size_t size, const char *name, int light, const char *field,
+                           const double values[3], char **out, sss_error *err)
+{
+    *out = NULL;
+    if (!name) name = "scene";
+    cJSON *root = NULL;
+    sss_result res = parse_root(text, size, name, &root, err);
+    if (res != SSS_OK) return res;
+    cJSON *l = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(root, "lights"), light);
+    const cJSON *type = cJSON_GetObjectItemCaseSensitive(l, "type");
+    const char *t = cJSON_IsString(type) ? type->valuestring : "";
+    const char *key = NULL;
+    if (strcmp(field, "position") == 0)
+        key = strcmp(t, "point") == 0 || strcmp(t, "spot") == 0 ? "position" : strcmp(t, "area") == 0 ? "center" : NULL;
+    else
+        key = strcmp(t, "point") == 0 || strcmp(t, "spot") == 0         ? "intensity"
+              : strcmp(t, "directional") == 0 || strcmp(t, "area") == 0 ? "radiance"
+              : strcmp(t, "environment") == 0                           ? "scale"
+                                                                        : NULL;
+    if (!key || !set_vec3(l, key, values)) {
+        cJSON_Delete(root);
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: lights[%d]: %s", name, light,
+                             !cJSON_IsObject(l) ? "no such light" : "a light of this type has no position");
+    }
+    return print_root(root, out, err);
 }

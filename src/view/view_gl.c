@@ -1,13 +1,14 @@
 /* view/view_gl.c — the viewer's drawing: overlay quads (shaders/view_overlay.*.glsl), technique buffers
  * shown alone (shaders/view_image.*.glsl) and screenshots from the back buffer. The shaders are the
- * embedded shaders/ files (gl/embedded.h); they need no #include, so they are compiled here directly. */
+ * embedded shaders/ files, built by the GL module's program builder (gl_program_vf: errors name the
+ * shader file and line). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include <epoxy/gl.h>
 
-#include "gl/embedded.h"
+#include "gl/gl_internal.h"
 #include "view/view_gl.h"
 
 static sss_result gl_error(const char *what, sss_error *err)
@@ -19,57 +20,11 @@ static sss_result gl_error(const char *what, sss_error *err)
                          "OpenGL error 0x%x in the viewer's %s", (unsigned)e, what);
 }
 
-static sss_result compile(GLenum stage, const char *name, GLuint *out, sss_error *err)
-{
-    const sss_embedded_file *f = sss_embedded_shader_find(name);
-    if (!f) return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "shader %s is not embedded in this build", name);
-    GLuint s = glCreateShader(stage);
-    glShaderSource(s, 1, &f->data, NULL);
-    glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[400] = "";
-        glGetShaderInfoLog(s, sizeof log, NULL, log);
-        glDeleteShader(s);
-        return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "%s: %s", name, log);
-    }
-    *out = s;
-    return SSS_OK;
-}
-
-static sss_result program(const char *vert, const char *frag, GLuint *out, sss_error *err)
-{
-    GLuint vs = 0, fs = 0;
-    sss_result res = compile(GL_VERTEX_SHADER, vert, &vs, err);
-    if (res == SSS_OK) res = compile(GL_FRAGMENT_SHADER, frag, &fs, err);
-    if (res != SSS_OK) {
-        if (vs) glDeleteShader(vs);
-        return res;
-    }
-    GLuint p = glCreateProgram();
-    glAttachShader(p, vs);
-    glAttachShader(p, fs);
-    glLinkProgram(p);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[400] = "";
-        glGetProgramInfoLog(p, sizeof log, NULL, log);
-        glDeleteProgram(p);
-        return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "linking %s + %s: %s", vert, frag, log);
-    }
-    *out = p;
-    return SSS_OK;
-}
-
 sss_result view_gl_init(view_gl *g, sss_error *err)
 {
     memset(g, 0, sizeof *g);
-    sss_result res = program("view_overlay.vert.glsl", "view_overlay.frag.glsl", &g->prog_text, err);
-    if (res == SSS_OK) res = program("view_image.vert.glsl", "view_image.frag.glsl", &g->prog_image, err);
+    sss_result res = gl_program_vf("view_overlay.vert.glsl", "view_overlay.frag.glsl", NULL, &g->prog_text, err);
+    if (res == SSS_OK) res = gl_program_vf("view_image.vert.glsl", "view_image.frag.glsl", NULL, &g->prog_image, err);
     if (res != SSS_OK) return res;
     glCreateVertexArrays(1, &g->vao_text);
     glCreateBuffers(1, &g->vbo_text);

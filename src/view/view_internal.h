@@ -40,6 +40,22 @@ typedef struct view_edits {
 sss_result view_scene_json(const char *text, size_t size, const char *name, const view_edits *edits, char **out,
                            sss_error *err);
 
+/* One field of objects[object].material in the scene JSON `text` (the panel's and the script's
+ * material edits): field is one of view_material_fields (view/script.h); medium names a measured medium
+ * (field "medium"), values holds 1 or 3 numbers otherwise. A field of another form switches the
+ * material to that form, the missing fields taken from `resolved` (the loaded material: its coefficients
+ * with scale 1, or its rho_eff as reflectance and 1 / sigma_t as mfp; medium keeps the scale). The
+ * loader checks the result. Errors name `name` and the JSON path. */
+struct sss_scene_material;
+sss_result view_material_json(const char *text, size_t size, const char *name, int object, const char *field,
+                              const char *medium, const double *values, int value_count,
+                              const struct sss_scene_material *resolved, char **out, sss_error *err);
+/* lights[light].FIELD of the scene JSON: "position" (point and spot position, area center), or the
+ * light's power (intensity of point and spot, radiance of directional and area, scale of environment)
+ * as `values` (3 numbers, already combined from intensity and colour by the caller). */
+sss_result view_light_json(const char *text, size_t size, const char *name, int light, const char *field,
+                           const double values[3], char **out, sss_error *err);
+
 /* ---- The reference in the background (reference_job.c) ---------------------------------------- */
 
 typedef struct view_ref_job view_ref_job; /* one render in a worker thread */
@@ -66,6 +82,21 @@ const sss_image *view_ref_cache_find(view_ref_cache *c, const char *key);
 /* Takes ownership of image (and copies key). */
 sss_result view_ref_cache_put(view_ref_cache *c, const char *key, sss_image *image, sss_error *err);
 void view_ref_cache_free(view_ref_cache *c);
+
+/* ---- Split view and error map (compose.c) ------------------------------------------------------ */
+
+/* A wipe: columns x < round(position * width) from left, the others from right (same size, linear RGB);
+ * out is (re)allocated. */
+sss_result view_compose_split(const sss_image *left, const sss_image *right, double position, sss_image *out,
+                              sss_error *err);
+/* The colour of value in [0, 1] on the error map's scale (inferno, sRGB control points, returned
+ * linear); values outside are clamped, NaN is black. */
+void view_error_colour(double value, float rgb[3]);
+/* A per-pixel error map (the mean of dssim_map's channels) in colours, the range [0, *range] chosen
+ * as the smallest 1-2-5 step >= the largest value (at least 0.01), and a colour bar along the bottom
+ * (VIEW_COLOUR_BAR_HEIGHT rows above a 1-row black rule; low values left). out is (re)allocated. */
+#define VIEW_COLOUR_BAR_HEIGHT 8
+sss_result view_error_map(const sss_image *dssim_map, sss_image *out, double *range, sss_error *err);
 
 /* ---- Overlay text geometry (overlay_text.c) --------------------------------------------------- */
 

@@ -11,6 +11,8 @@
 #include <epoxy/gl.h>
 
 #include "core/file_util.h"
+#include "view/panel.h"
+#include "view/script.h"
 #include "view/viewer.h"
 
 #define OVERLAY_TEXT_SIZE 8192
@@ -36,7 +38,54 @@ static void check_size(viewer *v)
     v->height = fh;
     v->scene->camera.width = fw;
     v->scene->camera.height = fh;
+    if (v->split_r) view_split_refresh(v);
     view_camera_changed(v);
+}
+
+/* The split view or the error map, composed on the CPU from the final image; 0 when neither is on or
+ * its other half (the reference, the second technique) is not there yet. */
+static int show_composed(viewer *v, sss_error *err, sss_result *res)
+{
+    int want_ref = v->errormap || v->split == VIEW_SPLIT_REFERENCE;
+    if ((!v->errormap && !v->split) || (want_ref && !v->ref) || (v->split == VIEW_SPLIT_TECHNIQUE && !v->split_r))
+        return 0;
+    double exposure = v->errormap ? 0.0 : v->scene->render.exposure;
+    if (v->composed_gen == v->image_gen && v->composed_ref == v->ref) {
+        *res = view_gl_redraw_image(&v->gl, exposure, v->width, v->height, err);
+        return 1;
+    }
+    if (v->frame_img.width != v->width || v->frame_img.height != v->height) {
+        sss_image_free(&v->frame_img);
+        if ((*res = sss_image_create(&v->frame_img, v->width, v->height, err)) != SSS_OK) return 1;
+    }
+    if ((*res = sss_gl_renderer_read(v->r, &v->frame_img, err)) != SSS_OK) return 1;
+    const sss_image *shown = &v->frame_img;
+    if (v->errormap) {
+        sss_image_metrics m;
+        sss_image_free(&v->map_img);
+        *res = sss_image_compare(&v->frame_img, v->ref, v->scene->render.exposure, &m, &v->map_img, err);
+        double before = v->error_range;
+        if (*res == SSS_OK) *res = view_error_map(&v->map_img, &v->composed_img, &v->error_range, err);
+        if (*res == SSS_OK && v->error_range != before) /* the scale of the colour bar, also without the panel */
+            view_message(v, "error map: DSSIM %.6f, colour bar from 0 (left) to %g (right)", m.dssim, v->error_range);
+        shown = &v->composed_img;
+    } else {
+        const sss_image *other = v->ref;
+        if (v->split == VIEW_SPLIT_TECHNIQUE) {
+            if (v->other_img.width != v->width || v->other_img.height != v->height) {
+                sss_image_free(&v->other_img);
+                *res = sss_image_create(&v->other_img, v->width, v->height, err);
+            }
+            if (*res == SSS_OK) *res = sss_gl_renderer_read(v->split_r, &v->other_img, err);
+            other = &v->other_img;
+        }
+        if (*res == SSS_OK) *res = view_compose_split(&v->frame_img, other, v->split_pos, &v->composed_img, err);
+        shown = &v->composed_img;
+    }
+    if (*res == SSS_OK) *res = view_gl_draw_image(&v->gl, shown, exposure, v->width, v->height, err);
+    v->composed_gen = v->image_gen;
+    v->composed_ref = v->ref;
+    return 1;
 }
 
 /* The image under the overlay: the technique's final frame, or a buffer (a part alone, the B key). */
@@ -44,6 +93,8 @@ static sss_result show_image(viewer *v, sss_error *err)
 {
     const char *want = v->part_buffer ? v->part_buffer : v->buffer ? view_buffer_names[v->buffer] : NULL;
     double exposure = v->scene->render.exposure;
+    sss_result composed = SSS_OK;
+    if (!want && !v->need_render && show_composed(v, err, &composed)) return composed;
     if (want && v->shown_gen == v->image_gen && v->shown_name == want)
         return view_gl_redraw_image(&v->gl, exposure, v->width, v->height, err);
     if (want) {
@@ -110,6 +161,11 @@ static sss_result frame(viewer *v, int fixed, const char *screenshot, sss_error 
             v->need_render = 0;
             rendered = 1;
         }
+        if (v->split_r && sss_gl_renderer_render(v->split_r, v->t, &rerr) != SSS_OK) {
+            view_message(v, "split view: %s", rerr.message);
+            v->split = VIEW_SPLIT_OFF;
+            view_split_refresh(v);
+        }
     }
     view_poll_reference(v);
     view_update_dssim(v);
@@ -128,10 +184,21 @@ static sss_result frame(viewer *v, int fixed, const char *screenshot, sss_error 
         else if (view_gl_screenshot(v->width, v->height, name, &serr) != SSS_OK) view_message(v, "%s", serr.message);
         else view_message(v, "saved %s", name);
     }
-    if (v->overlay && (res = draw_overlay(v, err)) != SSS_OK) {
+    if (fixed) glFinish(); /* scripts time the panel alone: the frame's own work done first */
+    double overlay_start = sss_time_seconds();
+    if (v->overlay && v->panel) res = view_panel_draw(v, err);
+    else if (v->overlay) res = draw_overlay(v, err);
+    if (fixed) glFinish();
+    v->overlay_ms = v->overlay ? 1000.0 * (sss_time_seconds() - overlay_start) : 0.0;
+    if (res != SSS_OK) {
         if (fixed) return res;
         view_message(v, "%s", err->message);
         v->overlay = 0;
+    }
+    if (v->shot_path) { /* a script's screenshot: the window as shown, the panel included */
+        res = view_gl_screenshot(v->width, v->height, v->shot_path, err);
+        v->shot_path = NULL;
+        if (res != SSS_OK) return res;
     }
     sss_gl_window_swap(v->ctx);
     if (rendered) v->frame_ms = 1000.0 * (sss_time_seconds() - start);
@@ -198,6 +265,53 @@ static sss_result run_fixed(viewer *v, sss_error *err)
     return SSS_OK;
 }
 
+static void wait_reference(viewer *v)
+{
+    while (v->job && !view_ref_poll(v->job, NULL, NULL)) {
+        glfwPollEvents();
+        sleep_ms(50);
+    }
+}
+
+/* --script: each line's action, `frames N` renders N frames, `screenshot F` renders one and writes
+ * the window as shown (after the reference in the background, when one is running, has finished). */
+static sss_result run_script(viewer *v, const view_script *script, sss_error *err)
+{
+    for (int i = 0; i < script->count; i++) {
+        const view_command *c = &script->commands[i];
+        sss_result res = SSS_OK;
+        sss_error cerr = {0};
+        if (c->kind == VIEW_CMD_FRAMES || c->kind == VIEW_CMD_SCREENSHOT) {
+            int n = c->kind == VIEW_CMD_FRAMES ? c->index : 1;
+            if (c->kind == VIEW_CMD_SCREENSHOT) {
+                wait_reference(v);
+                v->shot_path = c->text;
+            }
+            double *ms = calloc(2 * (size_t)n, sizeof *ms), *overlay_ms = ms + n;
+            if (!ms) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (frame times)");
+            for (int k = 0; k < n && res == SSS_OK; k++) {
+                glfwPollEvents();
+                res = frame(v, 1, NULL, &cerr);
+                ms[k] = v->frame_ms;
+                overlay_ms[k] = v->overlay_ms;
+            }
+            if (res == SSS_OK && c->kind == VIEW_CMD_SCREENSHOT) view_message(v, "saved %s", c->text);
+            else if (res == SSS_OK) /* wall time from render to swap, the panel (when shown) included */
+                view_message(v, "%d frames: median frame time %.2f ms, of which %s %.2f ms", n, sss_median(ms, n),
+                             v->overlay ? (v->panel ? "panel" : "text overlay") : "hidden panel",
+                             sss_median(overlay_ms, n));
+            free(ms);
+        } else {
+            res = view_cmd_run(v, c, &cerr);
+        }
+        if (res != SSS_OK) {
+            v->shot_path = NULL;
+            return sss_error_set(err, res, "%s:%d: %s", v->desc->script, c->line, cerr.message);
+        }
+    }
+    return SSS_OK;
+}
+
 static void run_interactive(viewer *v)
 {
     view_install_callbacks(v);
@@ -206,7 +320,7 @@ static void run_interactive(viewer *v)
         int busy = v->need_render || v->playing || v->act_tech || v->act_part || v->act_buffer || v->act_medium ||
                    v->act_light || v->act_reference || v->act_screenshot || v->act_scale != 0.0;
         if (busy) glfwPollEvents();
-        else glfwWaitEventsTimeout(v->job ? 0.25 : 1.0);
+        else glfwWaitEventsTimeout(v->job ? 0.25 : v->panel && v->overlay ? 0.1 : 1.0); /* ImGui settles in a few frames */
         sss_error err = {0};
         frame(v, 0, NULL, &err);
     }
@@ -231,6 +345,7 @@ sss_result sss_view_run(const sss_view_desc *desc, sss_error *err)
     v.scale_factor = 1.0;
     v.drag_button = -1;
     v.part_saved_tech = -1;
+    v.split_pos = 0.5;
     v.overlay = !desc->no_overlay;
     v.t = desc->time;
     v.playing = desc->animate;
@@ -248,6 +363,12 @@ sss_result sss_view_run(const sss_view_desc *desc, sss_error *err)
         res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "unknown technique '%s' (known: %s)", tname, list);
     }
     if (res == SSS_OK && desc->input) res = check_input(&v, desc->input, err);
+    view_script script = {0};
+    if (res == SSS_OK && desc->script) res = view_script_load(desc->script, &script, err);
+    for (int i = 0; res == SSS_OK && i < script.count; i++)
+        if (script.commands[i].kind == VIEW_CMD_KEY && !view_input_event(&v, script.commands[i].name, 0))
+            res = sss_error_set(err, SSS_ERROR_PARSE, "%s:%d: key: unknown input event '%s'", desc->script,
+                                script.commands[i].line, script.commands[i].name);
     if (res == SSS_OK) {
         v.has_light = v.scene->light_count > 0;
         v.home = v.scene->camera;
@@ -270,18 +391,27 @@ sss_result sss_view_run(const sss_view_desc *desc, sss_error *err)
     }
     if (res == SSS_OK) res = view_gl_init(&v.gl, err);
     if (res == SSS_OK) {
-        if (desc->frames > 0) res = run_fixed(&v, err);
+        sss_error perr = {0};
+        if (view_panel_create(&v, &perr) != SSS_OK) view_message(&v, "panel: %s (the text overlay instead)", perr.message);
+        if (desc->script) res = run_script(&v, &script, err);
+        else if (desc->frames > 0) res = run_fixed(&v, err);
         else run_interactive(&v);
     }
+    view_script_free(&script);
     if (v.job) view_ref_abandon(v.job); /* the worker finishes on its own and frees its job */
     free(v.job_key);
     view_ref_cache_free(&v.cache);
     free(v.view_key);
     sss_image_free(&v.frame_img);
+    sss_image_free(&v.other_img);
+    sss_image_free(&v.composed_img);
+    sss_image_free(&v.map_img);
     if (v.ctx) {
         sss_gl_context_make_current(v.ctx);
+        view_panel_destroy(&v);
         view_gl_free(&v.gl);
     }
+    sss_gl_renderer_destroy(v.split_r);
     sss_gl_renderer_destroy(v.r);
     sss_gl_timing_series_free(&v.timing_series);
     sss_gl_context_destroy(v.ctx);

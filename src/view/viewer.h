@@ -13,6 +13,10 @@ struct GLFWwindow;
 
 enum { PART_ALL = 0, PART_TRANSLUCENCY, PART_SCREEN };
 
+#define VIEW_MAX_SET_PARAMS 64
+enum { VIEW_SPLIT_OFF = 0, VIEW_SPLIT_REFERENCE, VIEW_SPLIT_TECHNIQUE };
+struct view_command;
+
 /* Buffers of sss_gl_renderer_read_buffer the B key cycles through ("final" is the normal view). */
 #define VIEW_BUFFER_COUNT 6
 extern const char *const view_buffer_names[VIEW_BUFFER_COUNT];
@@ -55,6 +59,7 @@ struct viewer {
     unsigned shown_gen;    /* image_gen of the buffer uploaded for display */
     const char *shown_name; /* and its name */
     double frame_ms;
+    double overlay_ms;     /* drawing the panel or text overlay in the last frame (scripts: GL finished) */
     sss_gl_timings timings;              /* medians of timing_series */
     sss_gl_timing_series timing_series; /* the renderer's frames after warm-up, the latest few */
     char message[256];
@@ -71,6 +76,23 @@ struct viewer {
     unsigned dssim_gen;    /* image_gen the dssim belongs to (0: none) */
     int ref_draft;
     sss_image frame_img;
+    /* panel, parameters, split view, error map (commands.c, panel_imgui.cpp) */
+    struct view_panel *panel;     /* NULL: the bitmap-text overlay stands in */
+    sss_gl_param_value set_params[VIEW_MAX_SET_PARAMS]; /* set in the panel or script ("tech.name" or "name") */
+    char set_names[VIEW_MAX_SET_PARAMS][64];
+    int set_count;
+    int split;                    /* VIEW_SPLIT_* */
+    int split_tech;               /* the right-hand technique of VIEW_SPLIT_TECHNIQUE */
+    double split_pos;             /* wipe position, fraction of the width */
+    sss_gl_renderer *split_r;     /* its renderer */
+    int errormap;                 /* show the per-pixel DSSIM against the reference */
+    double error_range;           /* the colour bar's top value */
+    unsigned composed_gen;        /* image_gen of the split / error-map image on screen (0: none) */
+    const sss_image *composed_ref;
+    sss_image other_img, composed_img, map_img;
+    double rebuild_ms;            /* the last material edit: scene reloaded, LUTs, kernels, renderer */
+    double rebuild_scene_ms;      /* of which the scene loader (PBD tables, materials) */
+    const char *shot_path;        /* a script's screenshot, taken after the panel is drawn */
 };
 
 typedef struct viewer viewer;
@@ -91,6 +113,14 @@ sss_result view_make_renderer(viewer *v, int tech, sss_error *err);
 void view_apply_part(viewer *v, int part);
 void view_run_actions(viewer *v);
 void view_light_changed(viewer *v);
+/* A renderer of a technique with the viewer's scene, size, --param and panel parameters. */
+sss_result view_create_renderer(viewer *v, const sss_gl_technique_info *info, sss_gl_renderer **out,
+                                sss_error *err);
+/* The scene file's text with the viewer's edits (camera, light 0, preset, scale); free() it. */
+sss_result view_edited_json(viewer *v, char **json, sss_error *err);
+/* The edited text through the loader again and a renderer for it (rebuild_ms measures it); on failure
+ * the old scene and renderer stay. */
+sss_result view_reload_scene(viewer *v, sss_error *err);
 void view_camera_changed(viewer *v);
 /* The view changed (camera, light, materials, size, time): the reference is looked up again. */
 void view_invalidate(viewer *v);
@@ -102,6 +132,26 @@ int view_buffer_to_show(viewer *v, sss_image *out);
 /* sss-view-NNNN.png, the first that does not exist in the working folder; 0 when all are taken. */
 int view_next_screenshot_name(char *buf, size_t cap);
 sss_result view_current_key(viewer *v, char **key, char **json, sss_error *err);
+/* commands.c: the panel's widgets and the script's lines, one function each; failures are returned
+ * (the panel turns them into messages, a script stops) and leave the viewer usable. */
+sss_result view_cmd_technique(viewer *v, int tech, sss_error *err);
+sss_result view_cmd_param(viewer *v, const char *name, double value, sss_error *err);
+sss_result view_cmd_material(viewer *v, int object, const char *field, const char *medium, const double *values,
+                             int value_count, sss_error *err);
+/* field: "position" (3 values), "intensity" (1: the brightest channel, the colour kept) or "colour"
+ * (3, scaled to the brightest channel, the intensity kept). */
+sss_result view_cmd_light(viewer *v, int light, const char *field, const double *values, int value_count,
+                          sss_error *err);
+sss_result view_cmd_buffer(viewer *v, int buffer, sss_error *err);
+/* what: "off", "reference" or a technique name; position in (0, 1). */
+sss_result view_cmd_split(viewer *v, const char *what, double position, sss_error *err);
+void view_cmd_errormap(viewer *v, int on);
+/* Any command but frames and screenshot (the loop runs those). */
+sss_result view_cmd_run(viewer *v, const struct view_command *c, sss_error *err);
+/* The split renderer again after the scene or size changed (no-op when there is none). */
+void view_split_refresh(viewer *v);
+/* A param the panel or script set for technique `tech` (NaN when none). */
+double view_set_param_value(const viewer *v, const char *tech, const char *name);
 /* status.c */
 void view_overlay_text(viewer *v, char *buf, size_t cap);
 void view_update_title(viewer *v);

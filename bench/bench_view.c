@@ -1,0 +1,53 @@
+/* bench_view — the cost of the viewer's panel per frame: median frame time (render, panel, swap) of
+ * `sss view --script` frames with the panel shown and hidden, alternating in one run (warm-up first),
+ * and the rebuild time of material edits (scene loader, LUTs, kernels, renderer). Needs a display
+ * (`xvfb-run -a bench_view`); without one it says so and exits 0.
+ * Usage: bench_view [scene.json] [frames] [rounds]   (defaults scenes/gl_area.json 40 3) */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "sss/view.h"
+
+static void print_message(void *user, const char *message)
+{
+    (void)user;
+    if (strstr(message, "frames:") || strstr(message, "rebuilt")) printf("  %s\n", message);
+}
+
+int main(int argc, char **argv)
+{
+    const char *scene = argc > 1 ? argv[1] : "scenes/gl_area.json";
+    int frames = argc > 2 ? atoi(argv[2]) : 40, rounds = argc > 3 ? atoi(argv[3]) : 3;
+    if (!getenv("DISPLAY") && !getenv("WAYLAND_DISPLAY")) {
+        printf("bench_view: skipped (no display; run under xvfb-run -a)\n");
+        return 0;
+    }
+    char path[] = "/tmp/bench_view_XXXXXX";
+    int fd = mkstemp(path);
+    FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
+    if (!f) {
+        fprintf(stderr, "bench_view: cannot write a temporary script\n");
+        return 1;
+    }
+    fprintf(f, "frames %d\n", frames); /* warm-up */
+    for (int r = 0; r < rounds; r++) fprintf(f, "panel on\nframes %d\npanel off\nframes %d\n", frames, frames);
+    static const double scales[] = {2.0, 0.5, 1.0};
+    for (int r = 0; r < 3; r++) fprintf(f, "material 0 scale %g\nframes 1\n", scales[r]);
+    fclose(f);
+    printf("bench_view: %s, %d frames per measurement, %d rounds (panel shown / hidden)\n", scene, frames, rounds);
+    sss_view_desc d;
+    memset(&d, 0, sizeof d);
+    d.scene_path = scene;
+    d.script = path;
+    d.log = print_message;
+    sss_error err = {0};
+    sss_result res = sss_view_run(&d, &err);
+    unlink(path);
+    if (res != SSS_OK) {
+        fprintf(stderr, "bench_view: %s\n", err.message);
+        return 1;
+    }
+    return 0;
+}
