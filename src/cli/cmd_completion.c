@@ -49,7 +49,7 @@ static void print_values(cli_arg kind, const char *choices)
     switch (kind) {
     case CLI_ARG_FILE: printf("_sss_files"); break;
     case CLI_ARG_DIR: printf("_sss_dirs"); break;
-    case CLI_ARG_TECHNIQUE: printf("_sss_words \"$_sss_techniques\""); break;
+    case CLI_ARG_TECHNIQUE: printf("_sss_list \"$_sss_techniques\""); break;
     case CLI_ARG_MEDIUM: printf("_sss_words \"$_sss_media\""); break;
     default: printf("COMPREPLY=()"); break;
     }
@@ -86,6 +86,11 @@ static void print_bash(void)
     for (size_t k = 0; k < sss_measured_medium_count(); k++) printf("%s%s", k ? " " : "", sss_measured_medium_at(k)->name);
     printf("\"\n");
     printf("_sss_words() { mapfile -t COMPREPLY < <(compgen -W \"$1\" -- \"$cur\"); }\n"
+           "_sss_list() { # the word after the last comma of a list (eval --techniques a,b)\n"
+           "    local pre=\"\" w=\"$cur\"\n"
+           "    if [[ \"$cur\" == *,* ]]; then pre=\"${cur%%,*},\"; w=\"${cur##*,}\"; fi\n"
+           "    mapfile -t COMPREPLY < <(compgen -P \"$pre\" -W \"$1\" -- \"$w\")\n"
+           "}\n"
            "_sss_files() { compopt -o filenames 2>/dev/null; mapfile -t COMPREPLY < <(compgen -f -- \"$cur\"); }\n"
            "_sss_dirs() { compopt -o filenames 2>/dev/null; mapfile -t COMPREPLY < <(compgen -d -- \"$cur\"); }\n");
     printf("_sss() {\n"

@@ -63,7 +63,6 @@ static void print_usage(FILE *f)
             "material. The file records the mesh (counts and a hash of positions and indices), n and the\n"
             "material; `sss render --technique sam` and `sss sam info` reject a file that does not match.\n"
             "\n"
-            "\n"
             "back side on a lower-tessellation mesh (Maisch & Ropinski 2017, section 4.4 and its appendix): every vertex links\n"
             "to n vertices of a coarser mesh of the same surface, whose larger reduced fans (Eq. 16) are the\n"
             "sources of Eq. 11; n links then cover more of the back side of a finely tessellated mesh, and the\n"

@@ -123,6 +123,8 @@ complete_words() { # the words of COMPREPLY for the command line "$@" (the last 
 [ "$(complete_words sss render x.json --technique maisch)" = "maisch2020" ] ||
     fail "completion of '--technique maisch': $(complete_words sss render x.json --technique maisch)"
 complete_words sss view --technique "" | grep -qx "local" || fail "completion of view --technique lacks local"
+[ "$(complete_words sss eval x.json --techniques local,mais)" = "local,maisch2020" ] ||
+    fail "completion of '--techniques local,mais': $(complete_words sss eval x.json --techniques local,mais)"
 [ "$(complete_words sss mesh sim)" = "simplify" ] || fail "completion of 'sss mesh sim': $(complete_words sss mesh sim)"
 [ "$(complete_words sss mesh simplify x.ply --tri)" = "--triangles" ] || fail "completion of mesh simplify --tri"
 [ "$(complete_words sss reference x.json --quality d)" = "draft" ] || fail "completion of --quality d"
