@@ -303,6 +303,7 @@ int cli_next(cli_parser *p)
             unknown_option(p, a);
             return CLI_BAD;
         }
+        p->given = a[1] == '-' ? o->name : o->short_name; /* as written, without "=value" */
         if (o->arg == CLI_ARG_NONE) {
             if (eq) {
                 cli_usage_error(p->spec->name, "%s takes no value", o->name);

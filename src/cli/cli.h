@@ -60,7 +60,7 @@ typedef struct cli_parser {
     char **argv;
     int next;          /* index of the next argument */
     const char *value; /* the option's value, or the operand */
-    const char *given; /* the option as written ("-o", "--width"), for messages */
+    const char *given; /* the option's name as written ("-o", "--width"; no "=value"), for messages */
     int quiet, progress; /* the common options */
     int operands_only;   /* after "--" */
 } cli_parser;

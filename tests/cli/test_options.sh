@@ -107,6 +107,7 @@ expect 0 "warning: unknown technique 'lcoal'; did you mean 'local'\?" eval "$T/b
     --frames 1 --warmup 0 --reference-dir "$T/ev/references" --cached-reference --width 24 --height 16 \
     --no-sam-sweep -o "$T/ev2"
 expect 2 "--width needs a value W" render "$T/ball.json" --width
+expect 2 "sss render: --width must be in 1\.\.16384, got 0" render "$T/ball.json" -o "$T/x.png" --width=0
 expect 2 "--animate takes no value" render "$T/ball.json" --animate=1
 [ ! -e "$T/x.png" ] || fail "a usage error wrote an output"
 
