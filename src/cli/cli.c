@@ -7,9 +7,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "core/file_util.h"
 #include "core/text.h"
+#include "sss/gl.h"
 #include "sss/scene.h"
 
 /* Every diagnostic of the tool goes through here: "sss CMD: message" (or "sss: message") with the
@@ -107,7 +109,7 @@ int cli_check_outputs(const char *cmd, const char *const *outputs, size_t output
 
 int cli_wants_help(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
+    for (int i = 1; i < argc && strcmp(argv[i], "--") != 0; i++)
         if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) return 1;
     return 0;
 }
@@ -162,6 +164,40 @@ int cli_parse_positive(const char *cmd, const char *option, const char *text, do
     return 1;
 }
 
+int cli_parse_size(const char *cmd, const char *option, const char *text, int *out)
+{
+    int v;
+    if (!cli_parse_int(cmd, option, text, &v)) return 0;
+    if (v < 1 || v > SSS_SCENE_MAX_IMAGE_SIZE) {
+        cli_usage_error(cmd, "%s must be in 1..%d, got %d", option, SSS_SCENE_MAX_IMAGE_SIZE, v);
+        return 0;
+    }
+    *out = v;
+    return 1;
+}
+
+int cli_parse_supersample(const char *cmd, const char *option, const char *text, int *out)
+{
+    int v;
+    if (!cli_parse_int(cmd, option, text, &v)) return 0;
+    if (v < 1 || v > SSS_GL_MAX_SUPERSAMPLE) {
+        cli_usage_error(cmd, "%s must be in 1..%d (the antialiasing factor per axis; 1: off), got %d", option,
+                        SSS_GL_MAX_SUPERSAMPLE, v);
+        return 0;
+    }
+    *out = v;
+    return 1;
+}
+
+int cli_scene_resize(const char *cmd, sss_scene *scene, int width, int height)
+{
+    if (width) scene->camera.width = width;
+    if (height) scene->camera.height = height;
+    sss_error err = {0};
+    if (sss_camera_basis_init(&scene->camera, &scene->basis, &err) != SSS_OK) return cli_fail(cmd, &err);
+    return CLI_EXIT_OK;
+}
+
 int cli_require_extension(const char *cmd, const char *option, const char *path, const char *ext)
 {
     char have[16];
@@ -169,16 +205,6 @@ int cli_require_extension(const char *cmd, const char *option, const char *path,
     if (strcmp(have, ext) == 0) return 1;
     cli_usage_error(cmd, "%s '%s': the file is written as .%s, so its name must end in .%s", option, path, ext, ext);
     return 0;
-}
-
-const char *cli_option_value(const char *cmd, int argc, char **argv, int *i)
-{
-    if (*i + 1 >= argc) {
-        cli_usage_error(cmd, "%s needs a value", argv[*i]);
-        return NULL;
-    }
-    *i += 1;
-    return argv[*i];
 }
 
 int cli_medium_profile_init(const char *cmd, const char *medium, double scale, double eta, const char *model,
@@ -207,4 +233,221 @@ void cli_medium_profile_free(cli_medium_profile *mp)
 {
     free(mp->table);
     mp->table = NULL;
+}
+
+/* ---- Option tables ------------------------------------------------------------------------------- */
+
+/* The options every command takes (ids below every command's own). */
+enum { COMMON_QUIET = -100, COMMON_PROGRESS, COMMON_HELP };
+static const cli_option common_options[] = {
+    {COMMON_QUIET, "--quiet", "-q", CLI_ARG_NONE, NULL, "no progress, notes or warnings on stderr (errors still)", NULL},
+    {COMMON_PROGRESS, "--progress", NULL, CLI_ARG_NONE, NULL,
+     "progress on stderr also when it is not a terminal (long commands)", NULL},
+    {COMMON_HELP, "--help", "-h", CLI_ARG_NONE, NULL, "this help", NULL},
+};
+
+void cli_parser_init(cli_parser *p, const cli_command_spec *spec, int argc, char **argv, int first)
+{
+    memset(p, 0, sizeof *p);
+    p->spec = spec;
+    p->argc = argc;
+    p->argv = argv;
+    p->next = first;
+}
+
+/* The option named by arg (its first name_len bytes), from the command's table or the common one. */
+static const cli_option *find_option(const cli_command_spec *spec, const char *arg, size_t name_len)
+{
+    for (int t = 0; t < 2; t++) {
+        const cli_option *table = t == 0 ? spec->options : common_options;
+        int n = t == 0 ? spec->option_count : CLI_COUNT(common_options);
+        for (int k = 0; k < n; k++) {
+            const char *names[2] = {table[k].name, table[k].short_name};
+            for (int j = 0; j < 2; j++)
+                if (names[j] && strlen(names[j]) == name_len && strncmp(names[j], arg, name_len) == 0)
+                    return &table[k];
+        }
+    }
+    return NULL;
+}
+
+static int unknown_option(const cli_parser *p, const char *arg)
+{
+    const char *names[256];
+    int n = 0;
+    for (int k = 0; k < p->spec->option_count && n < 250; k++) names[n++] = p->spec->options[k].name;
+    for (int k = 0; k < CLI_COUNT(common_options); k++) names[n++] = common_options[k].name;
+    char word[128];
+    snprintf(word, sizeof word, "%.*s", (int)strcspn(arg, "="), arg);
+    return cli_unknown(p->spec->name, "option", word, names, n);
+}
+
+int cli_next(cli_parser *p)
+{
+    for (;;) {
+        if (p->next >= p->argc) return CLI_DONE;
+        const char *a = p->argv[p->next++];
+        p->given = a;
+        p->value = NULL;
+        if (!p->operands_only && strcmp(a, "--") == 0) {
+            p->operands_only = 1;
+            continue;
+        }
+        if (p->operands_only || a[0] != '-' || a[1] == '\0') {
+            p->value = a;
+            return CLI_OPERAND;
+        }
+        const char *eq = strncmp(a, "--", 2) == 0 ? strchr(a, '=') : NULL;
+        const cli_option *o = find_option(p->spec, a, eq ? (size_t)(eq - a) : strlen(a));
+        if (!o) {
+            unknown_option(p, a);
+            return CLI_BAD;
+        }
+        p->given = a[1] == '-' ? o->name : o->short_name; /* as written, without "=value" */
+        if (o->arg == CLI_ARG_NONE) {
+            if (eq) {
+                cli_usage_error(p->spec->name, "%s takes no value", o->name);
+                return CLI_BAD;
+            }
+        } else if (eq) {
+            p->value = eq + 1;
+        } else if (p->next < p->argc) {
+            p->value = p->argv[p->next++];
+        } else {
+            cli_usage_error(p->spec->name, "%s needs a value%s%s", a, o->meta ? " " : "", o->meta ? o->meta : "");
+            return CLI_BAD;
+        }
+        if (o->id == COMMON_QUIET) p->quiet = 1;
+        else if (o->id == COMMON_PROGRESS) p->progress = 1;
+        else if (o->id != COMMON_HELP) return o->id;
+    }
+}
+
+int cli_show_progress(const cli_parser *p)
+{
+    return !p->quiet && (p->progress || isatty(fileno(stderr)));
+}
+
+#define HELP_COLUMN 24
+
+static void print_option(FILE *f, const cli_option *o)
+{
+    char head[128];
+    int n = snprintf(head, sizeof head, "  %s%s%s%s%s", o->short_name ? o->short_name : "", o->short_name ? ", " : "",
+                     o->name, o->meta ? " " : "", o->meta ? o->meta : "");
+    fputs(head, f);
+    const char *line = o->help;
+    if (n + 1 > HELP_COLUMN) {
+        fputc('\n', f);
+        n = 0;
+    }
+    for (int first = 1; *line; first = 0) {
+        size_t len = strcspn(line, "\n");
+        fprintf(f, "%*s%.*s\n", (first ? HELP_COLUMN - n : HELP_COLUMN), "", (int)len, line);
+        line += len;
+        if (*line == '\n') line++;
+    }
+}
+
+void cli_print_options(FILE *f, const cli_command_spec *spec)
+{
+    fprintf(f, "options:\n");
+    for (int k = 0; k < spec->option_count; k++)
+        if (spec->options[k].help) print_option(f, &spec->options[k]);
+    for (int k = 0; k < CLI_COUNT(common_options); k++) print_option(f, &common_options[k]);
+}
+
+const char *cli_suggest(const char *word, const char *const *candidates, int count)
+{
+    const char *best = NULL, *prefix_of = NULL;
+    int best_d = 1 << 30, prefixes = 0;
+    size_t len = strlen(word);
+    for (int k = 0; k < count; k++) {
+        if (!candidates[k]) continue;
+        int d = sss_text_edit_distance(word, candidates[k]);
+        if (d < best_d) {
+            best_d = d;
+            best = candidates[k];
+        }
+        if (len >= 3 && strncmp(word, candidates[k], len) == 0) {
+            prefixes++;
+            prefix_of = candidates[k];
+        }
+    }
+    /* a typo changes a few characters: up to a third of the name, at least 1, at most 3 */
+    int allowed = (int)(len / 3);
+    if (allowed < 1) allowed = 1;
+    if (allowed > 3) allowed = 3;
+    if (best && best_d <= allowed) return best;
+    return prefixes == 1 ? prefix_of : NULL;
+}
+
+int cli_unknown(const char *cmd, const char *what, const char *word, const char *const *candidates, int count)
+{
+    const char *s = cli_suggest(word, candidates, count);
+    if (s) return cli_usage_error(cmd, "unknown %s '%s'; did you mean '%s'?", what, word, s);
+    return cli_usage_error(cmd, "unknown %s '%s'", what, word);
+}
+
+int cli_technique_names(const char **names, int max)
+{
+    int n = 0;
+    for (int k = 0; k < sss_gl_technique_count() && n < max; k++) names[n++] = sss_gl_technique_at(k)->name;
+    return n;
+}
+
+int cli_check_technique(const char *cmd, const char *name)
+{
+    if (sss_gl_technique_find(name)) return CLI_EXIT_OK;
+    const char *names[64];
+    int n = cli_technique_names(names, 64);
+    char known[1024] = "";
+    for (int k = 0; k < n; k++) {
+        size_t used = strlen(known);
+        snprintf(known + used, sizeof known - used, "%s%s", k ? ", " : "", names[k]);
+    }
+    const char *s = cli_suggest(name, names, n);
+    if (s) return cli_failf(cmd, "unknown technique '%s'; did you mean '%s'? (known: %s)", name, s, known);
+    return cli_failf(cmd, "unknown technique '%s' (known: %s)", name, known);
+}
+
+void cli_progress_init(cli_progress *pr, const cli_parser *p)
+{
+    memset(pr, 0, sizeof *pr);
+    pr->active = cli_show_progress(p);
+    pr->tty = isatty(fileno(stderr));
+    pr->last_percent = -1;
+    pr->start = sss_time_seconds();
+}
+
+void cli_progress_update(cli_progress *pr, double fraction, const char *stage)
+{
+    if (!pr->active) return;
+    int percent = (int)floor(100.0 * fraction);
+    if (pr->tty) {
+        double elapsed = sss_time_seconds() - pr->start;
+        char eta[32] = "--:--";
+        if (fraction > 0.02) {
+            int s = (int)(elapsed * (1.0 - fraction) / fraction + 0.5);
+            snprintf(eta, sizeof eta, "%d:%02d", s / 60, s % 60);
+        }
+        char bar[31];
+        int filled = (int)(30.0 * fraction);
+        for (int i = 0; i < 30; i++) bar[i] = i < filled ? '#' : '.';
+        bar[30] = '\0';
+        char shown[SSS_TEXT_ESCAPE_MAX * 32 + 1]; /* stages may name files: escaped like every message */
+        sss_text_escape(stage ? stage : "", stage ? strnlen(stage, 32) : 0, shown);
+        fprintf(stderr, "\r[%s] %3d%%  ETA %s  %-16s", bar, percent, eta, shown);
+        fflush(stderr);
+        pr->drawn = 1;
+    } else if (percent / 10 > pr->last_percent / 10 || (percent == 100 && pr->last_percent < 100)) {
+        fprintf(stderr, "%d%%\n", percent - percent % 10);
+    }
+    if (percent > pr->last_percent) pr->last_percent = percent;
+}
+
+void cli_progress_end(cli_progress *pr)
+{
+    if (pr->active && pr->tty && pr->drawn) fputc('\n', stderr);
+    pr->drawn = 0;
 }

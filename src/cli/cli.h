@@ -3,10 +3,112 @@
 #ifndef SSS_CLI_H
 #define SSS_CLI_H
 
+#include <stdio.h>
+
 #include "sss/common.h"
 #include "sss/profile.h"
 
 enum { CLI_EXIT_OK = 0, CLI_EXIT_ERROR = 1, CLI_EXIT_USAGE = 2 };
+
+/* ---- Option tables -------------------------------------------------------------------------------
+ * Every command declares its options in a table (cli_option) inside a cli_command_spec: the parser
+ * (cli_next), the options part of --help (cli_print_options), the "did you mean" of unknown options
+ * and `sss completion bash` all read the same tables. -q/--quiet, --progress and -h/--help are
+ * common to every command and handled by the parser. */
+
+/* What an option's value is: the parser only takes it; the command parses numbers and checks ranges
+ * (its messages name its limits). The kind picks what completion offers. */
+typedef enum cli_arg {
+    CLI_ARG_NONE,      /* a flag without a value */
+    CLI_ARG_TEXT,      /* text; with choices, one of them */
+    CLI_ARG_NUMBER,    /* an integer or a number */
+    CLI_ARG_FILE,      /* a path */
+    CLI_ARG_DIR,       /* a folder */
+    CLI_ARG_TECHNIQUE, /* a real-time technique's name (`sss techniques`) */
+    CLI_ARG_MEDIUM     /* a measured medium's name */
+} cli_arg;
+
+typedef struct cli_option {
+    int id;                 /* what cli_next returns; aliases share the id of the option they stand for */
+    const char *name;       /* "--width" */
+    const char *short_name; /* "-o", or NULL */
+    cli_arg arg;
+    const char *meta;       /* the value's name in --help ("W"); NULL for flags */
+    const char *help;       /* one or more lines ('\n'); NULL hides the option from --help */
+    const char *choices;    /* values offered by completion, space-separated ("draft final"), or NULL */
+} cli_option;
+
+typedef struct cli_command_spec {
+    const char *name;       /* "render", or "mesh simplify" for a subcommand */
+    const cli_option *options;
+    int option_count;
+    cli_arg positional;     /* what the operands are, for completion (CLI_ARG_NONE: none) */
+    const char *subcommands; /* space-separated words after the command ("info simplify convert"), or NULL */
+} cli_command_spec;
+
+/* A macro's value as a string literal, for limits in help texts: CLI_STR(SSS_ETA_MAX) is "2.5". */
+#define CLI_STR_(x) #x
+#define CLI_STR(x) CLI_STR_(x)
+#define CLI_COUNT(array) ((int)(sizeof(array) / sizeof((array)[0])))
+
+/* cli_next's results besides an option's id (ids are >= 0). */
+enum { CLI_DONE = -1, CLI_OPERAND = -2, CLI_BAD = -3 };
+
+typedef struct cli_parser {
+    const cli_command_spec *spec;
+    int argc;
+    char **argv;
+    int next;          /* index of the next argument */
+    const char *value; /* the option's value, or the operand */
+    const char *given; /* the option's name as written ("-o", "--width"; no "=value"), for messages */
+    int quiet, progress; /* the common options */
+    int operands_only;   /* after "--" */
+} cli_parser;
+
+/* Starts parsing argv[first..argc-1] against spec. */
+void cli_parser_init(cli_parser *p, const cli_command_spec *spec, int argc, char **argv, int first);
+/* The next option's id (p->value holds its value, "--name=value" too), CLI_OPERAND (p->value is the
+ * operand), CLI_DONE, or CLI_BAD after printing a usage error (unknown option, with a suggestion
+ * when one is close; missing value). After "--" everything is an operand. */
+int cli_next(cli_parser *p);
+/* Whether to draw progress on stderr: never with --quiet; with --progress, or when stderr is a terminal. */
+int cli_show_progress(const cli_parser *p);
+
+/* The "options:" part of a command's --help, from its table and the common options. */
+void cli_print_options(FILE *f, const cli_command_spec *spec);
+
+/* The candidate closest to word (edit distance, or word is the start of exactly one candidate),
+ * NULL when none is close enough to be a likely typo. */
+const char *cli_suggest(const char *word, const char *const *candidates, int count);
+/* Prints the usage error "unknown WHAT 'word'" with "; did you mean 'x'?" when a candidate is close;
+ * returns CLI_EXIT_USAGE. */
+int cli_unknown(const char *cmd, const char *what, const char *word, const char *const *candidates, int count);
+/* The real-time techniques' names (at most max); returns their count. */
+int cli_technique_names(const char **names, int max);
+/* For a --technique value: CLI_EXIT_OK when it names a technique, else prints "unknown technique"
+ * with a suggestion and the known names and returns CLI_EXIT_ERROR (as the renderer's own check). */
+int cli_check_technique(const char *cmd, const char *name);
+
+/* Progress on stderr for the long commands: a bar with the time left on a terminal, else a line
+ * 'NN%' every 10% (with --progress). Inactive (every call a no-op) unless cli_show_progress. */
+typedef struct cli_progress {
+    int active, tty, last_percent, drawn;
+    double start;
+} cli_progress;
+void cli_progress_init(cli_progress *pr, const cli_parser *p);
+void cli_progress_update(cli_progress *pr, double fraction, const char *stage);
+/* Ends the bar's line (a terminal), so that what follows starts on a new line. */
+void cli_progress_end(cli_progress *pr);
+
+/* The specs of every command, for `sss completion` and the command names' suggestions (main.c). */
+typedef struct cli_command_entry {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *summary;
+    int staged; /* its outputs are written by one transaction (core/file_util.h): all or none */
+    const cli_command_spec *specs[3]; /* the command's spec, or one per subcommand (NULL-padded) */
+} cli_command_entry;
+const cli_command_entry *cli_commands(int *count);
 
 /* Subcommands: argv[0] is the subcommand's name ("profile"), options follow. */
 int sss_cmd_profile(int argc, char **argv);
@@ -22,6 +124,13 @@ int sss_cmd_eval(int argc, char **argv);
 int sss_cmd_view(int argc, char **argv);
 int sss_cmd_sam(int argc, char **argv);
 int sss_cmd_import(int argc, char **argv);
+int sss_cmd_completion(int argc, char **argv);
+
+/* The option tables of the commands (in their cmd_*.c). */
+extern const cli_command_spec cli_spec_profile, cli_spec_lut, cli_spec_kernel, cli_spec_compare, cli_spec_mesh_info,
+    cli_spec_mesh_simplify, cli_spec_mesh_convert, cli_spec_reference, cli_spec_render, cli_spec_techniques,
+    cli_spec_eval, cli_spec_view, cli_spec_export_pbrt, cli_spec_export_gltf, cli_spec_import, cli_spec_sam_build,
+    cli_spec_sam_info, cli_spec_version, cli_spec_completion;
 
 /* Prints "sss CMD: message" (cmd NULL: "sss: message") to stderr with the message's control characters
  * escaped (core/text.h): every diagnostic goes through it, since messages name files and scene
@@ -54,7 +163,7 @@ struct sss_scene;
 int cli_check_outputs(const char *cmd, const char *const *outputs, size_t output_count, const char *const *inputs,
                       size_t input_count, const struct sss_scene *scene);
 
-/* True when any argument is -h or --help. */
+/* True when any argument is -h or --help (before "--"). */
 int cli_wants_help(int argc, char **argv);
 
 /* Strict number parsing: the whole string must be a finite number (or integer). On failure they print
@@ -66,13 +175,19 @@ int cli_parse_int(const char *cmd, const char *option, const char *text, int *ou
 int cli_parse_int_in(const char *cmd, const char *option, const char *text, int min, int max, int *out);
 int cli_parse_positive(const char *cmd, const char *option, const char *text, double *out); /* finite, > 0 */
 
+/* An image width or height, 1..SSS_SCENE_MAX_IMAGE_SIZE, and a supersampling factor,
+ * 1..SSS_GL_MAX_SUPERSAMPLE (--width, --height, --supersample of every command that renders). */
+int cli_parse_size(const char *cmd, const char *option, const char *text, int *out);
+int cli_parse_supersample(const char *cmd, const char *option, const char *text, int *out);
+
+/* Gives the scene's camera the size --width/--height asked for (0: keep the camera's) and rebuilds its
+ * basis, as eval's sized views do. Prints the error as cmd's and returns CLI_EXIT_ERROR on failure. */
+struct sss_scene;
+int cli_scene_resize(const char *cmd, struct sss_scene *scene, int width, int height);
+
 /* For an output written in one format: 1 when path ends in .ext (any case), otherwise prints a usage
  * error and returns 0 (a .obj name must not receive PLY bytes). */
 int cli_require_extension(const char *cmd, const char *option, const char *path, const char *ext);
-
-/* For options with a value: returns argv[*i + 1] and advances *i, or prints a usage error and
- * returns NULL when the value is missing. */
-const char *cli_option_value(const char *cmd, int argc, char **argv, int *i);
 
 /* The profile of a measured medium, for the commands that take MEDIUM [--scale S] [--eta E]
  * [--model pbd|dipole]. */

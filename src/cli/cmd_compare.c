@@ -11,6 +11,21 @@
 
 static const char *const CMD = "compare";
 
+enum { OPT_EXPOSURE, OPT_MAP, OPT_MAP_SCALE };
+static const cli_option options[] = {
+    {OPT_EXPOSURE, "--exposure", NULL, CLI_ARG_NUMBER, "E", "stops applied to both images before the comparison (default 0)",
+     NULL},
+    {OPT_MAP, "--map", NULL, CLI_ARG_FILE, "OUT",
+     "write the per-pixel DSSIM of R, G and B (full size). OUT.png holds\n"
+     "round(255 * min(1, S * dssim)) per channel, S = --map-scale, so black is\n"
+     "identical and with S = 10 white means DSSIM >= 0.1; OUT.exr, .pfm or .hdr\n"
+     "hold the raw DSSIM values (0 = identical, up to 1)",
+     NULL},
+    {OPT_MAP, "--output", "-o", CLI_ARG_FILE, "OUT", "the same as --map", NULL},
+    {OPT_MAP_SCALE, "--map-scale", NULL, CLI_ARG_NUMBER, "S", "gain of the PNG map (default 10)", NULL},
+};
+const cli_command_spec cli_spec_compare = {"compare", options, CLI_COUNT(options), CLI_ARG_FILE, NULL};
+
 static void print_help(void)
 {
     printf("usage: sss compare A B [--exposure E] [--map OUT] [--map-scale S]\n"
@@ -26,15 +41,9 @@ static void print_help(void)
            "  flip   mean LDR-FLIP (Andersson et al. 2020) in [0, 1], A taken as the reference, viewed at\n"
            "         67 pixels per degree (a 0.7 m wide 3840-pixel monitor at 0.7 m); 0 = identical\n"
            "Images must be the same size and at least 11x11 pixels.\n"
-           "\n"
-           "options:\n"
-           "  --exposure E   stops applied to both images before the comparison (default 0)\n"
-           "  --map OUT      write the per-pixel DSSIM of R, G and B (full size). OUT.png holds\n"
-           "                 round(255 * min(1, S * dssim)) per channel, S = --map-scale, so black is\n"
-           "                 identical and with S = 10 white means DSSIM >= 0.1; OUT.exr, .pfm or .hdr\n"
-           "                 hold the raw DSSIM values (0 = identical, up to 1)\n"
-           "  --map-scale S  gain of the PNG map (default 10)\n"
-           "\n"
+           "\n");
+    cli_print_options(stdout, &cli_spec_compare);
+    printf("\n"
            "exit status: 0 done, 1 a file is missing, unreadable or malformed, or the sizes differ,\n"
            "2 usage error\n");
 }
@@ -81,23 +90,22 @@ int sss_cmd_compare(int argc, char **argv)
     const char *files[2] = {NULL, NULL}, *map_path = NULL;
     int nfiles = 0;
     double exposure = 0.0, map_scale = 10.0;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (strcmp(a, "--exposure") == 0) {
-            const char *v = cli_option_value(CMD, argc, argv, &i);
-            if (!v || !cli_parse_double(CMD, "--exposure", v, &exposure)) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--map") == 0) {
-            map_path = cli_option_value(CMD, argc, argv, &i);
-            if (!map_path) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--map-scale") == 0) {
-            const char *v = cli_option_value(CMD, argc, argv, &i);
-            if (!v || !cli_parse_double(CMD, "--map-scale", v, &map_scale)) return CLI_EXIT_USAGE;
+    cli_parser args;
+    cli_parser_init(&args, &cli_spec_compare, argc, argv, 1);
+    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
+        const char *v = args.value;
+        if (o == CLI_BAD) {
+            return CLI_EXIT_USAGE;
+        } else if (o == OPT_EXPOSURE) {
+            if (!cli_parse_double(CMD, "--exposure", v, &exposure)) return CLI_EXIT_USAGE;
+        } else if (o == OPT_MAP) {
+            map_path = v;
+        } else if (o == OPT_MAP_SCALE) {
+            if (!cli_parse_double(CMD, "--map-scale", v, &map_scale)) return CLI_EXIT_USAGE;
             if (map_scale <= 0.0) return cli_usage_error(CMD, "--map-scale must be positive, got '%s'", v);
-        } else if (a[0] == '-' && a[1] != '\0') {
-            return cli_usage_error(CMD, "unknown option '%s'", a);
-        } else {
-            if (nfiles == 2) return cli_usage_error(CMD, "expects two images, got a third: '%s'", a);
-            files[nfiles++] = a;
+        } else { /* CLI_OPERAND */
+            if (nfiles == 2) return cli_usage_error(CMD, "expects two images, got a third: '%s'", v);
+            files[nfiles++] = v;
         }
     }
     if (nfiles != 2) return cli_usage_error(CMD, "expects two images A and B");
@@ -121,8 +129,10 @@ int sss_cmd_compare(int argc, char **argv)
             status = cli_fail(CMD, &err);
             goto done;
         }
-    warn_nonfinite(files[0], &img[0]);
-    warn_nonfinite(files[1], &img[1]);
+    if (!args.quiet) {
+        warn_nonfinite(files[0], &img[0]);
+        warn_nonfinite(files[1], &img[1]);
+    }
     sss_image_metrics m;
     if (sss_image_compare(&img[0], &img[1], exposure, &m, map_path ? &map : NULL, &err) != SSS_OK) {
         const char *msg = strncmp(err.message, "compare: ", 9) == 0 ? err.message + 9 : err.message;

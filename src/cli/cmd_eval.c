@@ -11,19 +11,70 @@
 #include "cli/cli.h"
 #include "core/text.h"
 #include "sss/eval.h"
+#include "sss/gl.h"
 
 #define CMD "eval"
 #define MAX_LIST 256
+
+enum {
+    OPT_OUT, OPT_TECHNIQUES, OPT_RESOLUTIONS, OPT_TIMING_RESOLUTIONS, OPT_WIDTH, OPT_HEIGHT, OPT_FRAMES, OPT_WARMUP,
+    OPT_SUPERSAMPLE, OPT_CACHED_REFERENCE, OPT_REFERENCE_DIR, OPT_REFERENCE_QUALITY, OPT_REFERENCE_BOUNCES, OPT_THREADS,
+    OPT_SAM_SWEEP, OPT_NO_SAM_SWEEP, OPT_SAM_COUNTS
+};
+static const cli_option options[] = {
+    {OPT_OUT, "--out", "-o", CLI_ARG_DIR, "DIR", "output folder (default out/eval)", NULL},
+    {OPT_OUT, "--output", NULL, CLI_ARG_DIR, "DIR", "the same as --out", NULL},
+    {OPT_TECHNIQUES, "--techniques", NULL, CLI_ARG_TECHNIQUE, "LIST",
+     "comma-separated specs NAME or NAME:param=value[:param=value]\n"
+     "(default: every technique of `sss techniques`); supersample=K in a\n"
+     "spec sets that spec's antialiasing (maisch2020,maisch2020:supersample=2)",
+     NULL},
+    {OPT_RESOLUTIONS, "--resolutions", NULL, CLI_ARG_TEXT, "LIST",
+     "sizes compared with the reference, WxH,... (default: the camera's);\n"
+     "the first one is used for the sheets",
+     NULL},
+    {OPT_WIDTH, "--width", NULL, CLI_ARG_NUMBER, "W", "with --height: one size WxH for every scene (--resolutions WxH)", NULL},
+    {OPT_HEIGHT, "--height", NULL, CLI_ARG_NUMBER, "H", "with --width", NULL},
+    {OPT_TIMING_RESOLUTIONS, "--timing-resolutions", NULL, CLI_ARG_TEXT, "LIST",
+     "extra sizes where only frame times are measured", NULL},
+    {OPT_FRAMES, "--frames", NULL, CLI_ARG_NUMBER, "N", "timed frames per technique; timings are medians (default 5)", NULL},
+    {OPT_WARMUP, "--warmup", NULL, CLI_ARG_NUMBER, "W", "frames rendered first and not timed (default 2)", NULL},
+    {OPT_SUPERSAMPLE, "--supersample", NULL, CLI_ARG_NUMBER, "K",
+     "antialiasing of every technique (`sss render --supersample`): passes at\n"
+     "K x the size, box-filtered down; K in 1..4 (default 1: off)",
+     NULL},
+    {OPT_CACHED_REFERENCE, "--cached-reference", NULL, CLI_ARG_NONE, NULL,
+     "use <scene folder>/references/<scene>_<W>x<H>[_t<T>].exr when it exists\n"
+     "(and its .json sidecar matches the scene file), else render it",
+     NULL},
+    {OPT_REFERENCE_DIR, "--reference-dir", NULL, CLI_ARG_DIR, "DIR", "where cached references are looked up instead", NULL},
+    {OPT_REFERENCE_QUALITY, "--reference-quality", NULL, CLI_ARG_TEXT, "Q",
+     "final (default) or draft, for references that are rendered", "draft final"},
+    {OPT_REFERENCE_BOUNCES, "--reference-bounces", NULL, CLI_ARG_NUMBER, "N",
+     "the truth: 1 = the single-event integral (`sss reference --bounces 1`,\n"
+     "what techniques that model one event converge to), N = N bounces;\n"
+     "default: the full transport (bounces until converged)",
+     NULL},
+    {OPT_THREADS, "--threads", NULL, CLI_ARG_NUMBER, "N", "threads of the reference renderer (default: all cores)", NULL},
+    {OPT_THREADS, "--reference-threads", NULL, CLI_ARG_NUMBER, "N", NULL, NULL}, /* the old spelling, still accepted */
+    {OPT_SAM_SWEEP, "--sam-sweep", NULL, CLI_ARG_NONE, NULL,
+     "RMSE of `sam` against back-side samples n (Maisch & Ropinski 2017, Fig. 10)\n"
+     "even when sam is not among the techniques",
+     NULL},
+    {OPT_NO_SAM_SWEEP, "--no-sam-sweep", NULL, CLI_ARG_NONE, NULL, "never the sam sweep", NULL},
+    {OPT_SAM_COUNTS, "--sam-counts", NULL, CLI_ARG_TEXT, "LIST", "the sample counts of the sweep (default 3,10,20,50)", NULL},
+};
+const cli_command_spec cli_spec_eval = {CMD, options, CLI_COUNT(options), CLI_ARG_FILE, NULL};
 
 static void print_usage(FILE *f)
 {
     fprintf(f,
             "usage: sss eval SCENE.json[@T]... [--out DIR] [--techniques A,B:param=value,...]\n"
-            "                [--resolutions WxH,...] [--timing-resolutions WxH,...] [--frames N] [--warmup W]\n"
-            "                [--cached-reference] [--reference-dir DIR] [--reference-quality draft|final]\n"
-            "                [--reference-bounces N]\n"
-            "                [--reference-threads N] [--sam-sweep | --no-sam-sweep] [--sam-counts 3,10,20,50]\n"
-            "                [--supersample K] [--quiet]\n"
+            "                [--resolutions WxH,... | --width W --height H] [--timing-resolutions WxH,...]\n"
+            "                [--frames N] [--warmup W] [--cached-reference] [--reference-dir DIR]\n"
+            "                [--reference-quality draft|final] [--reference-bounces N] [--threads N]\n"
+            "                [--sam-sweep | --no-sam-sweep] [--sam-counts 3,10,20,50] [--supersample K]\n"
+            "                [--quiet | --progress]\n"
             "\n"
             "Renders every technique and the CPU reference for each scene, compares them (DSSIM, FLIP, PSNR,\n"
             "RMSE on the tone-mapped 8-bit images), times every pass (median of N frames) and writes to DIR:\n"
@@ -31,40 +82,21 @@ static void print_usage(FILE *f)
             "techniques, their DSSIM and FLIP maps and zoomed crops), plot_dssim.png, plot_passes.png, plot_sam_rmse.png,\n"
             "plot_resolution.png, and report.html (self-contained). A technique that fails is reported as\n"
             "failed with its error, not dropped. A summary table goes to stdout.\n"
+            "SCENE.json@T evaluates an animated scene at time T seconds (default 0).\n"
+            "\n");
+    cli_print_options(f, &cli_spec_eval);
+    fprintf(f,
             "\n"
-            "options:\n"
-            "  SCENE.json@T          evaluate an animated scene at time T seconds (default 0)\n"
-            "  --out DIR             output folder (default out/eval)\n"
-            "  --techniques LIST     comma-separated specs NAME or NAME:param=value[:param=value]\n"
-            "                        (default: every technique of `sss techniques`); supersample=K in a\n"
-            "                        spec sets that spec's antialiasing (maisch2020,maisch2020:supersample=2)\n"
-            "  --resolutions LIST    sizes compared with the reference, WxH,... (default: the camera's);\n"
-            "                        the first one is used for the sheets\n"
-            "  --timing-resolutions LIST  extra sizes where only frame times are measured\n"
-            "  --frames N            timed frames per technique; timings are medians (default 5)\n"
-            "  --warmup W            frames rendered first and not timed (default 2)\n"
-            "  --supersample K       antialiasing of every technique (`sss render --supersample`): passes at\n"
-            "                        K x the size, box-filtered down; K in 1..4 (default 1: off)\n"
-            "  --cached-reference    use <scene folder>/references/<scene>_<W>x<H>[_t<T>].exr when it exists\n"
-            "                        (and its .json sidecar matches the scene file), else render it\n"
-            "  --reference-dir DIR   where cached references are looked up instead\n"
-            "  --reference-quality Q final (default) or draft, for references that are rendered\n"
-            "  --reference-bounces N the truth: 1 = the single-event integral (`sss reference --bounces 1`,\n"
-            "                        what techniques that model one event converge to), N = N bounces;\n"
-            "                        default: the full transport (bounces until converged)\n"
-            "  --reference-threads N threads of the reference renderer (default: all cores)\n"
-            "  --sam-sweep           RMSE of `sam` against back-side samples n (Maisch & Ropinski 2017, Fig. 10) even when\n"
-            "                        sam is not among the techniques; --no-sam-sweep never\n"
-            "  --sam-counts LIST     the sample counts of the sweep (default 3,10,20,50)\n"
-            "  --quiet               no progress or notes on stderr\n"
-            "\n"
+            "--reference-threads, the old spelling of --threads, is still accepted.\n"
+            "Progress goes to stderr when it is a terminal (a bar with the time left) or with --progress\n"
+            "(otherwise a line per stage); notes too, unless --quiet.\n"
             "References rendered during the run are saved to DIR/references/ (half-float EXR + .json\n"
             "sidecar) so that they can be committed next to the scene.\n"
             "Exit status: 0 results written (also when techniques failed), 1 error, 2 usage error.\n");
 }
 
 typedef struct progress_state {
-    int tty, quiet;
+    int tty, quiet, show; /* show: the progress (cli_show_progress); quiet: no notes either */
     double start;
     char last[256];
     int bar_shown;
@@ -86,7 +118,7 @@ static void major_stage(const char *stage, char *out, size_t cap)
 static void on_progress(void *user, double fraction, const char *stage)
 {
     progress_state *p = user;
-    if (p->quiet) return;
+    if (!p->show) return;
     if (p->tty) {
         double elapsed = sss_time_seconds() - p->start;
         char eta[32] = "--:--";
@@ -128,6 +160,17 @@ static void on_note(void *user, const char *msg)
     if (p->quiet) return;
     if (p->tty && p->bar_shown) fputs("\r\033[K", stderr);
     cli_message(CMD, "%s", msg);
+}
+
+/* A spec whose technique is unknown runs (and fails, in the results); a likely typo gets a warning. */
+static void warn_unknown_technique(const char *spec)
+{
+    char name[64];
+    snprintf(name, sizeof name, "%.*s", (int)strcspn(spec, ":"), spec);
+    if (sss_gl_technique_find(name)) return;
+    const char *names[64];
+    const char *s = cli_suggest(name, names, cli_technique_names(names, 64));
+    if (s) cli_message(CMD, "warning: unknown technique '%s'; did you mean '%s'?", name, s);
 }
 
 /* Splits a comma-separated list in place. */
@@ -196,19 +239,22 @@ int sss_cmd_eval(int argc, char **argv)
     int nscenes = 0, quiet = 0, status = CLI_EXIT_USAGE;
     sss_eval_desc desc;
     memset(&desc, 0, sizeof desc);
-    sss_eval_size *sizes = NULL, *tsizes = NULL;
+    sss_eval_size *sizes = NULL, *tsizes = NULL, one_size = {0};
     int sam_counts[64];
     char save_dir[2048];
     sss_eval_results res;
     memset(&res, 0, sizeof res);
     if (!scenes) return cli_failf(CMD, "out of memory");
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v;
+    cli_parser args;
+    cli_parser_init(&args, &cli_spec_eval, argc, argv, 1);
+    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
+        const char *a = args.given, *v = args.value;
         sss_error perr = {0};
-        if (strcmp(a, "--out") == 0 || strcmp(a, "-o") == 0) {
-            if (!(out_dir = cli_option_value(CMD, argc, argv, &i))) goto done;
-        } else if (strcmp(a, "--techniques") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i))) goto done;
+        if (o == CLI_BAD) {
+            goto done;
+        } else if (o == OPT_OUT) {
+            out_dir = v;
+        } else if (o == OPT_TECHNIQUES) {
             free(tech_text);
             tech_text = strdup(v);
             if (!tech_text) {
@@ -220,16 +266,16 @@ int sss_cmd_eval(int argc, char **argv)
                 cli_usage_error(CMD, "--techniques needs a comma-separated list (at most %d)", MAX_LIST);
                 goto done;
             }
-            for (int k = 0; k < n; k++)
+            for (int k = 0; k < n; k++) {
                 if (sss_eval_check_spec(techs[k], &perr) != SSS_OK) {
                     cli_usage_error(CMD, "--techniques: %s", perr.message);
                     goto done;
                 }
+            }
             desc.techniques = (const char *const *)techs;
             desc.technique_count = n;
-        } else if (strcmp(a, "--resolutions") == 0 || strcmp(a, "--timing-resolutions") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i))) goto done;
-            int timing = a[2] == 't';
+        } else if (o == OPT_RESOLUTIONS || o == OPT_TIMING_RESOLUTIONS) {
+            int timing = o == OPT_TIMING_RESOLUTIONS;
             sss_eval_size **dst = timing ? &tsizes : &sizes;
             free(*dst);
             int n = 0;
@@ -243,59 +289,52 @@ int sss_cmd_eval(int argc, char **argv)
             }
             if (timing) desc.timing_resolution_count = n;
             else desc.resolution_count = n;
-        } else if (strcmp(a, "--frames") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &desc.frames)) goto done;
+        } else if (o == OPT_WIDTH || o == OPT_HEIGHT) {
+            if (!cli_parse_size(CMD, a, v, o == OPT_WIDTH ? &one_size.width : &one_size.height)) goto done;
+        } else if (o == OPT_FRAMES) {
+            if (!cli_parse_int(CMD, a, v, &desc.frames)) goto done;
             if (desc.frames < 1 || desc.frames > 10000) {
                 cli_usage_error(CMD, "--frames must be in 1..10000");
                 goto done;
             }
-        } else if (strcmp(a, "--warmup") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &desc.warmup_frames)) goto done;
+        } else if (o == OPT_WARMUP) {
+            if (!cli_parse_int(CMD, a, v, &desc.warmup_frames)) goto done;
             if (desc.warmup_frames < 0 || desc.warmup_frames > 10000) {
                 cli_usage_error(CMD, "--warmup must be in 0..10000");
                 goto done;
             }
             if (desc.warmup_frames == 0) desc.warmup_frames = -1; /* the library's "none" */
-        } else if (strcmp(a, "--supersample") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &desc.supersample)) goto done;
-            if (desc.supersample < 1 || desc.supersample > SSS_GL_MAX_SUPERSAMPLE) {
-                cli_usage_error(CMD, "--supersample must be in 1..%d (the antialiasing factor per axis; 1: off), got %d",
-                                SSS_GL_MAX_SUPERSAMPLE, desc.supersample);
-                goto done;
-            }
-        } else if (strcmp(a, "--cached-reference") == 0) {
+        } else if (o == OPT_SUPERSAMPLE) {
+            if (!cli_parse_supersample(CMD, a, v, &desc.supersample)) goto done;
+        } else if (o == OPT_CACHED_REFERENCE) {
             desc.cached_reference = 1;
-        } else if (strcmp(a, "--reference-dir") == 0) {
-            if (!(desc.reference_dir = cli_option_value(CMD, argc, argv, &i))) goto done;
-        } else if (strcmp(a, "--reference-quality") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i))) goto done;
+        } else if (o == OPT_REFERENCE_DIR) {
+            desc.reference_dir = v;
+        } else if (o == OPT_REFERENCE_QUALITY) {
             if (strcmp(v, "final") == 0) desc.reference_quality = SSS_REFERENCE_FINAL;
             else if (strcmp(v, "draft") == 0) desc.reference_quality = SSS_REFERENCE_DRAFT;
             else {
                 cli_usage_error(CMD, "--reference-quality must be draft or final, got '%s'", v);
                 goto done;
             }
-        } else if (strcmp(a, "--reference-bounces") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &desc.reference_bounces))
-                goto done;
+        } else if (o == OPT_REFERENCE_BOUNCES) {
+            if (!cli_parse_int(CMD, a, v, &desc.reference_bounces)) goto done;
             if (desc.reference_bounces < 1 || desc.reference_bounces > SSS_REFERENCE_MAX_BOUNCES) {
                 cli_usage_error(CMD, "--reference-bounces must be in 1..%d, got %d", SSS_REFERENCE_MAX_BOUNCES,
                                 desc.reference_bounces);
                 goto done;
             }
-        } else if (strcmp(a, "--reference-threads") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &desc.reference_threads))
-                goto done;
+        } else if (o == OPT_THREADS) {
+            if (!cli_parse_int(CMD, a, v, &desc.reference_threads)) goto done;
             if (desc.reference_threads < 1 || desc.reference_threads > 4096) {
-                cli_usage_error(CMD, "--reference-threads must be in 1..4096");
+                cli_usage_error(CMD, "%s must be in 1..4096", a);
                 goto done;
             }
-        } else if (strcmp(a, "--sam-sweep") == 0) {
+        } else if (o == OPT_SAM_SWEEP) {
             desc.sam_sweep = 1;
-        } else if (strcmp(a, "--no-sam-sweep") == 0) {
+        } else if (o == OPT_NO_SAM_SWEEP) {
             desc.sam_sweep = -1;
-        } else if (strcmp(a, "--sam-counts") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i))) goto done;
+        } else if (o == OPT_SAM_COUNTS) {
             char buf[512];
             snprintf(buf, sizeof buf, "%s", v);
             char *items[64];
@@ -313,13 +352,28 @@ int sss_cmd_eval(int argc, char **argv)
             }
             desc.sam_counts = sam_counts;
             desc.sam_count_count = n;
-        } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
-            quiet = 1;
-        } else if (a[0] == '-' && a[1]) {
-            cli_usage_error(CMD, "unknown option '%s'", a);
+        } else { /* CLI_OPERAND */
+            scenes[nscenes++] = v;
+        }
+    }
+    quiet = args.quiet;
+    for (int k = 0; k < desc.technique_count && !quiet; k++) /* run and reported as failed, not refused */
+        warn_unknown_technique(techs[k]);
+    if ((one_size.width > 0) != (one_size.height > 0)) {
+        cli_usage_error(CMD, "--width and --height go together (one size for every scene)");
+        goto done;
+    }
+    if (one_size.width > 0) {
+        if (sizes) {
+            cli_usage_error(CMD, "--width/--height and --resolutions exclude each other");
             goto done;
-        } else {
-            scenes[nscenes++] = a;
+        }
+        char text[64];
+        snprintf(text, sizeof text, "%dx%d", one_size.width, one_size.height);
+        sss_error perr = {0};
+        if (sss_eval_parse_sizes(text, &sizes, &desc.resolution_count, &perr) != SSS_OK) {
+            cli_usage_error(CMD, "--width/--height: %s", perr.message);
+            goto done;
         }
     }
     if (nscenes == 0) {
@@ -335,11 +389,12 @@ int sss_cmd_eval(int argc, char **argv)
     memset(&ps, 0, sizeof ps);
     ps.tty = isatty(fileno(stderr));
     ps.quiet = quiet;
+    ps.show = cli_show_progress(&args);
     ps.start = sss_time_seconds();
     sss_eval_callbacks cb = {on_progress, on_note, &ps};
     sss_error err = {0};
     sss_result r = sss_eval_run(scenes, nscenes, &desc, &cb, &res, &err);
-    if (!quiet && ps.tty && ps.bar_shown) fputc('\n', stderr);
+    if (ps.tty && ps.bar_shown) fputc('\n', stderr);
     if (r != SSS_OK) {
         status = cli_fail(CMD, &err);
         goto done;

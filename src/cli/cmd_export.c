@@ -1,14 +1,32 @@
-/* sss export pbrt SCENE.json -o OUT.pbrt [--time T] [--spp N] [--maxdepth N]
- * sss export gltf SCENE.json -o OUT.glb [--time T] */
+/* sss export pbrt SCENE.json -o OUT.pbrt [--time T] [--width W] [--height H] [--spp N] [--maxdepth N]
+ * sss export gltf SCENE.json -o OUT.glb [--time T] [--width W] [--height H] */
 #include <stdio.h>
 #include <string.h>
 
 #include "cli/cli.h"
 #include "sss/export.h"
 
+enum { OPT_OUTPUT, OPT_TIME, OPT_WIDTH, OPT_HEIGHT, OPT_SPP, OPT_MAXDEPTH };
+#define EXPORT_OPTIONS(what)                                                                                         \
+    {OPT_OUTPUT, "--output", "-o", CLI_ARG_FILE, "FILE", "the " what " file to write (required)", NULL},              \
+        {OPT_TIME, "--time", NULL, CLI_ARG_NUMBER, "T", "pose of animated objects, seconds (default 0)", NULL},      \
+        {OPT_WIDTH, "--width", NULL, CLI_ARG_NUMBER, "W", "image width of the exported camera (default: the scene's)", \
+         NULL},                                                                                                      \
+        {OPT_HEIGHT, "--height", NULL, CLI_ARG_NUMBER, "H", "image height (default: the scene's)", NULL}
+static const cli_option pbrt_options[] = {
+    EXPORT_OPTIONS(".pbrt"),
+    {OPT_SPP, "--spp", NULL, CLI_ARG_NUMBER, "N", "PBRT's pixel samples (default 256)", NULL},
+    {OPT_MAXDEPTH, "--maxdepth", NULL, CLI_ARG_NUMBER, "N",
+     "the path integrator's maxdepth, 1.." CLI_STR(SSS_EXPORT_PBRT_MAXDEPTH_MAX) " (default 16)", NULL},
+};
+static const cli_option gltf_options[] = {EXPORT_OPTIONS(".glb")};
+const cli_command_spec cli_spec_export_pbrt = {"export pbrt", pbrt_options, CLI_COUNT(pbrt_options), CLI_ARG_FILE,
+                                               "pbrt gltf"};
+const cli_command_spec cli_spec_export_gltf = {"export gltf", gltf_options, CLI_COUNT(gltf_options), CLI_ARG_FILE, NULL};
+
 static const char usage[] =
-    "usage: sss export pbrt SCENE.json -o OUT.pbrt [--time T] [--spp N] [--maxdepth N]\n"
-    "       sss export gltf SCENE.json -o OUT.glb [--time T]\n"
+    "usage: sss export pbrt SCENE.json -o OUT.pbrt [--time T] [--width W] [--height H] [--spp N] [--maxdepth N]\n"
+    "       sss export gltf SCENE.json -o OUT.glb [--time T] [--width W] [--height H]\n"
     "\n"
     "Writes the scene for PBRT-v3: OUT.pbrt plus one binary PLY per object beside it\n"
     "(OUT_objN.ply, world space, posed at --time). Materials map to PBRT's subsurface\n"
@@ -24,49 +42,54 @@ static const char usage[] =
     "gltf writes one binary glTF 2.0 file (docs/gltf.md): world-space meshes, subsurface materials\n"
     "as KHR_materials_volume + KHR_materials_volume_scatter (+ ior, diffuse transmission), the\n"
     "camera and KHR_lights_punctual lights; `sss import` reads it back.\n"
-    "\n"
-    "  -o FILE      the .pbrt file to write (required)\n"
-    "  --time T     pose of animated objects, seconds (default 0)\n"
-    "  --spp N      PBRT's pixel samples (default 256)\n"
-    "  --maxdepth N the path integrator's maxdepth, 1..1024 (default 16)\n";
+    "--width and --height set the exported camera's image size (pbrt: the film; gltf: the aspect ratio).\n"
+    "\n";
 
 int sss_cmd_export(int argc, char **argv)
 {
     const char *cmd = "export";
     if (cli_wants_help(argc, argv)) {
         fputs(usage, stdout);
+        cli_print_options(stdout, &cli_spec_export_pbrt);
         return CLI_EXIT_OK;
     }
     if (argc < 2) return cli_usage_error(cmd, "missing the format (pbrt or gltf)");
     int gltf = strcmp(argv[1], "gltf") == 0;
-    if (!gltf && strcmp(argv[1], "pbrt") != 0)
-        return cli_usage_error(cmd, "unknown format '%s' (known: pbrt, gltf)", argv[1]);
+    if (!gltf && strcmp(argv[1], "pbrt") != 0) {
+        const char *formats[] = {"pbrt", "gltf"};
+        return cli_unknown(cmd, "format", argv[1], formats, 2);
+    }
 
     const char *scene_path = NULL, *out = NULL;
     sss_export_pbrt_desc desc = {0};
-    for (int i = 2; i < argc; i++) {
-        const char *a = argv[i];
-        if (strcmp(a, "-o") == 0) {
-            if (!(out = cli_option_value(cmd, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--time") == 0) {
-            const char *v = cli_option_value(cmd, argc, argv, &i);
-            if (!v || !cli_parse_double(cmd, "--time", v, &desc.time)) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--spp") == 0 && !gltf) {
-            const char *v = cli_option_value(cmd, argc, argv, &i);
-            if (!v || !cli_parse_int(cmd, "--spp", v, &desc.pixel_samples)) return CLI_EXIT_USAGE;
+    int width = 0, height = 0;
+    cli_parser args;
+    cli_parser_init(&args, gltf ? &cli_spec_export_gltf : &cli_spec_export_pbrt, argc, argv, 2);
+    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
+        const char *a = args.given, *v = args.value;
+        switch (o) {
+        case CLI_BAD: return CLI_EXIT_USAGE;
+        case OPT_OUTPUT: out = v; break;
+        case OPT_TIME:
+            if (!cli_parse_double(cmd, "--time", v, &desc.time)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_WIDTH:
+        case OPT_HEIGHT:
+            if (!cli_parse_size(cmd, a, v, o == OPT_WIDTH ? &width : &height)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_SPP:
+            if (!cli_parse_int(cmd, "--spp", v, &desc.pixel_samples)) return CLI_EXIT_USAGE;
             if (desc.pixel_samples < 1) return cli_usage_error(cmd, "--spp must be at least 1");
-        } else if (strcmp(a, "--maxdepth") == 0 && !gltf) {
-            const char *v = cli_option_value(cmd, argc, argv, &i);
-            if (!v || !cli_parse_int(cmd, "--maxdepth", v, &desc.maxdepth)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_MAXDEPTH:
+            if (!cli_parse_int(cmd, "--maxdepth", v, &desc.maxdepth)) return CLI_EXIT_USAGE;
             if (desc.maxdepth < 1 || desc.maxdepth > SSS_EXPORT_PBRT_MAXDEPTH_MAX)
                 return cli_usage_error(cmd, "--maxdepth must be in 1..%d, got %d", SSS_EXPORT_PBRT_MAXDEPTH_MAX,
                                        desc.maxdepth);
-        } else if (a[0] == '-' && a[1] != '\0') {
-            return cli_usage_error(cmd, "unknown option '%s'", a);
-        } else if (!scene_path) {
-            scene_path = a;
-        } else {
-            return cli_usage_error(cmd, "unexpected argument '%s'", a);
+            break;
+        default: /* CLI_OPERAND */
+            if (scene_path) return cli_usage_error(cmd, "unexpected argument '%s'", v);
+            scene_path = v;
         }
     }
     if (!scene_path) return cli_usage_error(cmd, "missing the scene file");
@@ -75,7 +98,8 @@ int sss_cmd_export(int argc, char **argv)
     sss_scene scene = {0};
     sss_error err = {0};
     if (sss_scene_load(scene_path, NULL, &scene, &err) != SSS_OK) return cli_fail(cmd, &err);
-    if (cli_check_outputs(cmd, &out, 1, NULL, 0, &scene) != CLI_EXIT_OK) {
+    if (cli_scene_resize(cmd, &scene, width, height) != CLI_EXIT_OK ||
+        cli_check_outputs(cmd, &out, 1, NULL, 0, &scene) != CLI_EXIT_OK) {
         sss_scene_free(&scene);
         return CLI_EXIT_ERROR;
     }
@@ -83,7 +107,7 @@ int sss_cmd_export(int argc, char **argv)
     sss_result res = gltf ? sss_export_gltf(&scene, &gltf_desc, out, &err) : sss_export_pbrt(&scene, &desc, out, &err);
     sss_scene_free(&scene);
     if (res != SSS_OK) return cli_fail(cmd, &err);
-    if (gltf_desc.skipped_lights)
+    if (gltf_desc.skipped_lights && !args.quiet)
         fprintf(stderr, "sss export: warning: %d area/environment light(s) left out (glTF has no such lights)\n",
                 gltf_desc.skipped_lights);
     printf("wrote %s\n", out);

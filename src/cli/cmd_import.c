@@ -16,55 +16,52 @@ static const char usage[] =
     "KHR_lights_punctual point, spot and directional lights keep their intensity (candela as W/sr,\n"
     "lux as irradiance). The camera is the first camera node (or --camera N), else one that frames\n"
     "the scene. render, reference, view and eval also read .gltf/.glb directly.\n"
-    "\n"
-    "  -o FILE          the scene file to write (required)\n"
-    "  --width W        image width (default: from the camera's aspect ratio, else 960)\n"
-    "  --height H       image height (default: 540)\n"
-    "  --camera N       use cameras[N] (the first node that uses it)\n"
-    "  --light-scale S  multiply every light's intensity by S > 0 (default 1)\n";
+    "\n";
 
-static int parse_size(const char *cmd, const char *option, const char *v, int *out)
-{
-    if (!cli_parse_int(cmd, option, v, out)) return 0;
-    if (*out < 1 || *out > SSS_SCENE_MAX_IMAGE_SIZE) {
-        cli_usage_error(cmd, "%s must be in 1..%d", option, SSS_SCENE_MAX_IMAGE_SIZE);
-        return 0;
-    }
-    return 1;
-}
+enum { OPT_OUTPUT, OPT_WIDTH, OPT_HEIGHT, OPT_CAMERA, OPT_LIGHT_SCALE };
+static const cli_option options[] = {
+    {OPT_OUTPUT, "--output", "-o", CLI_ARG_FILE, "FILE", "the scene file to write (required)", NULL},
+    {OPT_WIDTH, "--width", NULL, CLI_ARG_NUMBER, "W", "image width (default: from the camera's aspect ratio, else 960)", NULL},
+    {OPT_HEIGHT, "--height", NULL, CLI_ARG_NUMBER, "H", "image height (default: 540)", NULL},
+    {OPT_CAMERA, "--camera", NULL, CLI_ARG_NUMBER, "N", "use cameras[N] (the first node that uses it)", NULL},
+    {OPT_LIGHT_SCALE, "--light-scale", NULL, CLI_ARG_NUMBER, "S", "multiply every light's intensity by S > 0 (default 1)",
+     NULL},
+};
+const cli_command_spec cli_spec_import = {"import", options, CLI_COUNT(options), CLI_ARG_FILE, NULL};
 
 int sss_cmd_import(int argc, char **argv)
 {
     const char *cmd = "import";
     if (cli_wants_help(argc, argv)) {
         fputs(usage, stdout);
+        cli_print_options(stdout, &cli_spec_import);
         return CLI_EXIT_OK;
     }
     const char *asset = NULL, *out = NULL;
     sss_gltf_desc desc = {0};
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = NULL;
-        if (strcmp(a, "-o") == 0) {
-            if (!(out = cli_option_value(cmd, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--width") == 0 || strcmp(a, "--height") == 0) {
-            if (!(v = cli_option_value(cmd, argc, argv, &i)) ||
-                !parse_size(cmd, a, v, a[2] == 'w' ? &desc.width : &desc.height))
-                return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--camera") == 0) {
-            if (!(v = cli_option_value(cmd, argc, argv, &i)) || !cli_parse_int(cmd, a, v, &desc.camera))
-                return CLI_EXIT_USAGE;
+    cli_parser args;
+    cli_parser_init(&args, &cli_spec_import, argc, argv, 1);
+    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
+        const char *a = args.given, *v = args.value;
+        switch (o) {
+        case CLI_BAD: return CLI_EXIT_USAGE;
+        case OPT_OUTPUT: out = v; break;
+        case OPT_WIDTH:
+        case OPT_HEIGHT:
+            if (!cli_parse_size(cmd, a, v, o == OPT_WIDTH ? &desc.width : &desc.height)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_CAMERA:
+            if (!cli_parse_int(cmd, a, v, &desc.camera)) return CLI_EXIT_USAGE;
             if (desc.camera < 0) return cli_usage_error(cmd, "--camera must be >= 0");
             desc.use_camera = 1;
-        } else if (strcmp(a, "--light-scale") == 0) {
-            if (!(v = cli_option_value(cmd, argc, argv, &i)) || !cli_parse_double(cmd, a, v, &desc.light_scale))
-                return CLI_EXIT_USAGE;
+            break;
+        case OPT_LIGHT_SCALE:
+            if (!cli_parse_double(cmd, a, v, &desc.light_scale)) return CLI_EXIT_USAGE;
             if (!(desc.light_scale > 0)) return cli_usage_error(cmd, "--light-scale must be > 0");
-        } else if (a[0] == '-' && a[1] != '\0') {
-            return cli_usage_error(cmd, "unknown option '%s'", a);
-        } else if (!asset) {
-            asset = a;
-        } else {
-            return cli_usage_error(cmd, "unexpected argument '%s'", a);
+            break;
+        default: /* CLI_OPERAND */
+            if (asset) return cli_usage_error(cmd, "unexpected argument '%s'", v);
+            asset = v;
         }
     }
     if (!asset) return cli_usage_error(cmd, "missing the glTF asset");

@@ -12,35 +12,43 @@
 
 #define CMD "kernel"
 
+enum { OPT_ARTIST, OPT_SCALE, OPT_ETA, OPT_MODEL, OPT_TAPS, OPT_RANGE, OPT_METHOD, OPT_RANK, OPT_GRID, OPT_EXTENT };
+static const cli_option options[] = {
+    {OPT_ARTIST, "--artist", NULL, CLI_ARG_TEXT, "P",
+     "artist preset: single-layer, multi-layer or production (Jimenez et al. 2019, Table 2)",
+     "single-layer multi-layer production"},
+    {OPT_SCALE, "--scale", NULL, CLI_ARG_NUMBER, "S", "millimetres per scene unit (default 1: offsets in mm)", NULL},
+    {OPT_ETA, "--eta", NULL, CLI_ARG_NUMBER, "E",
+     "relative index of refraction in [" CLI_STR(SSS_ETA_MIN) ", " CLI_STR(SSS_ETA_MAX) "] (default 1.33)", NULL},
+    {OPT_MODEL, "--model", NULL, CLI_ARG_TEXT, "M", "profile: pbd (default) or dipole", "pbd dipole"},
+    {OPT_TAPS, "--taps", NULL, CLI_ARG_NUMBER, "N", "odd number of taps (default 7)", NULL},
+    {OPT_RANGE, "--range", NULL, CLI_ARG_NUMBER, "X", "half-width the taps cover (default: 99.9% of the widest channel)", NULL},
+    {OPT_METHOD, "--method", NULL, CLI_ARG_TEXT, "M", "preintegrated, svd or artist", "preintegrated svd artist"},
+    {OPT_RANK, "--rank", NULL, CLI_ARG_NUMBER, "R", "svd: terms printed (default 3)", NULL},
+    {OPT_GRID, "--grid", NULL, CLI_ARG_NUMBER, "G", "svd: cells per axis (default 64)", NULL},
+    {OPT_EXTENT, "--extent", NULL, CLI_ARG_NUMBER, "X",
+     "svd: half-width of the grid (default: the radius holding 99.9% of the\n"
+     "widest channel's R_d)",
+     NULL},
+};
+const cli_command_spec cli_spec_kernel = {CMD, options, CLI_COUNT(options), CLI_ARG_MEDIUM, NULL};
+
 static void print_usage(FILE *f)
 {
-    fprintf(f,
-            "usage: sss kernel MEDIUM [--method preintegrated|svd] [OPTIONS]\n"
-            "       sss kernel --artist PRESET [OPTIONS]\n"
-            "\n"
-            "Prints a separable subsurface-scattering kernel (Jimenez et al., Separable Subsurface\n"
-            "Scattering). Comment lines start with '#'; then TSV with a header line.\n"
-            "  preintegrated  (default for MEDIUM) the taps of a_p(x) = int R_d(sqrt(x^2+y^2)) dy / ||R_d||:\n"
-            "                 'offset<TAB>R<TAB>G<TAB>B', one line per tap; each channel's weights sum to 1\n"
-            "                 (the comment gives ||R_d||, the total reflectance to apply separately)\n"
-            "  artist         (with --artist) the same for the two-Gaussian artist model\n"
-            "  svd            singular values of the discretised 2D profile (comments) and the rank-R\n"
-            "                 vectors a_k: 'offset<TAB>term<TAB>R<TAB>G<TAB>B', the kernel being\n"
-            "                 sum_k sign_k a_k(x) a_k(y) (signs in the comments)\n"
-            "\n"
-            "options:\n"
-            "  --artist P      artist preset: single-layer, multi-layer or production (Jimenez et al. 2019, Table 2)\n"
-            "  --scale S       millimetres per scene unit (default 1: offsets in mm)\n"
-            "  --eta E         relative index of refraction in [%g, %g] (default 1.33)\n"
-            "  --model M       profile: pbd (default) or dipole\n"
-            "  --taps N        odd number of taps (default 7)\n"
-            "  --range X       half-width the taps cover (default: 99.9%% of the widest channel)\n"
-            "  --method M      preintegrated, svd or artist\n"
-            "  --rank R        svd: terms printed (default 3)\n"
-            "  --grid G        svd: cells per axis (default 64)\n"
-            "  --extent X      svd: half-width of the grid (default: the radius holding 99.9%% of the\n"
-            "                  widest channel's R_d)\n",
-            SSS_ETA_MIN, SSS_ETA_MAX);
+    fprintf(f, "usage: sss kernel MEDIUM [--method preintegrated|svd] [OPTIONS]\n"
+               "       sss kernel --artist PRESET [OPTIONS]\n"
+               "\n"
+               "Prints a separable subsurface-scattering kernel (Jimenez et al., Separable Subsurface\n"
+               "Scattering). Comment lines start with '#'; then TSV with a header line.\n"
+               "  preintegrated  (default for MEDIUM) the taps of a_p(x) = int R_d(sqrt(x^2+y^2)) dy / ||R_d||:\n"
+               "                 'offset<TAB>R<TAB>G<TAB>B', one line per tap; each channel's weights sum to 1\n"
+               "                 (the comment gives ||R_d||, the total reflectance to apply separately)\n"
+               "  artist         (with --artist) the same for the two-Gaussian artist model\n"
+               "  svd            singular values of the discretised 2D profile (comments) and the rank-R\n"
+               "                 vectors a_k: 'offset<TAB>term<TAB>R<TAB>G<TAB>B', the kernel being\n"
+               "                 sum_k sign_k a_k(x) a_k(y) (signs in the comments)\n"
+               "\n");
+    cli_print_options(f, &cli_spec_kernel);
 }
 
 static int print_taps(const char *what, const sss_separable_kernel *k)
@@ -89,38 +97,41 @@ int sss_cmd_kernel(int argc, char **argv)
     const char *medium = NULL, *preset = NULL, *method = NULL, *model_text = "pbd";
     double scale = 1.0, eta = 1.33, range = 0.0, extent = 0.0;
     int taps = 7, rank = 3, grid = 64;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (strcmp(a, "--scale") == 0 || strcmp(a, "--eta") == 0) {
-            const char *v = cli_option_value(CMD, argc, argv, &i);
-            if (!v || !cli_parse_double(CMD, a, v, strcmp(a, "--scale") == 0 ? &scale : &eta)) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--range") == 0 || strcmp(a, "--extent") == 0) {
-            /* 0 is the library's "automatic": given on the command line it must be a real width */
-            const char *v = cli_option_value(CMD, argc, argv, &i);
-            if (!v || !cli_parse_positive(CMD, a, v, strcmp(a, "--range") == 0 ? &range : &extent))
-                return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--taps") == 0) {
-            const char *v = cli_option_value(CMD, argc, argv, &i);
-            if (!v || !cli_parse_int_in(CMD, a, v, 1, INT_MAX, &taps)) return CLI_EXIT_USAGE; /* 0: the default 7 */
-        } else if (strcmp(a, "--rank") == 0 || strcmp(a, "--grid") == 0) {
-            const char *v = cli_option_value(CMD, argc, argv, &i);
-            if (!v || !cli_parse_int(CMD, a, v, strcmp(a, "--rank") == 0 ? &rank : &grid)) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--artist") == 0) {
-            if (!(preset = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--method") == 0) {
-            if (!(method = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
+    cli_parser args;
+    cli_parser_init(&args, &cli_spec_kernel, argc, argv, 1);
+    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
+        const char *a = args.given, *v = args.value;
+        switch (o) {
+        case CLI_BAD: return CLI_EXIT_USAGE;
+        case OPT_SCALE:
+        case OPT_ETA:
+            if (!cli_parse_double(CMD, a, v, o == OPT_SCALE ? &scale : &eta)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_RANGE:
+        case OPT_EXTENT: /* 0 is the library's "automatic": given on the command line it must be a real width */
+            if (!cli_parse_positive(CMD, a, v, o == OPT_RANGE ? &range : &extent)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_TAPS:
+            if (!cli_parse_int_in(CMD, a, v, 1, INT_MAX, &taps)) return CLI_EXIT_USAGE; /* 0: the default 7 */
+            break;
+        case OPT_RANK:
+        case OPT_GRID:
+            if (!cli_parse_int(CMD, a, v, o == OPT_RANK ? &rank : &grid)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_ARTIST: preset = v; break;
+        case OPT_METHOD:
+            method = v;
             if (strcmp(method, "preintegrated") != 0 && strcmp(method, "svd") != 0 && strcmp(method, "artist") != 0)
                 return cli_usage_error(CMD, "--method expects preintegrated, svd or artist, got '%s'", method);
-        } else if (strcmp(a, "--model") == 0) {
-            if (!(model_text = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
+            break;
+        case OPT_MODEL:
+            model_text = v;
             if (strcmp(model_text, "pbd") != 0 && strcmp(model_text, "dipole") != 0)
                 return cli_usage_error(CMD, "--model expects pbd or dipole, got '%s'", model_text);
-        } else if (a[0] == '-' && a[1] != '\0') {
-            return cli_usage_error(CMD, "unknown option '%s'", a);
-        } else if (!medium) {
-            medium = a;
-        } else {
-            return cli_usage_error(CMD, "unexpected argument '%s' (one medium only)", a);
+            break;
+        default: /* CLI_OPERAND */
+            if (medium) return cli_usage_error(CMD, "unexpected argument '%s' (one medium only)", v);
+            medium = v;
         }
     }
     if (medium && preset) return cli_usage_error(CMD, "give a MEDIUM or --artist PRESET, not both");

@@ -12,29 +12,36 @@
 #define CMD "lut"
 #define MAX_SIZE 8192
 
+enum { OPT_OUTPUT, OPT_SCALE, OPT_ETA, OPT_MODEL, OPT_SIZE, OPT_AXES };
+static const cli_option options[] = {
+    {OPT_OUTPUT, "--output", "-o", CLI_ARG_FILE, "FILE", "output image, .exr (32-bit float) or .pfm", NULL},
+    {OPT_SCALE, "--scale", NULL, CLI_ARG_NUMBER, "S", "millimetres per scene unit (default 1: r in mm, A in mm^2)", NULL},
+    {OPT_ETA, "--eta", NULL, CLI_ARG_NUMBER, "E",
+     "relative index of refraction in [" CLI_STR(SSS_ETA_MIN) ", " CLI_STR(SSS_ETA_MAX) "] (default 1.33)", NULL},
+    {OPT_MODEL, "--model", NULL, CLI_ARG_TEXT, "M",
+     "pbd (Photon Beam Diffusion table, as PBRT-v3; default) or dipole",
+     "pbd dipole"},
+    {OPT_SIZE, "--size", NULL, CLI_ARG_NUMBER, "N", "texels per axis, [2, " CLI_STR(MAX_SIZE) "] (default 512, as the paper)", NULL},
+    {OPT_AXES, "--axes", NULL, CLI_ARG_TEXT, "A",
+     "linear (texel i at r_max i/(N-1), as the paper; default) or sqrt\n"
+     "(r_max (i/(N-1))^2: denser near r = 0 and A = 0)",
+     "linear sqrt"},
+};
+const cli_command_spec cli_spec_lut = {CMD, options, CLI_COUNT(options), CLI_ARG_MEDIUM, NULL};
+
 static void print_usage(FILE *f)
 {
-    fprintf(f,
-            "usage: sss lut MEDIUM -o FILE.exr [--scale S] [--eta E] [--size N] [--axes linear|sqrt]\n"
-            "               [--model pbd|dipole]\n"
-            "\n"
-            "Builds the pre-integrated kernel R'_d(r, A) of Maisch & Ropinski 2020 (the average of the\n"
-            "diffusion profile R_d over a disc of area A whose centre lies at distance r) and writes it as\n"
-            "an N x N float RGB image: x = r axis (column 0: r = 0), y = A axis (row 0: A = 0, i.e. R_d\n"
-            "itself). r runs to r_max, where the source function alpha' sigma_t' e^(-sigma_t' r) falls to\n"
-            "1e-7, A to pi r_max^2. Prints r_max, A_max and the build time.\n"
-            "\n"
-            "options:\n"
-            "  -o FILE         output image, .exr (32-bit float) or .pfm\n"
-            "  --scale S       millimetres per scene unit (default 1: r in mm, A in mm^2)\n"
-            "  --eta E         relative index of refraction in [%g, %g] (default 1.33)\n"
-            "  --size N        texels per axis, [2, %d] (default 512, as the paper)\n"
-            "  --axes A        linear (texel i at r_max i/(N-1), as the paper; default) or sqrt\n"
-            "                  (r_max (i/(N-1))^2: denser near r = 0 and A = 0)\n"
-            "  --model M       pbd (Photon Beam Diffusion table, as PBRT-v3; default) or dipole\n"
-            "\n"
-            "media:",
-            SSS_ETA_MIN, SSS_ETA_MAX, MAX_SIZE);
+    fprintf(f, "usage: sss lut MEDIUM -o FILE.exr [--scale S] [--eta E] [--size N] [--axes linear|sqrt]\n"
+               "               [--model pbd|dipole]\n"
+               "\n"
+               "Builds the pre-integrated kernel R'_d(r, A) of Maisch & Ropinski 2020 (the average of the\n"
+               "diffusion profile R_d over a disc of area A whose centre lies at distance r) and writes it as\n"
+               "an N x N float RGB image: x = r axis (column 0: r = 0), y = A axis (row 0: A = 0, i.e. R_d\n"
+               "itself). r runs to r_max, where the source function alpha' sigma_t' e^(-sigma_t' r) falls to\n"
+               "1e-7, A to pi r_max^2. Prints r_max, A_max and the build time.\n"
+               "\n");
+    cli_print_options(f, &cli_spec_lut);
+    fprintf(f, "\nmedia:");
     for (size_t i = 0; i < sss_measured_medium_count(); i++) fprintf(f, " %s", sss_measured_medium_at(i)->name);
     fprintf(f, " (case-insensitive)\n");
 }
@@ -56,30 +63,33 @@ int sss_cmd_lut(int argc, char **argv)
     const char *medium = NULL, *output = NULL, *model_text = "pbd", *axes_text = "linear";
     double scale = 1.0, eta = 1.33;
     int size = 512;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (strcmp(a, "--scale") == 0 || strcmp(a, "--eta") == 0) {
-            const char *v = cli_option_value(CMD, argc, argv, &i);
-            if (!v || !cli_parse_double(CMD, a, v, a[2] == 's' ? &scale : &eta)) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--size") == 0) {
-            const char *v = cli_option_value(CMD, argc, argv, &i);
-            if (!v || !cli_parse_int(CMD, a, v, &size)) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--model") == 0) {
-            if (!(model_text = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
+    cli_parser args;
+    cli_parser_init(&args, &cli_spec_lut, argc, argv, 1);
+    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
+        const char *a = args.given, *v = args.value;
+        switch (o) {
+        case CLI_BAD: return CLI_EXIT_USAGE;
+        case OPT_SCALE:
+        case OPT_ETA:
+            if (!cli_parse_double(CMD, a, v, o == OPT_SCALE ? &scale : &eta)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_SIZE:
+            if (!cli_parse_int(CMD, a, v, &size)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_MODEL:
+            model_text = v;
             if (strcmp(model_text, "pbd") != 0 && strcmp(model_text, "dipole") != 0)
                 return cli_usage_error(CMD, "--model expects pbd or dipole, got '%s'", model_text);
-        } else if (strcmp(a, "--axes") == 0) {
-            if (!(axes_text = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
+            break;
+        case OPT_AXES:
+            axes_text = v;
             if (strcmp(axes_text, "linear") != 0 && strcmp(axes_text, "sqrt") != 0)
                 return cli_usage_error(CMD, "--axes expects linear or sqrt, got '%s'", axes_text);
-        } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
-            if (!(output = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (a[0] == '-' && a[1] != '\0') {
-            return cli_usage_error(CMD, "unknown option '%s'", a);
-        } else if (!medium) {
-            medium = a;
-        } else {
-            return cli_usage_error(CMD, "unexpected argument '%s' (one medium only)", a);
+            break;
+        case OPT_OUTPUT: output = v; break;
+        default: /* CLI_OPERAND */
+            if (medium) return cli_usage_error(CMD, "unexpected argument '%s' (one medium only)", v);
+            medium = v;
         }
     }
     if (!medium) return cli_usage_error(CMD, "missing MEDIUM");

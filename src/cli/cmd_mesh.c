@@ -7,6 +7,19 @@
 
 static const char *const CMD = "mesh";
 
+enum { OPT_OUTPUT, OPT_TRIANGLES };
+#define OUTPUT_OPTION {OPT_OUTPUT, "--output", "-o", CLI_ARG_FILE, "OUT.ply", "the mesh to write (binary little-endian PLY)", NULL}
+static const cli_option convert_options[] = {OUTPUT_OPTION};
+static const cli_option simplify_options[] = {
+    OUTPUT_OPTION,
+    {OPT_TRIANGLES, "--triangles", NULL, CLI_ARG_NUMBER, "N", "at most N triangles", NULL},
+};
+const cli_command_spec cli_spec_mesh_info = {"mesh info", NULL, 0, CLI_ARG_FILE, "info simplify convert"};
+const cli_command_spec cli_spec_mesh_simplify = {"mesh simplify", simplify_options, CLI_COUNT(simplify_options),
+                                                 CLI_ARG_FILE, NULL};
+const cli_command_spec cli_spec_mesh_convert = {"mesh convert", convert_options, CLI_COUNT(convert_options),
+                                                CLI_ARG_FILE, NULL};
+
 static void print_help(void)
 {
     printf("usage: sss mesh info FILE\n"
@@ -16,7 +29,8 @@ static void print_help(void)
            "          signed volume (exact for closed meshes) and degenerate triangles\n"
            "simplify  reduce to at most N triangles (meshoptimizer) and write binary PLY\n"
            "convert   write the mesh as binary little-endian PLY with positions, normals (and UVs)\n\n"
-           "FILE is .ply (ascii or binary) or .obj. Exit status: 0 ok, 1 bad input, 2 usage error.\n");
+           "FILE is .ply (ascii or binary) or .obj. Exit status: 0 ok, 1 bad input, 2 usage error.\n\n");
+    cli_print_options(stdout, &cli_spec_mesh_simplify);
 }
 
 static int cmd_info(const char *path)
@@ -88,24 +102,29 @@ int sss_cmd_mesh(int argc, char **argv)
     const char *sub = argv[1];
     int is_info = strcmp(sub, "info") == 0, is_simplify = strcmp(sub, "simplify") == 0,
         is_convert = strcmp(sub, "convert") == 0;
-    if (!is_info && !is_simplify && !is_convert) return cli_usage_error(CMD, "unknown subcommand '%s'", sub);
+    if (!is_info && !is_simplify && !is_convert) {
+        const char *subs[] = {"info", "simplify", "convert"};
+        return cli_unknown(CMD, "subcommand", sub, subs, 3);
+    }
+    const cli_command_spec *spec = is_info ? &cli_spec_mesh_info : is_simplify ? &cli_spec_mesh_simplify : &cli_spec_mesh_convert;
     const char *input = NULL, *output = NULL;
     int triangles = 0, have_triangles = 0;
-    for (int i = 2; i < argc; i++) {
-        const char *a = argv[i];
-        if (!is_info && (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0)) {
-            if (!(output = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (is_simplify && strcmp(a, "--triangles") == 0) {
-            const char *v = cli_option_value(CMD, argc, argv, &i);
-            if (!v || !cli_parse_int(CMD, "--triangles", v, &triangles)) return CLI_EXIT_USAGE;
+    cli_parser args;
+    cli_parser_init(&args, spec, argc, argv, 2);
+    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
+        const char *v = args.value;
+        if (o == CLI_BAD) {
+            return CLI_EXIT_USAGE;
+        } else if (o == OPT_OUTPUT) {
+            output = v;
+        } else if (o == OPT_TRIANGLES) {
+            if (!cli_parse_int(CMD, "--triangles", v, &triangles)) return CLI_EXIT_USAGE;
             if (triangles < 1) return cli_usage_error(CMD, "--triangles must be at least 1");
             have_triangles = 1;
-        } else if (a[0] == '-' && a[1] != '\0') {
-            return cli_usage_error(CMD, "unknown option '%s' for 'mesh %s'", a, sub);
         } else if (!input) {
-            input = a;
+            input = v;
         } else {
-            return cli_usage_error(CMD, "unexpected argument '%s'", a);
+            return cli_usage_error(CMD, "unexpected argument '%s'", v);
         }
     }
     if (!input) return cli_usage_error(CMD, "missing FILE");

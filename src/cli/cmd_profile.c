@@ -12,27 +12,34 @@
 #define DEFAULT_COUNT 64
 #define MAX_COUNT 1000000
 
+enum { OPT_SCALE, OPT_ETA, OPT_MODEL, OPT_R };
+static const cli_option options[] = {
+    {OPT_SCALE, "--scale", NULL, CLI_ARG_NUMBER, "S", "millimetres per scene unit (default 1: radii in mm)", NULL},
+    {OPT_ETA, "--eta", NULL, CLI_ARG_NUMBER, "E",
+     "relative index of refraction in [" CLI_STR(SSS_ETA_MIN) ", " CLI_STR(SSS_ETA_MAX) "] (default 1.33)", NULL},
+    {OPT_MODEL, "--model", NULL, CLI_ARG_TEXT, "M",
+     "pbd (Photon Beam Diffusion table, as PBRT-v3; default) or dipole\n"
+     "(classical dipole of Jensen et al. 2001)",
+     "pbd dipole"},
+    {OPT_R, "--r", NULL, CLI_ARG_TEXT, "R0:R1:N",
+     "N radii evenly spaced from R0 to R1 inclusive (N = 1: R0 alone).\n"
+     "Default: " CLI_STR(DEFAULT_COUNT) " radii from 0 to the radius holding 99.9% of the plane\n"
+     "integral of the widest channel.",
+     NULL},
+};
+const cli_command_spec cli_spec_profile = {CMD, options, CLI_COUNT(options), CLI_ARG_MEDIUM, NULL};
+
 static void print_usage(FILE *f)
 {
-    fprintf(f,
-            "usage: sss profile MEDIUM [--scale S] [--eta E] [--model pbd|dipole] [--r R0:R1:N]\n"
-            "\n"
-            "Prints the radial diffusion profile S_r(r) of a measured medium (Jensen et al. 2001) as TSV:\n"
-            "a header line 'r<TAB>R<TAB>G<TAB>B', then one line per radius. Values are per scene unit^2,\n"
-            "before the 1/pi and Fresnel factors, as PBRT-v3's TabulatedBSSRDF::Sr returns them (except\n"
-            "at r = 0, where this prints the limit r -> 0+ instead of PBRT's 0).\n"
-            "\n"
-            "options:\n"
-            "  --scale S       millimetres per scene unit (default 1: radii in mm)\n"
-            "  --eta E         relative index of refraction in [%g, %g] (default 1.33)\n"
-            "  --model M       pbd (Photon Beam Diffusion table, as PBRT-v3; default) or dipole\n"
-            "                  (classical dipole of Jensen et al. 2001)\n"
-            "  --r R0:R1:N     N radii evenly spaced from R0 to R1 inclusive (N = 1: R0 alone).\n"
-            "                  Default: %d radii from 0 to the radius holding 99.9%% of the plane\n"
-            "                  integral of the widest channel.\n"
-            "\n"
-            "media:",
-            SSS_ETA_MIN, SSS_ETA_MAX, DEFAULT_COUNT);
+    fprintf(f, "usage: sss profile MEDIUM [--scale S] [--eta E] [--model pbd|dipole] [--r R0:R1:N]\n"
+               "\n"
+               "Prints the radial diffusion profile S_r(r) of a measured medium (Jensen et al. 2001) as TSV:\n"
+               "a header line 'r<TAB>R<TAB>G<TAB>B', then one line per radius. Values are per scene unit^2,\n"
+               "before the 1/pi and Fresnel factors, as PBRT-v3's TabulatedBSSRDF::Sr returns them (except\n"
+               "at r = 0, where this prints the limit r -> 0+ instead of PBRT's 0).\n"
+               "\n");
+    cli_print_options(f, &cli_spec_profile);
+    fprintf(f, "\nmedia:");
     for (size_t i = 0; i < sss_measured_medium_count(); i++)
         fprintf(f, " %s", sss_measured_medium_at(i)->name);
     fprintf(f, " (case-insensitive)\n");
@@ -81,25 +88,28 @@ int sss_cmd_profile(int argc, char **argv)
     const char *medium = NULL, *model_text = "pbd";
     double scale = 1.0, eta = 1.33, r0 = 0.0, r1 = 0.0;
     int count = DEFAULT_COUNT, have_range = 0;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (strcmp(a, "--scale") == 0 || strcmp(a, "--eta") == 0) {
-            const char *v = cli_option_value(CMD, argc, argv, &i);
-            if (!v || !cli_parse_double(CMD, a, v, a[2] == 's' ? &scale : &eta)) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--model") == 0) {
-            if (!(model_text = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
+    cli_parser args;
+    cli_parser_init(&args, &cli_spec_profile, argc, argv, 1);
+    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
+        const char *a = args.given, *v = args.value;
+        switch (o) {
+        case CLI_BAD: return CLI_EXIT_USAGE;
+        case OPT_SCALE:
+        case OPT_ETA:
+            if (!cli_parse_double(CMD, a, v, o == OPT_SCALE ? &scale : &eta)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_MODEL:
+            model_text = v;
             if (strcmp(model_text, "pbd") != 0 && strcmp(model_text, "dipole") != 0)
                 return cli_usage_error(CMD, "--model expects pbd or dipole, got '%s'", model_text);
-        } else if (strcmp(a, "--r") == 0) {
-            const char *v = cli_option_value(CMD, argc, argv, &i);
-            if (!v || !parse_range(v, &r0, &r1, &count)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_R:
+            if (!parse_range(v, &r0, &r1, &count)) return CLI_EXIT_USAGE;
             have_range = 1;
-        } else if (a[0] == '-' && a[1] != '\0') {
-            return cli_usage_error(CMD, "unknown option '%s'", a);
-        } else if (!medium) {
-            medium = a;
-        } else {
-            return cli_usage_error(CMD, "unexpected argument '%s' (one medium only)", a);
+            break;
+        default: /* CLI_OPERAND */
+            if (medium) return cli_usage_error(CMD, "unexpected argument '%s' (one medium only)", v);
+            medium = v;
         }
     }
     if (!medium) return cli_usage_error(CMD, "missing MEDIUM");

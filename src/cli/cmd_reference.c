@@ -14,73 +14,74 @@
 
 static const char *const CMD = "reference";
 
+enum {
+    OPT_OUTPUT, OPT_EXR, OPT_PFM, OPT_WIDTH, OPT_HEIGHT, OPT_QUALITY, OPT_THREADS, OPT_TIME, OPT_SEED, OPT_EXACT,
+    OPT_SPECULAR, OPT_SPP, OPT_DENSITY, OPT_BOUNCES, OPT_STATS
+};
+static const cli_option options[] = {
+    {OPT_OUTPUT, "--output", "-o", CLI_ARG_FILE, "OUT",
+     "the image: .png is tone-mapped with the scene's render.exposure\n"
+     "(out = srgb(clamp(linear 2^exposure, 0, 1))); .exr, .pfm, .hdr hold linear values",
+     NULL},
+    {OPT_EXR, "--exr", NULL, CLI_ARG_FILE, "OUT.exr", "also write the linear image as OpenEXR", NULL},
+    {OPT_PFM, "--pfm", NULL, CLI_ARG_FILE, "OUT.pfm", "also write the linear image as PFM", NULL},
+    {OPT_WIDTH, "--width", NULL, CLI_ARG_NUMBER, "W", "image width (default: the scene camera's)", NULL},
+    {OPT_HEIGHT, "--height", NULL, CLI_ARG_NUMBER, "H", "image height (default: the scene camera's)", NULL},
+    {OPT_QUALITY, "--quality", NULL, CLI_ARG_TEXT, "Q",
+     "final (default): 16 samples per pixel (64 more at edges), surface samples\n"
+     "every half pixel at the object's nearest visible points; draft: 1 sample\n"
+     "per pixel, surface samples every pixel",
+     "draft final"},
+    {OPT_THREADS, "--threads", NULL, CLI_ARG_NUMBER, "N", "worker threads (default: all cores)", NULL},
+    {OPT_TIME, "--time", NULL, CLI_ARG_NUMBER, "T", "animation time in seconds (default 0)", NULL},
+    {OPT_SEED, "--seed", NULL, CLI_ARG_NUMBER, "S",
+     "random seed, a non-negative integer (default 0); the image depends only on\n"
+     "the seed, not on the thread count",
+     NULL},
+    {OPT_EXACT, "--exact", NULL, CLI_ARG_NONE, NULL, "sum over every surface sample instead of the tree (slow; for validation)",
+     NULL},
+    {OPT_SPECULAR, "--specular", NULL, CLI_ARG_NONE, NULL,
+     "add the smooth dielectric reflection F_r of environment maps and area lights\n"
+     "on subsurface objects (PBRT comparisons leave it out)",
+     NULL},
+    {OPT_SPP, "--spp", NULL, CLI_ARG_NUMBER, "N", "base samples per pixel (rounded up to a square)", NULL},
+    {OPT_DENSITY, "--density", NULL, CLI_ARG_NUMBER, "D", "multiply the surface-sample density by D (> 0; 4 = half the spacing)",
+     NULL},
+    {OPT_BOUNCES, "--bounces", NULL, CLI_ARG_NUMBER, "N",
+     "surface-to-surface bounces, 1.." CLI_STR(SSS_REFERENCE_MAX_BOUNCES) ": 1 = the single-event integral (direct\n"
+     "light only); default: until a bounce adds less than a set fraction of\n"
+     "bounce 2's light (below)",
+     NULL},
+    {OPT_STATS, "--stats", NULL, CLI_ARG_NONE, NULL, "print sample counts, tree statistics and timings to stdout", NULL},
+};
+const cli_command_spec cli_spec_reference = {"reference", options, CLI_COUNT(options), CLI_ARG_FILE, NULL};
+
 static void print_help(void)
 {
-    printf("usage: sss reference SCENE.json -o OUT.png [--exr OUT.exr] [--pfm OUT.pfm]\n"
+    printf("usage: sss reference SCENE.json -o OUT.png [--exr OUT.exr] [--pfm OUT.pfm] [--width W] [--height H]\n"
            "                     [--quality draft|final] [--threads N] [--time T] [--seed S] [--exact]\n"
-           "                     [--specular] [--spp N] [--density D] [--bounces N] [--stats] [--quiet]\n"
+           "                     [--specular] [--spp N] [--density D] [--bounces N] [--stats]\n"
+           "                     [--quiet | --progress]\n"
            "\n"
            "Renders the ground truth of a scene: the subsurface integral of docs/physics.md §1 as PBRT-v3's\n"
            "`subsurface` material converges to it (Embree 3 rays, surface samples with their irradiance,\n"
            "summed hierarchically), with the light that scatters between surfaces bounce after bounce\n"
            "(PBRT's path tracer; --bounces 1: direct light only, PBRT's maxdepth 1). Diffuse objects are\n"
            "Lambertian; area lights are visible; rays that miss see the environment map (black without one).\n"
-           "\n"
-           "options:\n"
-           "  -o OUT         the image: .png is tone-mapped with the scene's render.exposure\n"
-           "                 (out = srgb(clamp(linear 2^exposure, 0, 1))); .exr, .pfm, .hdr hold linear values\n"
-           "  --exr OUT.exr  also write the linear image as OpenEXR\n"
-           "  --pfm OUT.pfm  also write the linear image as PFM\n"
-           "  --quality Q    final (default): 16 samples per pixel (64 more at edges), surface samples\n"
-           "                 every half pixel at the object's nearest visible points; draft: 1 sample\n"
-           "                 per pixel, surface samples every pixel\n"
-           "  --threads N    worker threads (default: all cores)\n"
-           "  --time T       animation time in seconds (default 0)\n"
-           "  --seed S       random seed, a non-negative integer (default 0); the image depends only on\n"
-           "                 the seed, not on the thread count\n"
-           "  --exact        sum over every surface sample instead of the tree (slow; for validation)\n"
-           "  --specular     add the smooth dielectric reflection F_r of environment maps and area lights\n"
-           "                 on subsurface objects (PBRT comparisons leave it out)\n"
-           "  --spp N        base samples per pixel (rounded up to a square)\n"
-           "  --density D    multiply the surface-sample density by D (> 0; 4 = half the spacing)\n"
-           "  --bounces N    surface-to-surface bounces, 1..%d: 1 = the single-event integral (direct\n"
-           "                 light only); default: until a bounce adds less than %g%% of bounce 2's light\n"
-           "  --stats        print sample counts, tree statistics and timings to stdout\n"
-           "  --quiet        no progress on stderr\n"
-           "\n"
-           "Progress goes to stderr: a bar with the time left when stderr is a terminal, otherwise a line\n"
-           "'NN%%' every 10%%. Nothing is written when the scene or an option is invalid.\n"
+           "\n");
+    cli_print_options(stdout, &cli_spec_reference);
+    printf("\n"
+           "Without --bounces, bounces stop when one adds less than %g%% of bounce 2's light.\n"
+           "Progress goes to stderr when it is a terminal (a bar with the time left) or with --progress\n"
+           "(otherwise a line 'NN%%' every 10%%); never with --quiet. Nothing is written when the scene or\n"
+           "an option is invalid.\n"
            "exit status: 0 done, 1 invalid scene or failed render or write, 2 usage error\n",
-           SSS_REFERENCE_MAX_BOUNCES, 100.0 * SSS_REFERENCE_BOUNCE_STOP);
+           100.0 * SSS_REFERENCE_BOUNCE_STOP);
 }
-
-typedef struct progress_state {
-    int tty, last_percent;
-    double start;
-} progress_state;
 
 static void progress(void *user, double fraction, const char *stage)
 {
-    progress_state *p = user;
-    int percent = (int)floor(100.0 * fraction);
-    if (p->tty) {
-        double elapsed = sss_time_seconds() - p->start;
-        char eta[32] = "--:--";
-        if (fraction > 0.02) {
-            double left = elapsed * (1.0 - fraction) / fraction;
-            int s = (int)(left + 0.5);
-            snprintf(eta, sizeof eta, "%d:%02d", s / 60, s % 60);
-        }
-        char bar[31];
-        int filled = (int)(30.0 * fraction);
-        for (int i = 0; i < 30; i++) bar[i] = i < filled ? '#' : '.';
-        bar[30] = '\0';
-        fprintf(stderr, "\r[%s] %3d%%  ETA %s  %-16s", bar, percent, eta, stage ? stage : "");
-        fflush(stderr);
-    } else if (percent / 10 > p->last_percent / 10 || (percent == 100 && p->last_percent < 100)) {
-        fprintf(stderr, "%d%%\n", percent - percent % 10);
-    }
-    if (percent > p->last_percent) p->last_percent = percent;
+    cli_progress_update(user, fraction, stage);
 }
 
 static int parse_seed(const char *text, uint64_t *out)
@@ -112,64 +113,60 @@ int sss_cmd_reference(int argc, char **argv)
     const char *scene_path = NULL, *out_path = NULL, *exr_path = NULL, *pfm_path = NULL;
     sss_reference_desc desc;
     memset(&desc, 0, sizeof desc);
-    int stats = 0, quiet = 0;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v;
-        if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
-            if (!(out_path = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--exr") == 0) {
-            if (!(exr_path = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--pfm") == 0) {
-            if (!(pfm_path = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--quality") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
+    int stats = 0, width = 0, height = 0;
+    cli_parser args;
+    cli_parser_init(&args, &cli_spec_reference, argc, argv, 1);
+    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
+        const char *a = args.given, *v = args.value;
+        switch (o) {
+        case CLI_BAD: return CLI_EXIT_USAGE;
+        case OPT_OUTPUT: out_path = v; break;
+        case OPT_EXR: exr_path = v; break;
+        case OPT_PFM: pfm_path = v; break;
+        case OPT_WIDTH:
+        case OPT_HEIGHT:
+            if (!cli_parse_size(CMD, a, v, o == OPT_WIDTH ? &width : &height)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_QUALITY:
             if (strcmp(v, "final") == 0)
                 desc.quality = SSS_REFERENCE_FINAL;
             else if (strcmp(v, "draft") == 0)
                 desc.quality = SSS_REFERENCE_DRAFT;
             else
                 return cli_usage_error(CMD, "--quality must be draft or final, got '%s'", v);
-        } else if (strcmp(a, "--threads") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, "--threads", v, &desc.threads))
-                return CLI_EXIT_USAGE;
+            break;
+        case OPT_THREADS:
+            if (!cli_parse_int(CMD, "--threads", v, &desc.threads)) return CLI_EXIT_USAGE;
             if (desc.threads < 1 || desc.threads > 4096)
                 return cli_usage_error(CMD, "--threads must be in 1..4096, got %d", desc.threads);
-        } else if (strcmp(a, "--time") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_double(CMD, "--time", v, &desc.time))
-                return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--seed") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-            if (!parse_seed(v, &desc.seed))
-                return cli_usage_error(CMD, "--seed expects a non-negative integer, got '%s'", v);
-        } else if (strcmp(a, "--spp") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, "--spp", v, &desc.spp))
-                return CLI_EXIT_USAGE;
+            break;
+        case OPT_TIME:
+            if (!cli_parse_double(CMD, "--time", v, &desc.time)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_SEED:
+            if (!parse_seed(v, &desc.seed)) return cli_usage_error(CMD, "--seed expects a non-negative integer, got '%s'", v);
+            break;
+        case OPT_SPP:
+            if (!cli_parse_int(CMD, "--spp", v, &desc.spp)) return CLI_EXIT_USAGE;
             if (desc.spp < 1 || desc.spp > 4096) return cli_usage_error(CMD, "--spp must be in 1..4096, got %d", desc.spp);
-        } else if (strcmp(a, "--density") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_double(CMD, "--density", v, &desc.density))
-                return CLI_EXIT_USAGE;
+            break;
+        case OPT_DENSITY:
+            if (!cli_parse_double(CMD, "--density", v, &desc.density)) return CLI_EXIT_USAGE;
             if (!(desc.density > 0.0) || desc.density > 1024.0)
                 return cli_usage_error(CMD, "--density must be in (0, 1024], got %g", desc.density);
-        } else if (strcmp(a, "--bounces") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, "--bounces", v, &desc.bounces))
-                return CLI_EXIT_USAGE;
+            break;
+        case OPT_BOUNCES:
+            if (!cli_parse_int(CMD, "--bounces", v, &desc.bounces)) return CLI_EXIT_USAGE;
             if (desc.bounces < 1 || desc.bounces > SSS_REFERENCE_MAX_BOUNCES)
                 return cli_usage_error(CMD, "--bounces must be in 1..%d, got %d", SSS_REFERENCE_MAX_BOUNCES,
                                        desc.bounces);
-        } else if (strcmp(a, "--exact") == 0) {
-            desc.exact = 1;
-        } else if (strcmp(a, "--specular") == 0) {
-            desc.specular = 1;
-        } else if (strcmp(a, "--stats") == 0) {
-            stats = 1;
-        } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
-            quiet = 1;
-        } else if (a[0] == '-' && a[1] != '\0') {
-            return cli_usage_error(CMD, "unknown option '%s'", a);
-        } else {
-            if (scene_path) return cli_usage_error(CMD, "expects one scene, got a second: '%s'", a);
-            scene_path = a;
+            break;
+        case OPT_EXACT: desc.exact = 1; break;
+        case OPT_SPECULAR: desc.specular = 1; break;
+        case OPT_STATS: stats = 1; break;
+        default: /* CLI_OPERAND */
+            if (scene_path) return cli_usage_error(CMD, "expects one scene, got a second: '%s'", v);
+            scene_path = v;
         }
     }
     if (!scene_path) return cli_usage_error(CMD, "expects a scene file");
@@ -187,16 +184,21 @@ int sss_cmd_reference(int argc, char **argv)
     sss_error err;
     memset(&err, 0, sizeof err);
     if (sss_scene_load(scene_path, NULL, &scene, &err) != SSS_OK) return cli_fail(CMD, &err);
+    if (cli_scene_resize(CMD, &scene, width, height) != CLI_EXIT_OK) {
+        sss_scene_free(&scene);
+        return CLI_EXIT_ERROR;
+    }
     const char *paths[3] = {out_path, exr_path, pfm_path};
     if (cli_check_outputs(CMD, paths, 3, NULL, 0, &scene) != CLI_EXIT_OK) {
         sss_scene_free(&scene);
         return CLI_EXIT_ERROR;
     }
-    progress_state ps = {isatty(fileno(stderr)), -1, sss_time_seconds()};
+    cli_progress ps;
+    cli_progress_init(&ps, &args);
     sss_image img = {0};
     sss_reference_stats st;
-    sss_result r = sss_reference_render(&scene, &desc, &img, quiet ? NULL : progress, &ps, &st, &err);
-    if (!quiet && ps.tty) fputc('\n', stderr);
+    sss_result r = sss_reference_render(&scene, &desc, &img, ps.active ? progress : NULL, &ps, &st, &err);
+    cli_progress_end(&ps);
     int status = CLI_EXIT_OK;
     if (r != SSS_OK) {
         status = cli_fail(CMD, &err);

@@ -16,45 +16,70 @@
 #define MAX_PARAMS 64
 #define MAX_FRAMES 100000
 
+enum {
+    OPT_OUTPUT, OPT_EXR, OPT_TECHNIQUE, OPT_WIDTH, OPT_HEIGHT, OPT_TIME, OPT_FRAMES, OPT_ANIMATE, OPT_FPS, OPT_PARAM,
+    OPT_DATA, OPT_SUPERSAMPLE, OPT_TIMINGS, OPT_WARMUP, OPT_TIMINGS_JSON, OPT_WINDOW
+};
+static const cli_option options[] = {
+    {OPT_OUTPUT, "--output", "-o", CLI_ARG_FILE, "FILE", "output image (.png, .hdr, .pfm or .exr by extension)", NULL},
+    {OPT_EXR, "--exr", NULL, CLI_ARG_FILE, "FILE", "also write the linear image as OpenEXR", NULL},
+    {OPT_TECHNIQUE, "--technique", NULL, CLI_ARG_TECHNIQUE, "NAME",
+     "technique (default: the scene's render.technique); `sss techniques`", NULL},
+    {OPT_WIDTH, "--width", NULL, CLI_ARG_NUMBER, "W", "image width (default: the scene camera's)", NULL},
+    {OPT_HEIGHT, "--height", NULL, CLI_ARG_NUMBER, "H", "image height (default: the scene camera's)", NULL},
+    {OPT_TIME, "--time", NULL, CLI_ARG_NUMBER, "T", "animation time in seconds (default 0)", NULL},
+    {OPT_FRAMES, "--frames", NULL, CLI_ARG_NUMBER, "N",
+     "render N frames (timings are medians over them; default 1, or " CLI_STR(SSS_GL_TIMED_FRAMES) " with\n"
+     "--timings/--timings-json); progress on stderr",
+     NULL},
+    {OPT_ANIMATE, "--animate", NULL, CLI_ARG_NONE, NULL,
+     "with --frames: frame k at time T + k / fps, written as a numbered\n"
+     "sequence OUT_0000.png, OUT_0001.png, ... (or OUT as a printf pattern\n"
+     "with one %d, e.g. frame_%03d.png)",
+     NULL},
+    {OPT_FPS, "--fps", NULL, CLI_ARG_NUMBER, "F", "frames per second of --animate (default 30)", NULL},
+    {OPT_PARAM, "--param", NULL, CLI_ARG_TEXT, "NAME=VALUE",
+     "a technique or shared parameter (`sss techniques --params`), repeatable", NULL},
+    {OPT_DATA, "--data", NULL, CLI_ARG_FILE, "FILE",
+     "the technique's precomputed data (sam: a .sam file of `sss sam build`)", NULL},
+    {OPT_SUPERSAMPLE, "--supersample", NULL, CLI_ARG_NUMBER, "K",
+     "antialiasing: render every pass at K x the width and height (K^2 samples\n"
+     "per pixel) and box-filter the linear image down, K in 1.." CLI_STR(SSS_GL_MAX_SUPERSAMPLE) " (default 1:\n"
+     "off); costs about K^2 the time; parameters counted in pixels follow K",
+     NULL},
+    {OPT_TIMINGS, "--timings", NULL, CLI_ARG_NONE, NULL, "print milliseconds per pass (median over the frames) as a table",
+     NULL},
+    {OPT_WARMUP, "--warmup", NULL, CLI_ARG_NUMBER, "W",
+     "with timings: W frames rendered first and not timed (default " CLI_STR(SSS_GL_WARMUP_FRAMES) ": the\n"
+     "first frames pay shader compilation and first touches)",
+     NULL},
+    {OPT_TIMINGS_JSON, "--timings-json", NULL, CLI_ARG_FILE, "FILE", "write the timings as JSON", NULL},
+    {OPT_WINDOW, "--window", NULL, CLI_ARG_NONE, NULL,
+     "show the frames in a window (needs a display; until it is closed, or\n"
+     "for --frames N frames); with -o the last frame is also written",
+     NULL},
+};
+const cli_command_spec cli_spec_render = {CMD, options, CLI_COUNT(options), CLI_ARG_FILE, NULL};
+
 static void print_usage(FILE *f)
 {
     fprintf(f,
             "usage: sss render SCENE.json -o OUT.png [--exr OUT.exr] [--technique NAME] [--width W --height H]\n"
             "                  [--time T] [--frames N [--animate] [--fps F]] [--param NAME=VALUE ...]\n"
             "                  [--supersample K] [--timings] [--timings-json FILE] [--warmup W] [--window]\n"
+            "                  [--quiet | --progress]\n"
             "\n"
             "Renders SCENE.json with a real-time technique on a headless OpenGL 4.5 context (EGL; no display\n"
             "needed) and writes the image: PNG tone-mapped with the scene's exposure (docs/scene-format.md), and with\n"
             "--exr the linear values. Files are written completely or not at all.\n"
+            "\n");
+    cli_print_options(f, &cli_spec_render);
+    fprintf(f,
             "\n"
-            "options:\n"
-            "  -o, --output FILE   output image (.png, .hdr, .pfm or .exr by extension)\n"
-            "  --exr FILE          also write the linear image as OpenEXR\n"
-            "  --technique NAME    technique (default: the scene's render.technique); `sss techniques`\n"
-            "  --width W, --height H  image size (default: the scene camera's)\n"
-            "  --time T            animation time in seconds (default 0)\n"
-            "  --frames N          render N frames (timings are medians over them; default 1, or %d with\n"
-            "                      --timings/--timings-json)\n"
-            "  --animate           with --frames: frame k at time T + k / fps, written as a numbered\n"
-            "                      sequence OUT_0000.png, OUT_0001.png, ... (or OUT as a printf pattern\n"
-            "                      with one %%d, e.g. frame_%%03d.png)\n"
-            "  --fps F             frames per second of --animate (default 30)\n"
-            "  --param NAME=VALUE  a technique or shared parameter (`sss techniques --params`), repeatable\n"
-            "  --data FILE         the technique's precomputed data (sam: a .sam file of `sss sam build`)\n"
-            "  --supersample K     antialiasing: render every pass at K x the width and height (K^2 samples\n"
-            "                      per pixel) and box-filter the linear image down, K in 1..4 (default 1:\n"
-            "                      off); costs about K^2 the time; parameters counted in pixels follow K\n"
-            "  --timings           print milliseconds per pass (median over the frames) as a table\n"
-            "  --warmup W          with timings: W frames rendered first and not timed (default %d: the\n"
-            "                      first frames pay shader compilation and first touches)\n"
-            "  --timings-json FILE write the timings as JSON\n"
-            "  --window            show the frames in a window (needs a display; until it is closed, or\n"
-            "                      for --frames N frames); with -o the last frame is also written\n"
-            "\n"
+            "With --frames N, progress (frames done) goes to stderr when it is a terminal or with --progress.\n"
             "Timings on a software rasteriser (llvmpipe) put glFinish() around every pass and read a monotonic\n"
             "clock; on GPUs they use GL_TIME_ELAPSED queries. The method is printed with the table.\n"
-            "Exit status: 0 success, 1 error (scene, GL, output), 2 usage error.\n",
-            SSS_GL_TIMED_FRAMES, SSS_GL_WARMUP_FRAMES);
+            "Exit status: 0 success, 1 error (scene, GL, output), 2 usage error.\n");
 }
 
 /* Frame file name: a printf pattern with one %d, else "_%04d" inserted before the extension. */
@@ -150,52 +175,44 @@ int sss_cmd_render(int argc, char **argv)
     sss_gl_param_value params[MAX_PARAMS];
     char param_names[MAX_PARAMS][64];
     int nparams = 0;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v;
-        if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
-            if (!(out = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--exr") == 0) {
-            if (!(exr = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--technique") == 0) {
-            if (!(technique = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--width") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &width)) return CLI_EXIT_USAGE;
-            if (width < 1 || width > SSS_SCENE_MAX_IMAGE_SIZE)
-                return cli_usage_error(CMD, "--width must be in 1..%d", SSS_SCENE_MAX_IMAGE_SIZE);
-        } else if (strcmp(a, "--height") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &height)) return CLI_EXIT_USAGE;
-            if (height < 1 || height > SSS_SCENE_MAX_IMAGE_SIZE)
-                return cli_usage_error(CMD, "--height must be in 1..%d", SSS_SCENE_MAX_IMAGE_SIZE);
-        } else if (strcmp(a, "--time") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_double(CMD, a, v, &time0)) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--frames") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &frames)) return CLI_EXIT_USAGE;
+    cli_parser args;
+    cli_parser_init(&args, &cli_spec_render, argc, argv, 1);
+    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
+        const char *a = args.given, *v = args.value;
+        switch (o) {
+        case CLI_BAD: return CLI_EXIT_USAGE;
+        case OPT_OUTPUT: out = v; break;
+        case OPT_EXR: exr = v; break;
+        case OPT_TECHNIQUE: technique = v; break;
+        case OPT_WIDTH:
+        case OPT_HEIGHT:
+            if (!cli_parse_size(CMD, a, v, o == OPT_WIDTH ? &width : &height)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_TIME:
+            if (!cli_parse_double(CMD, a, v, &time0)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_FRAMES:
+            if (!cli_parse_int(CMD, a, v, &frames)) return CLI_EXIT_USAGE;
             if (frames < 1 || frames > MAX_FRAMES) return cli_usage_error(CMD, "--frames must be in 1..%d", MAX_FRAMES);
             frames_given = 1;
-        } else if (strcmp(a, "--fps") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_double(CMD, a, v, &fps)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_FPS:
+            if (!cli_parse_double(CMD, a, v, &fps)) return CLI_EXIT_USAGE;
             if (!(fps > 0.0)) return cli_usage_error(CMD, "--fps must be > 0");
-        } else if (strcmp(a, "--animate") == 0) {
-            animate = 1;
-        } else if (strcmp(a, "--timings") == 0) {
-            timings = 1;
-        } else if (strcmp(a, "--warmup") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &warmup)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_ANIMATE: animate = 1; break;
+        case OPT_TIMINGS: timings = 1; break;
+        case OPT_WARMUP:
+            if (!cli_parse_int(CMD, a, v, &warmup)) return CLI_EXIT_USAGE;
             if (warmup < 0 || warmup > MAX_FRAMES) return cli_usage_error(CMD, "--warmup must be in 0..%d", MAX_FRAMES);
-        } else if (strcmp(a, "--timings-json") == 0) {
-            if (!(json = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--supersample") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &supersample))
-                return CLI_EXIT_USAGE;
-            if (supersample < 1 || supersample > SSS_GL_MAX_SUPERSAMPLE)
-                return cli_usage_error(CMD, "--supersample must be in 1..%d (the antialiasing factor per axis; 1: off), got %d",
-                                       SSS_GL_MAX_SUPERSAMPLE, supersample);
-        } else if (strcmp(a, "--data") == 0) {
-            if (!(data = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--window") == 0) {
-            window = 1;
-        } else if (strcmp(a, "--param") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
+            break;
+        case OPT_TIMINGS_JSON: json = v; break;
+        case OPT_SUPERSAMPLE:
+            if (!cli_parse_supersample(CMD, a, v, &supersample)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_DATA: data = v; break;
+        case OPT_WINDOW: window = 1; break;
+        case OPT_PARAM: {
             const char *eq = strchr(v, '=');
             if (!eq || eq == v || (size_t)(eq - v) >= sizeof param_names[0])
                 return cli_usage_error(CMD, "--param expects NAME=VALUE, got '%s'", v);
@@ -207,12 +224,11 @@ int sss_cmd_render(int argc, char **argv)
             if (sss_gl_param_parse(param_names[nparams], eq + 1, &params[nparams].value, &perr) != SSS_OK)
                 return cli_usage_error(CMD, "--param: %s", perr.message);
             nparams++;
-        } else if (a[0] == '-' && a[1]) {
-            return cli_usage_error(CMD, "unknown option '%s'", a);
-        } else if (!scene_path) {
-            scene_path = a;
-        } else {
-            return cli_usage_error(CMD, "unexpected argument '%s'", a);
+            break;
+        }
+        default: /* CLI_OPERAND */
+            if (scene_path) return cli_usage_error(CMD, "unexpected argument '%s'", v);
+            scene_path = v;
         }
     }
     if (!scene_path) return cli_usage_error(CMD, "missing SCENE.json");
@@ -240,6 +256,8 @@ int sss_cmd_render(int argc, char **argv)
         if (strcmp(ext, "png") && strcmp(ext, "exr") && strcmp(ext, "hdr") && strcmp(ext, "pfm"))
             return cli_usage_error(CMD, "-o: unknown image format '%s' (png, exr, hdr, pfm)", out);
     }
+
+    if (technique && cli_check_technique(CMD, technique) != CLI_EXIT_OK) return CLI_EXIT_ERROR;
 
     sss_error err = {0};
     sss_scene scene;
@@ -271,6 +289,10 @@ int sss_cmd_render(int argc, char **argv)
     rdesc.supersample = supersample;
     sss_gl_renderer *r = NULL;
     int status = CLI_EXIT_OK;
+    /* progress over every frame rendered (warm-up too); a window shows its own frames */
+    cli_progress progress;
+    cli_progress_init(&progress, &args);
+    progress.active = progress.active && !window && frames > 1;
     sss_gl_timing_series series = {0};
     sss_image img = {0};
     if (rdesc.timings && sss_gl_timing_series_init(&series, warmup, frames, &err) != SSS_OK) {
@@ -288,6 +310,8 @@ int sss_cmd_render(int argc, char **argv)
         goto done;
     }
     sss_gl_timings last = {0};
+    int total = frames + (rdesc.timings ? warmup : 0), done_frames = 0;
+    char stage[32] = "warm-up";
     for (int k = 0; rdesc.timings && k < warmup; k++) {
         if (sss_gl_renderer_render(r, time0, &err) != SSS_OK) {
             status = cli_fail(CMD, &err);
@@ -295,6 +319,7 @@ int sss_cmd_render(int argc, char **argv)
         }
         sss_gl_renderer_timings(r, &last);
         sss_gl_timing_series_add(&series, &last);
+        cli_progress_update(&progress, (double)++done_frames / total, stage);
     }
     for (int k = 0; k < frames || (window && !frames_given); k++) {
         double t = animate ? time0 + k / fps : time0;
@@ -314,6 +339,8 @@ int sss_cmd_render(int argc, char **argv)
             sss_gl_renderer_timings(r, &last);
             sss_gl_timing_series_add(&series, &last);
         }
+        snprintf(stage, sizeof stage, "frame %d/%d", k + 1, frames);
+        if (k < frames) cli_progress_update(&progress, (double)++done_frames / total, stage);
         if (!out && !exr) continue;
         int write_now = k < frames && (animate || k == frames - 1);
         if (!write_now) continue;
@@ -340,6 +367,7 @@ int sss_cmd_render(int argc, char **argv)
             }
         }
     }
+    cli_progress_end(&progress);
     sss_gl_timings median;
     sss_gl_timing_series_median(&series, &median);
     if (rdesc.timings && median.pass_count > 0) {
@@ -364,6 +392,7 @@ int sss_cmd_render(int argc, char **argv)
         }
     }
 done:
+    if (status != CLI_EXIT_OK) cli_progress_end(&progress);
     sss_gl_timing_series_free(&series);
     sss_image_free(&img);
     sss_gl_renderer_destroy(r);

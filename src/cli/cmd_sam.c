@@ -12,6 +12,42 @@
 
 #define CMD "sam"
 
+enum {
+    OPT_OUTPUT, OPT_MEDIUM, OPT_SCALE, OPT_ETA, OPT_MODEL, OPT_OBJECT, OPT_LINKS, OPT_SAMPLES, OPT_SEED, OPT_THREADS,
+    OPT_BRUTE_FORCE, OPT_BACKSIDE_TRIANGLES, OPT_BACKSIDE_MESH, OPT_BACKSIDE_SPLAT
+};
+#define OBJECT_OPTION {OPT_OBJECT, "--object", NULL, CLI_ARG_NUMBER, "K", "scene object index (default: the first subsurface object)", NULL}
+static const cli_option build_options[] = {
+    {OPT_OUTPUT, "--output", "-o", CLI_ARG_FILE, "FILE", "output .sam file (written atomically)", NULL},
+    {OPT_MEDIUM, "--medium", NULL, CLI_ARG_MEDIUM, "NAME", "measured medium (mesh input), e.g. Marble", NULL},
+    {OPT_SCALE, "--scale", NULL, CLI_ARG_NUMBER, "S", "millimetres per mesh unit (default 1)", NULL},
+    {OPT_ETA, "--eta", NULL, CLI_ARG_NUMBER, "E", "relative index of refraction (default 1.33)", NULL},
+    {OPT_MODEL, "--model", NULL, CLI_ARG_TEXT, "M", "pbd (default, as PBRT-v3) or dipole", "pbd dipole"},
+    OBJECT_OPTION,
+    {OPT_LINKS, "--links", "-n", CLI_ARG_NUMBER, "N", "back-side links per vertex, 1.." CLI_STR(SSS_SAM_MAX_N) " (default 3, the paper's)",
+     NULL},
+    {OPT_SAMPLES, "--samples", NULL, CLI_ARG_NUMBER, "S",
+     "Monte Carlo pairs per form factor, 1.." CLI_STR(SSS_SAM_MAX_SAMPLES) " (default 64)", NULL},
+    {OPT_SEED, "--seed", NULL, CLI_ARG_NUMBER, "X", "seed of the sample shifts (default 0)", NULL},
+    {OPT_THREADS, "--threads", NULL, CLI_ARG_NUMBER, "T", "OpenMP threads (default: all cores)", NULL},
+    {OPT_BRUTE_FORCE, "--brute-force", NULL, CLI_ARG_NONE, NULL, "test every vertex pair instead of the tree (for checks; O(V^2))",
+     NULL},
+    {OPT_BACKSIDE_TRIANGLES, "--backside-triangles", NULL, CLI_ARG_NUMBER, "N",
+     "the back side: the mesh simplified to at most N triangles (meshoptimizer)", NULL},
+    {OPT_BACKSIDE_MESH, "--backside-mesh", NULL, CLI_ARG_FILE, "FILE",
+     "the back side: a given coarse mesh (.ply/.obj) in the same space as the\n"
+     "mesh (a scene object's: object space, posed by its transform)",
+     NULL},
+    {OPT_BACKSIDE_SPLAT, "--backside-splat", NULL, CLI_ARG_NONE, NULL,
+     "the back side: a scene object's splat_mesh, or its mesh simplified to\n"
+     "splat_triangles",
+     NULL},
+};
+static const cli_option info_options[] = {OBJECT_OPTION};
+const cli_command_spec cli_spec_sam_build = {"sam build", build_options, CLI_COUNT(build_options), CLI_ARG_FILE,
+                                             "build info"};
+const cli_command_spec cli_spec_sam_info = {"sam info", info_options, CLI_COUNT(info_options), CLI_ARG_FILE, NULL};
+
 static void print_usage(FILE *f)
 {
     fprintf(f,
@@ -27,32 +63,18 @@ static void print_usage(FILE *f)
             "material. The file records the mesh (counts and a hash of positions and indices), n and the\n"
             "material; `sss render --technique sam` and `sss sam info` reject a file that does not match.\n"
             "\n"
-            "options:\n"
-            "  -o FILE          output .sam file (written atomically)\n"
-            "  --medium NAME    measured medium (mesh input), e.g. Marble\n"
-            "  --scale S        millimetres per mesh unit (default 1)\n"
-            "  --eta E          relative index of refraction (default 1.33)\n"
-            "  --model M        pbd (default, as PBRT-v3) or dipole\n"
-            "  --object K       scene object index (default: the first subsurface object)\n"
-            "  -n N             back-side links per vertex, 1..%d (default 3, the paper's)\n"
-            "  --samples S      Monte Carlo pairs per form factor, 1..%d (default 64)\n"
-            "  --seed X         seed of the sample shifts (default 0)\n"
-            "  --threads T      OpenMP threads (default: all cores)\n"
-            "  --brute-force    test every vertex pair instead of the tree (for checks; O(V^2))\n"
-            "\n"
             "back side on a lower-tessellation mesh (Maisch & Ropinski 2017, section 4.4 and its appendix): every vertex links\n"
             "to n vertices of a coarser mesh of the same surface, whose larger reduced fans (Eq. 16) are the\n"
             "sources of Eq. 11; n links then cover more of the back side of a finely tessellated mesh, and the\n"
-            "search is faster. The file (version 2) holds the coarse mesh; the renderer lights its vertices.\n"
-            "  --backside-triangles N  the mesh simplified to at most N triangles (meshoptimizer)\n"
-            "  --backside-mesh FILE    a given coarse mesh (.ply/.obj) in the same space as the mesh (a scene\n"
-            "                          object's: object space, posed by its transform)\n"
-            "  --backside-splat        a scene object's splat_mesh, or its mesh simplified to splat_triangles\n"
+            "search is faster. The file (version 2) holds the coarse mesh; the renderer lights its vertices\n"
+            "(--backside-triangles, --backside-mesh, --backside-splat).\n"
+            "\n");
+    cli_print_options(f, &cli_spec_sam_build);
+    fprintf(f,
             "\n"
             "Prints vertex and triangle counts, the build time, and how much of the (back-side) mesh the search\n"
             "visited.\n"
-            "Exit status: 0 success, 1 error, 2 usage error.\n",
-            SSS_SAM_MAX_N, SSS_SAM_MAX_SAMPLES);
+            "Exit status: 0 success, 1 error, 2 usage error.\n");
 }
 
 static int is_scene(const char *path)
@@ -98,19 +120,20 @@ static int cmd_info(int argc, char **argv)
 {
     const char *file = NULL, *against = NULL;
     int object = -1;
-    for (int i = 2; i < argc; i++) {
-        const char *a = argv[i], *v;
-        if (strcmp(a, "--object") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int_in(CMD, a, v, 0, INT_MAX, &object))
-                return CLI_EXIT_USAGE;
-        } else if (a[0] == '-' && a[1]) {
-            return cli_usage_error(CMD, "unknown option '%s'", a);
+    cli_parser args;
+    cli_parser_init(&args, &cli_spec_sam_info, argc, argv, 2);
+    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
+        const char *a = args.given, *v = args.value;
+        if (o == CLI_BAD) {
+            return CLI_EXIT_USAGE;
+        } else if (o == OPT_OBJECT) {
+            if (!cli_parse_int_in(CMD, a, v, 0, INT_MAX, &object)) return CLI_EXIT_USAGE;
         } else if (!file) {
-            file = a;
+            file = v;
         } else if (!against) {
-            against = a;
+            against = v;
         } else {
-            return cli_usage_error(CMD, "unexpected argument '%s'", a);
+            return cli_usage_error(CMD, "unexpected argument '%s'", v);
         }
     }
     if (!file) return cli_usage_error(CMD, "missing FILE.sam");
@@ -153,49 +176,51 @@ static int cmd_build(int argc, char **argv)
     int n = 3, samples = 64, threads = 0, object = -1, brute = 0, scale_given = 0, eta_given = 0, back_tris = 0;
     int back_splat = 0;
     long long seed = 0;
-    for (int i = 2; i < argc; i++) {
-        const char *a = argv[i], *v;
-        if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
-            if (!(output = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--medium") == 0) {
-            if (!(medium = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--model") == 0) {
-            if (!(model_text = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
+    cli_parser args;
+    cli_parser_init(&args, &cli_spec_sam_build, argc, argv, 2);
+    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
+        const char *a = args.given, *v = args.value;
+        switch (o) {
+        case CLI_BAD: return CLI_EXIT_USAGE;
+        case OPT_OUTPUT: output = v; break;
+        case OPT_MEDIUM: medium = v; break;
+        case OPT_MODEL:
+            model_text = v;
             if (strcmp(model_text, "pbd") != 0 && strcmp(model_text, "dipole") != 0)
                 return cli_usage_error(CMD, "--model expects pbd or dipole, got '%s'", model_text);
-        } else if (strcmp(a, "--scale") == 0 || strcmp(a, "--eta") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_double(CMD, a, v, a[2] == 's' ? &scale : &eta))
-                return CLI_EXIT_USAGE;
-            *(a[2] == 's' ? &scale_given : &eta_given) = 1;
-        } else if (strcmp(a, "-n") == 0 || strcmp(a, "--samples") == 0) {
-            int *dst = a[1] == 'n' ? &n : &samples;
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, dst)) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--object") == 0) { /* -1 (and --threads 0) are the defaults' sentinels */
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int_in(CMD, a, v, 0, INT_MAX, &object))
-                return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--threads") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int_in(CMD, a, v, 1, 4096, &threads))
-                return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--seed") == 0) {
+            break;
+        case OPT_SCALE:
+        case OPT_ETA:
+            if (!cli_parse_double(CMD, a, v, o == OPT_SCALE ? &scale : &eta)) return CLI_EXIT_USAGE;
+            *(o == OPT_SCALE ? &scale_given : &eta_given) = 1;
+            break;
+        case OPT_LINKS:
+        case OPT_SAMPLES:
+            if (!cli_parse_int(CMD, a, v, o == OPT_LINKS ? &n : &samples)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_OBJECT: /* -1 (and --threads 0) are the defaults' sentinels */
+            if (!cli_parse_int_in(CMD, a, v, 0, INT_MAX, &object)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_THREADS:
+            if (!cli_parse_int_in(CMD, a, v, 1, 4096, &threads)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_SEED: {
             double x;
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_double(CMD, a, v, &x)) return CLI_EXIT_USAGE;
+            if (!cli_parse_double(CMD, a, v, &x)) return CLI_EXIT_USAGE;
             if (x < 0 || x > 9e15 || x != (double)(long long)x) return cli_usage_error(CMD, "--seed must be an integer >= 0");
             seed = (long long)x;
-        } else if (strcmp(a, "--brute-force") == 0) {
-            brute = 1;
-        } else if (strcmp(a, "--backside-triangles") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &back_tris)) return CLI_EXIT_USAGE;
+            break;
+        }
+        case OPT_BRUTE_FORCE: brute = 1; break;
+        case OPT_BACKSIDE_TRIANGLES:
+            if (!cli_parse_int(CMD, a, v, &back_tris)) return CLI_EXIT_USAGE;
             if (back_tris < 1) return cli_usage_error(CMD, "--backside-triangles must be >= 1");
-        } else if (strcmp(a, "--backside-mesh") == 0) {
-            if (!(back_file = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--backside-splat") == 0) {
-            back_splat = 1;
-        } else if (a[0] == '-' && a[1]) {
-            return cli_usage_error(CMD, "unknown option '%s'", a);
-        } else if (!input) {
-            input = a;
-        } else {
-            return cli_usage_error(CMD, "unexpected argument '%s'", a);
+            break;
+        case OPT_BACKSIDE_MESH: back_file = v; break;
+        case OPT_BACKSIDE_SPLAT: back_splat = 1; break;
+        default: /* CLI_OPERAND */
+            if (input) return cli_usage_error(CMD, "unexpected argument '%s'", v);
+            input = v;
         }
     }
     if (!input) return cli_usage_error(CMD, "missing MESH or SCENE.json");
@@ -313,5 +338,6 @@ int sss_cmd_sam(int argc, char **argv)
     }
     if (strcmp(argv[1], "build") == 0) return cmd_build(argc, argv);
     if (strcmp(argv[1], "info") == 0) return cmd_info(argc, argv);
-    return cli_usage_error(CMD, "unknown subcommand '%s' (build, info)", argv[1]);
+    const char *subs[] = {"build", "info"};
+    return cli_unknown(CMD, "subcommand", argv[1], subs, 2);
 }

@@ -25,21 +25,35 @@ static void print_params(const char *technique, const sss_gl_param_info *p, int 
     }
 }
 
+enum { OPT_PARAMS };
+static const cli_option options[] = {
+    {OPT_PARAMS, "--params", NULL, CLI_ARG_NONE, NULL, "also each technique's parameters and the shared ones", NULL},
+};
+const cli_command_spec cli_spec_techniques = {CMD, options, CLI_COUNT(options), CLI_ARG_NONE, NULL};
+
 int sss_cmd_techniques(int argc, char **argv)
 {
     if (cli_wants_help(argc, argv)) {
         printf("usage: sss techniques [--params]\n\n"
                "Lists the real-time techniques of `sss render --technique NAME`, one per line (name, then a\n"
                "summary). --params also lists each technique's parameters (set them with\n"
-               "`sss render --param NAME=VALUE`) and the parameters shared by all techniques. Defaults are the\n"
-               "values that measure best on the evaluation scenes; `--param preset=paper` sets the published\n"
-               "configuration, shown as [preset=paper: VALUE] where it differs.\n");
+               "`sss render --param NAME=VALUE`) and the parameters shared by all techniques. Defaults are the
+"
+               "values that measure best on the evaluation scenes; `--param preset=paper` sets the published
+"
+               "configuration, shown as [preset=paper: VALUE] where it differs.
+
+");
+        cli_print_options(stdout, &cli_spec_techniques);
         return CLI_EXIT_OK;
     }
     int with_params = 0;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--params") == 0) with_params = 1;
-        else return cli_usage_error(CMD, "unknown option '%s'", argv[i]);
+    cli_parser args;
+    cli_parser_init(&args, &cli_spec_techniques, argc, argv, 1);
+    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
+        if (o == CLI_BAD) return CLI_EXIT_USAGE;
+        if (o == OPT_PARAMS) with_params = 1;
+        else return cli_usage_error(CMD, "unexpected argument '%s'", args.value);
     }
     for (int i = 0; i < sss_gl_technique_count(); i++) {
         const sss_gl_technique_info *t = sss_gl_technique_at(i);

@@ -13,44 +13,71 @@
 #define MAX_PARAMS 64
 #define MAX_FRAMES 100000
 
+enum {
+    OPT_TECHNIQUE, OPT_WIDTH, OPT_HEIGHT, OPT_PARAM, OPT_TIME, OPT_ANIMATE, OPT_FRAMES, OPT_SCREENSHOT, OPT_NO_OVERLAY,
+    OPT_REFERENCE, OPT_DRAFT_REFERENCE, OPT_SUPERSAMPLE, OPT_INPUT, OPT_SCRIPT
+};
+static const cli_option options[] = {
+    {OPT_TECHNIQUE, "--technique", NULL, CLI_ARG_TECHNIQUE, "NAME", "first technique (default: the scene's render.technique)",
+     NULL},
+    {OPT_WIDTH, "--width", NULL, CLI_ARG_NUMBER, "W", "window width (default: the scene camera's)", NULL},
+    {OPT_HEIGHT, "--height", NULL, CLI_ARG_NUMBER, "H", "window height (default: the scene camera's)", NULL},
+    {OPT_PARAM, "--param", NULL, CLI_ARG_TEXT, "NAME=VALUE",
+     "a technique or shared parameter, repeatable (kept across technique\n"
+     "switches for the techniques that have it)",
+     NULL},
+    {OPT_TIME, "--time", NULL, CLI_ARG_NUMBER, "T", "animation time of the first frame (default 0)", NULL},
+    {OPT_ANIMATE, "--animate", NULL, CLI_ARG_NONE, NULL, "start with the animation playing (--frames: 30 frames per second)",
+     NULL},
+    {OPT_FRAMES, "--frames", NULL, CLI_ARG_NUMBER, "N", "render N frames without input, then exit", NULL},
+    {OPT_SCREENSHOT, "--screenshot", NULL, CLI_ARG_FILE, "FILE",
+     "with --frames: write the last frame as PNG (the window's image without\n"
+     "the overlay, the same image as `sss render` of that view)",
+     NULL},
+    {OPT_SCREENSHOT, "--output", "-o", CLI_ARG_FILE, "FILE", "the same as --screenshot", NULL},
+    {OPT_NO_OVERLAY, "--no-overlay", NULL, CLI_ARG_NONE, NULL, "start with the panel hidden (O toggles it)", NULL},
+    {OPT_SCRIPT, "--script", NULL, CLI_ARG_FILE, "FILE",
+     "run the panel actions of FILE, one per line, then exit (docs/viewer.md):\n"
+     "technique NAME, param [TECH.]NAME VALUE, material OBJ FIELD VALUE...,\n"
+     "light I position|intensity|colour VALUE..., buffer NAME,\n"
+     "split off|reference|TECH [POS], errormap on|off, panel on|off,\n"
+     "reference [draft], key EVENT, frames N, screenshot FILE.png",
+     NULL},
+    {OPT_REFERENCE, "--reference", NULL, CLI_ARG_NONE, NULL,
+     "render the CPU reference of the first view in the background at once;\n"
+     "with --frames, wait for it and print the DSSIM of the last frame",
+     NULL},
+    {OPT_DRAFT_REFERENCE, "--draft-reference", NULL, CLI_ARG_NONE, NULL, "references at draft quality (faster, noisier)",
+     NULL},
+    {OPT_SUPERSAMPLE, "--supersample", NULL, CLI_ARG_NUMBER, "K",
+     "antialiasing (`sss render --supersample`): K x K samples per pixel,\n"
+     "K in 1..4 (default 1: off); about K^2 the frame time",
+     NULL},
+    {OPT_INPUT, "--input", NULL, CLI_ARG_TEXT, "EVENTS",
+     "with --frames: input events, one per frame, comma-separated (tests):\n"
+     "keys (tab, shift+tab, 1, 2, 3, b, m, shift+m, +, -, l, shift+l, space,\n"
+     "s, c, o, h), orbit:DX:DY and pan:DX:DY (drags in pixels, y down),\n"
+     "zoom:STEPS (wheel)",
+     NULL},
+};
+const cli_command_spec cli_spec_view = {CMD, options, CLI_COUNT(options), CLI_ARG_FILE, NULL};
+
 static void print_usage(FILE *f)
 {
     fprintf(f,
             "usage: sss view SCENE.json [--technique NAME] [--width W --height H] [--param NAME=VALUE ...]\n"
             "                [--time T] [--animate] [--frames N [--screenshot FILE.png]] [--no-overlay]\n"
-            "                [--reference] [--draft-reference] [--supersample K] [--input EVENTS]\n"
+            "                [--reference] [--draft-reference] [--supersample K] [--input EVENTS] [--quiet]\n"
             "                [--script FILE]\n"
             "\n"
             "Shows SCENE.json in a window with a real-time technique (needs a display; without one use\n"
             "`sss render`, or run under `xvfb-run -a`). A panel (Dear ImGui) lists the techniques and\n"
             "their parameters, materials, lights, frame time per pass, buffers, the split view and the\n"
-            "error map; the window title shows the frame time.\n"
-            "\n"
-            "options:\n"
-            "  --technique NAME    first technique (default: the scene's render.technique)\n"
-            "  --width W, --height H  window size (default: the scene camera's)\n"
-            "  --param NAME=VALUE  a technique or shared parameter, repeatable (kept across technique\n"
-            "                      switches for the techniques that have it)\n"
-            "  --time T            animation time of the first frame (default 0)\n"
-            "  --animate           start with the animation playing (--frames: 30 frames per second)\n"
-            "  --frames N          render N frames without input, then exit\n"
-            "  --screenshot FILE   with --frames: write the last frame as PNG (the window's image without\n"
-            "                      the overlay, the same image as `sss render` of that view)\n"
-            "  --no-overlay        start with the panel hidden (O toggles it)\n"
-            "  --script FILE       run the panel actions of FILE, one per line, then exit (docs/viewer.md):\n"
-            "                      technique NAME, param [TECH.]NAME VALUE, material OBJ FIELD VALUE...,\n"
-            "                      light I position|intensity|colour VALUE..., buffer NAME,\n"
-            "                      split off|reference|TECH [POS], errormap on|off, panel on|off,\n"
-            "                      reference [draft], key EVENT, frames N, screenshot FILE.png\n"
-            "  --reference         render the CPU reference of the first view in the background at once;\n"
-            "                      with --frames, wait for it and print the DSSIM of the last frame\n"
-            "  --draft-reference   references at draft quality (faster, noisier)\n"
-            "  --supersample K     antialiasing (`sss render --supersample`): K x K samples per pixel,\n"
-            "                      K in 1..4 (default 1: off); about K^2 the frame time\n"
-            "  --input EVENTS      with --frames: input events, one per frame, comma-separated (tests):\n"
-            "                      keys (tab, shift+tab, 1, 2, 3, b, m, shift+m, +, -, l, shift+l, space,\n"
-            "                      s, c, o, h), orbit:DX:DY and pan:DX:DY (drags in pixels, y down),\n"
-            "                      zoom:STEPS (wheel)\n"
+            "error map; the window title shows the frame time. The viewer's messages go to stdout (none\n"
+            "with --quiet).\n"
+            "\n");
+    cli_print_options(f, &cli_spec_view);
+    fprintf(f,
             "\n"
             "keys and mouse:\n%s"
             "\n"
@@ -76,42 +103,35 @@ int sss_cmd_view(int argc, char **argv)
     sss_gl_param_value params[MAX_PARAMS];
     char names[MAX_PARAMS][64];
     int nparams = 0;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v;
-        if (strcmp(a, "--technique") == 0) {
-            if (!(d.technique = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--width") == 0 || strcmp(a, "--height") == 0) {
-            int *dst = a[2] == 'w' ? &d.width : &d.height;
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, dst)) return CLI_EXIT_USAGE;
-            if (*dst < 1 || *dst > SSS_SCENE_MAX_IMAGE_SIZE)
-                return cli_usage_error(CMD, "%s must be in 1..%d", a, SSS_SCENE_MAX_IMAGE_SIZE);
-        } else if (strcmp(a, "--time") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_double(CMD, a, v, &d.time)) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--frames") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &d.frames)) return CLI_EXIT_USAGE;
+    cli_parser args;
+    cli_parser_init(&args, &cli_spec_view, argc, argv, 1);
+    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
+        const char *a = args.given, *v = args.value;
+        switch (o) {
+        case CLI_BAD: return CLI_EXIT_USAGE;
+        case OPT_TECHNIQUE: d.technique = v; break;
+        case OPT_WIDTH:
+        case OPT_HEIGHT:
+            if (!cli_parse_size(CMD, a, v, o == OPT_WIDTH ? &d.width : &d.height)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_TIME:
+            if (!cli_parse_double(CMD, a, v, &d.time)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_FRAMES:
+            if (!cli_parse_int(CMD, a, v, &d.frames)) return CLI_EXIT_USAGE;
             if (d.frames < 1 || d.frames > MAX_FRAMES) return cli_usage_error(CMD, "--frames must be in 1..%d", MAX_FRAMES);
-        } else if (strcmp(a, "--screenshot") == 0) {
-            if (!(d.screenshot = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--script") == 0) {
-            if (!(d.script = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--input") == 0) {
-            if (!(d.input = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
-        } else if (strcmp(a, "--animate") == 0) {
-            d.animate = 1;
-        } else if (strcmp(a, "--no-overlay") == 0) {
-            d.no_overlay = 1;
-        } else if (strcmp(a, "--reference") == 0) {
-            d.reference = 1;
-        } else if (strcmp(a, "--draft-reference") == 0) {
-            d.reference_draft = 1;
-        } else if (strcmp(a, "--supersample") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i)) || !cli_parse_int(CMD, a, v, &d.supersample))
-                return CLI_EXIT_USAGE;
-            if (d.supersample < 1 || d.supersample > SSS_GL_MAX_SUPERSAMPLE)
-                return cli_usage_error(CMD, "--supersample must be in 1..%d (the antialiasing factor per axis; 1: off), got %d",
-                                       SSS_GL_MAX_SUPERSAMPLE, d.supersample);
-        } else if (strcmp(a, "--param") == 0) {
-            if (!(v = cli_option_value(CMD, argc, argv, &i))) return CLI_EXIT_USAGE;
+            break;
+        case OPT_SCREENSHOT: d.screenshot = v; break;
+        case OPT_INPUT: d.input = v; break;
+        case OPT_SCRIPT: d.script = v; break;
+        case OPT_ANIMATE: d.animate = 1; break;
+        case OPT_NO_OVERLAY: d.no_overlay = 1; break;
+        case OPT_REFERENCE: d.reference = 1; break;
+        case OPT_DRAFT_REFERENCE: d.reference_draft = 1; break;
+        case OPT_SUPERSAMPLE:
+            if (!cli_parse_supersample(CMD, a, v, &d.supersample)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_PARAM: {
             const char *eq = strchr(v, '=');
             if (!eq || eq == v || (size_t)(eq - v) >= sizeof names[0])
                 return cli_usage_error(CMD, "--param expects NAME=VALUE, got '%s'", v);
@@ -123,12 +143,11 @@ int sss_cmd_view(int argc, char **argv)
             if (sss_gl_param_parse(names[nparams], eq + 1, &params[nparams].value, &perr) != SSS_OK)
                 return cli_usage_error(CMD, "--param: %s", perr.message);
             nparams++;
-        } else if (a[0] == '-' && a[1]) {
-            return cli_usage_error(CMD, "unknown option '%s'", a);
-        } else if (!d.scene_path) {
-            d.scene_path = a;
-        } else {
-            return cli_usage_error(CMD, "unexpected argument '%s'", a);
+            break;
+        }
+        default: /* CLI_OPERAND */
+            if (d.scene_path) return cli_usage_error(CMD, "unexpected argument '%s'", v);
+            d.scene_path = v;
         }
     }
     if (!d.scene_path) return cli_usage_error(CMD, "missing SCENE.json");
@@ -144,7 +163,8 @@ int sss_cmd_view(int argc, char **argv)
     }
     d.params = params;
     d.param_count = nparams;
-    d.log = print_message;
+    d.log = args.quiet ? NULL : print_message;
+    if (d.technique && cli_check_technique(CMD, d.technique) != CLI_EXIT_OK) return CLI_EXIT_ERROR;
     sss_error err = {0};
     if (sss_view_run(&d, &err) != SSS_OK) return cli_fail(CMD, &err);
     return CLI_EXIT_OK;

@@ -194,3 +194,24 @@ int sss_json_find_nul(const char *text, size_t size, char *path, size_t cap)
     }
     return 0;
 }
+
+int sss_text_edit_distance(const char *a, const char *b)
+{
+    size_t n = strlen(a), m = strlen(b);
+    if (n > SSS_TEXT_DISTANCE_MAX || m > SSS_TEXT_DISTANCE_MAX) return SSS_TEXT_DISTANCE_MAX;
+    /* d[i][j]: distance of the first i bytes of a and the first j of b (Damerau 1964, restricted). */
+    int d[SSS_TEXT_DISTANCE_MAX + 1][SSS_TEXT_DISTANCE_MAX + 1];
+    for (size_t i = 0; i <= n; i++) d[i][0] = (int)i;
+    for (size_t j = 0; j <= m; j++) d[0][j] = (int)j;
+    for (size_t i = 1; i <= n; i++)
+        for (size_t j = 1; j <= m; j++) {
+            int cost = a[i - 1] != b[j - 1];
+            int best = d[i - 1][j - 1] + cost;
+            if (d[i - 1][j] + 1 < best) best = d[i - 1][j] + 1;
+            if (d[i][j - 1] + 1 < best) best = d[i][j - 1] + 1;
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] && d[i - 2][j - 2] + 1 < best)
+                best = d[i - 2][j - 2] + 1;
+            d[i][j] = best;
+        }
+    return d[n][m];
+}

@@ -36,4 +36,11 @@ size_t sss_text_shorten_middle(char *text, size_t len, size_t max);
  * Meant for text that has already parsed as JSON; other text never makes it read out of bounds. */
 int sss_json_find_nul(const char *text, size_t size, char *path, size_t cap);
 
+/* Edit distance of two NUL-terminated strings: the fewest insertions, deletions, substitutions and
+ * swaps of two adjacent characters that turn a into b (the optimal string alignment distance, in
+ * bytes, case-sensitive). Strings longer than SSS_TEXT_DISTANCE_MAX bytes count as that far from
+ * everything (the "did you mean" of the command-line tool compares short names). */
+#define SSS_TEXT_DISTANCE_MAX 64
+int sss_text_edit_distance(const char *a, const char *b);
+
 #endif

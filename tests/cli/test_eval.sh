@@ -43,7 +43,7 @@ EOF
 OUT=$T/out
 TECHS="maisch2020,local,nosuch,maisch2020:layers=999"
 "$SSS" eval "$T/scenes/ball.json" "$T/scenes/knot.json@0.5" --techniques "$TECHS" --frames 1 --warmup 0 \
-    --timing-resolutions 96x64 --out "$OUT" >"$T/stdout" 2>"$T/stderr"
+    --timing-resolutions 96x64 --out "$OUT" --progress >"$T/stdout" 2>"$T/stderr"
 rc=$?
 [ "$rc" -eq 0 ] || fail "sss eval exited $rc: $(head -c 600 "$T/stderr")"
 for f in results.json results.csv report.html sheet_ball.png sheet_knot_t0.5.png plot_dssim.png plot_flip.png \
@@ -59,7 +59,7 @@ done
 grep -q "nosuch" "$T/stdout" || fail "summary does not list the failing technique: $(cat "$T/stdout")"
 grep -Eq "FAILED" "$T/stdout" || fail "summary does not mark failures"
 grep -q "report.html" "$T/stdout" || fail "summary does not say where the report is"
-# plain progress lines (stderr is not a terminal here), no carriage returns
+# plain progress lines (stderr is not a terminal here: --progress), no carriage returns
 grep -q "reference" "$T/stderr" || fail "no progress lines on stderr"
 if grep -q $'\r' "$T/stderr"; then fail "progress bar escapes on a non-terminal"; fi
 

@@ -33,9 +33,9 @@ check "--help exits 0" $?
 grep -q "usage: sss reference" "$TMP/help.txt"
 check "--help prints the usage" $?
 
-# A good scene: all outputs, plain progress lines (stderr is not a terminal here), stats.
+# A good scene: all outputs, plain progress lines (stderr is not a terminal here: --progress), stats.
 "$SSS" reference "$TMP/good.json" -o "$TMP/out.png" --exr "$TMP/out.exr" --pfm "$TMP/out.pfm" \
-    --quality draft --threads 2 --seed 7 --stats > "$TMP/stats.txt" 2> "$TMP/progress.txt"
+    --quality draft --threads 2 --seed 7 --stats --progress > "$TMP/stats.txt" 2> "$TMP/progress.txt"
 check "good scene renders (exit 0)" $?
 for f in out.png out.exr out.pfm; do
     [ -s "$TMP/$f" ]

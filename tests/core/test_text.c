@@ -94,8 +94,28 @@ static void test_json_nul(void)
     CHECK(NUL_AT("{\"cut\": \"\\u00", NULL));                                 /* truncated: no read past the end */
 }
 
+/* Distances counted by hand: the classic kitten -> sitting is 3 (two substitutions, one insertion);
+ * a swap of neighbours is 1 (plain Levenshtein would give 2). */
+static void test_edit_distance(void)
+{
+    CHECK(sss_text_edit_distance("kitten", "sitting") == 3);
+    CHECK(sss_text_edit_distance("", "") == 0);
+    CHECK(sss_text_edit_distance("", "abc") == 3);
+    CHECK(sss_text_edit_distance("render", "render") == 0);
+    CHECK(sss_text_edit_distance("rendr", "render") == 1);       /* a deletion */
+    CHECK(sss_text_edit_distance("--widht", "--width") == 1);    /* a swap */
+    CHECK(sss_text_edit_distance("maisch2020", "maisch2002") == 1);
+    CHECK(sss_text_edit_distance("ca", "abc") == 3);              /* OSA: no edit of a swapped pair */
+    CHECK(sss_text_edit_distance("Render", "render") == 1);       /* case-sensitive */
+    char longer[SSS_TEXT_DISTANCE_MAX + 2];
+    memset(longer, 'a', sizeof longer - 1);
+    longer[sizeof longer - 1] = '\0';
+    CHECK(sss_text_edit_distance(longer, longer) == SSS_TEXT_DISTANCE_MAX);
+}
+
 int main(void)
 {
+    test_edit_distance();
     test_escape();
     test_shorten();
     test_json_nul();

@@ -20,9 +20,10 @@ SSS=$P/bin/sss
 EXAMPLES=$P/share/doc/sss/examples
 export PKG_CONFIG_PATH=$libdir/pkgconfig
 
-# The installed tree: headers (with the generated version.h), both libraries, the tool, the CMake
-# package, sss.pc, the docs and examples.
-for f in include/sss/sss.h include/sss/version.h bin/sss share/doc/sss/limits.md share/doc/sss/examples/CMakeLists.txt; do
+# The installed tree: headers (with the generated version.h), both libraries, the tool and its bash
+# completion, the CMake package, sss.pc, the docs and examples.
+for f in include/sss/sss.h include/sss/version.h bin/sss share/bash-completion/completions/sss share/doc/sss/limits.md \
+    share/doc/sss/examples/CMakeLists.txt; do
     [ -f "$P/$f" ] || fail "not installed: $f"
 done
 for f in libsss.a libsss.so pkgconfig/sss.pc cmake/sss/sssConfig.cmake cmake/sss/sssConfigVersion.cmake; do
