@@ -37,13 +37,9 @@ int sss_cmd_techniques(int argc, char **argv)
         printf("usage: sss techniques [--params]\n\n"
                "Lists the real-time techniques of `sss render --technique NAME`, one per line (name, then a\n"
                "summary). --params also lists each technique's parameters (set them with\n"
-               "`sss render --param NAME=VALUE`) and the parameters shared by all techniques. Defaults are the
-"
-               "values that measure best on the evaluation scenes; `--param preset=paper` sets the published
-"
-               "configuration, shown as [preset=paper: VALUE] where it differs.
-
-");
+               "`sss render --param NAME=VALUE`) and the parameters shared by all techniques. Defaults are the\n"
+               "values that measure best on the evaluation scenes; `--param preset=paper` sets the published\n"
+               "configuration, shown as [preset=paper: VALUE] where it differs.\n\n");
         cli_print_options(stdout, &cli_spec_techniques);
         return CLI_EXIT_OK;
     }
