@@ -189,6 +189,30 @@ int cli_parse_supersample(const char *cmd, const char *option, const char *text,
     return 1;
 }
 
+int cli_params_add(const char *cmd, cli_params *params, const char *text)
+{
+    const char *eq = strchr(text, '=');
+    if (!eq || eq == text || (size_t)(eq - text) >= sizeof params->names[0]) {
+        cli_usage_error(cmd, "--param expects NAME=VALUE, got '%s'", text);
+        return 0;
+    }
+    if (params->count >= CLI_MAX_PARAMS) {
+        cli_usage_error(cmd, "at most %d --param options", CLI_MAX_PARAMS);
+        return 0;
+    }
+    int k = params->count;
+    memcpy(params->names[k], text, (size_t)(eq - text));
+    params->names[k][eq - text] = '\0';
+    params->values[k].name = params->names[k];
+    sss_error err = {0};
+    if (sss_gl_param_parse(params->names[k], eq + 1, &params->values[k].value, &err) != SSS_OK) {
+        cli_usage_error(cmd, "--param: %s", err.message); /* preset=paper|measured, or a number */
+        return 0;
+    }
+    params->count++;
+    return 1;
+}
+
 int cli_scene_resize(const char *cmd, sss_scene *scene, int width, int height)
 {
     if (width) scene->camera.width = width;

@@ -6,6 +6,7 @@
 #include <stdio.h>
 
 #include "sss/common.h"
+#include "sss/gl.h"
 #include "sss/profile.h"
 
 enum { CLI_EXIT_OK = 0, CLI_EXIT_ERROR = 1, CLI_EXIT_USAGE = 2 };
@@ -179,6 +180,16 @@ int cli_parse_positive(const char *cmd, const char *option, const char *text, do
  * 1..SSS_GL_MAX_SUPERSAMPLE (--width, --height, --supersample of every command that renders). */
 int cli_parse_size(const char *cmd, const char *option, const char *text, int *out);
 int cli_parse_supersample(const char *cmd, const char *option, const char *text, int *out);
+
+/* The technique parameters of --param NAME=VALUE (render, view), at most CLI_MAX_PARAMS. */
+#define CLI_MAX_PARAMS 64
+typedef struct cli_params {
+    sss_gl_param_value values[CLI_MAX_PARAMS];
+    char names[CLI_MAX_PARAMS][64];
+    int count;
+} cli_params;
+/* Adds one NAME=VALUE; prints a usage error and returns 0 when it is malformed or one too many. */
+int cli_params_add(const char *cmd, cli_params *params, const char *text);
 
 /* Gives the scene's camera the size --width/--height asked for (0: keep the camera's) and rebuilds its
  * basis, as eval's sized views do. Prints the error as cmd's and returns CLI_EXIT_ERROR on failure. */

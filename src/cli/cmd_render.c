@@ -13,7 +13,6 @@
 #include "sss/scene.h"
 
 #define CMD "render"
-#define MAX_PARAMS 64
 #define MAX_FRAMES 100000
 
 enum {
@@ -172,9 +171,8 @@ int sss_cmd_render(int argc, char **argv)
     int width = 0, height = 0, frames = 1, animate = 0, timings = 0, window = 0, frames_given = 0, supersample = 1;
     int warmup = SSS_GL_WARMUP_FRAMES;
     double time0 = 0.0, fps = 30.0;
-    sss_gl_param_value params[MAX_PARAMS];
-    char param_names[MAX_PARAMS][64];
-    int nparams = 0;
+    cli_params params;
+    params.count = 0;
     cli_parser args;
     cli_parser_init(&args, &cli_spec_render, argc, argv, 1);
     for (int o; (o = cli_next(&args)) != CLI_DONE;) {
@@ -212,20 +210,9 @@ int sss_cmd_render(int argc, char **argv)
             break;
         case OPT_DATA: data = v; break;
         case OPT_WINDOW: window = 1; break;
-        case OPT_PARAM: {
-            const char *eq = strchr(v, '=');
-            if (!eq || eq == v || (size_t)(eq - v) >= sizeof param_names[0])
-                return cli_usage_error(CMD, "--param expects NAME=VALUE, got '%s'", v);
-            if (nparams >= MAX_PARAMS) return cli_usage_error(CMD, "at most %d --param options", MAX_PARAMS);
-            memcpy(param_names[nparams], v, (size_t)(eq - v));
-            param_names[nparams][eq - v] = '\0';
-            params[nparams].name = param_names[nparams];
-            sss_error perr = {0};
-            if (sss_gl_param_parse(param_names[nparams], eq + 1, &params[nparams].value, &perr) != SSS_OK)
-                return cli_usage_error(CMD, "--param: %s", perr.message);
-            nparams++;
+        case OPT_PARAM:
+            if (!cli_params_add(CMD, &params, v)) return CLI_EXIT_USAGE;
             break;
-        }
         default: /* CLI_OPERAND */
             if (scene_path) return cli_usage_error(CMD, "unexpected argument '%s'", v);
             scene_path = v;
@@ -282,8 +269,8 @@ int sss_cmd_render(int argc, char **argv)
     rdesc.technique = technique;
     rdesc.width = width;
     rdesc.height = height;
-    rdesc.params = params;
-    rdesc.param_count = nparams;
+    rdesc.params = params.values;
+    rdesc.param_count = params.count;
     rdesc.timings = timings || json;
     rdesc.data_file = data;
     rdesc.supersample = supersample;

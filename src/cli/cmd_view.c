@@ -10,7 +10,6 @@
 #include "sss/view.h"
 
 #define CMD "view"
-#define MAX_PARAMS 64
 #define MAX_FRAMES 100000
 
 enum {
@@ -100,9 +99,8 @@ int sss_cmd_view(int argc, char **argv)
     }
     sss_view_desc d;
     memset(&d, 0, sizeof d);
-    sss_gl_param_value params[MAX_PARAMS];
-    char names[MAX_PARAMS][64];
-    int nparams = 0;
+    cli_params params;
+    params.count = 0;
     cli_parser args;
     cli_parser_init(&args, &cli_spec_view, argc, argv, 1);
     for (int o; (o = cli_next(&args)) != CLI_DONE;) {
@@ -131,20 +129,9 @@ int sss_cmd_view(int argc, char **argv)
         case OPT_SUPERSAMPLE:
             if (!cli_parse_supersample(CMD, a, v, &d.supersample)) return CLI_EXIT_USAGE;
             break;
-        case OPT_PARAM: {
-            const char *eq = strchr(v, '=');
-            if (!eq || eq == v || (size_t)(eq - v) >= sizeof names[0])
-                return cli_usage_error(CMD, "--param expects NAME=VALUE, got '%s'", v);
-            if (nparams >= MAX_PARAMS) return cli_usage_error(CMD, "at most %d --param options", MAX_PARAMS);
-            memcpy(names[nparams], v, (size_t)(eq - v));
-            names[nparams][eq - v] = '\0';
-            params[nparams].name = names[nparams];
-            sss_error perr = {0};
-            if (sss_gl_param_parse(names[nparams], eq + 1, &params[nparams].value, &perr) != SSS_OK)
-                return cli_usage_error(CMD, "--param: %s", perr.message);
-            nparams++;
+        case OPT_PARAM:
+            if (!cli_params_add(CMD, &params, v)) return CLI_EXIT_USAGE;
             break;
-        }
         default: /* CLI_OPERAND */
             if (d.scene_path) return cli_usage_error(CMD, "unexpected argument '%s'", v);
             d.scene_path = v;
@@ -161,8 +148,8 @@ int sss_cmd_view(int argc, char **argv)
         sss_path_extension(d.screenshot, ext, sizeof ext);
         if (strcmp(ext, "png") != 0) return cli_usage_error(CMD, "--screenshot needs a .png file name, got '%s'", d.screenshot);
     }
-    d.params = params;
-    d.param_count = nparams;
+    d.params = params.values;
+    d.param_count = params.count;
     d.log = args.quiet ? NULL : print_message;
     if (d.technique && cli_check_technique(CMD, d.technique) != CLI_EXIT_OK) return CLI_EXIT_ERROR;
     sss_error err = {0};
