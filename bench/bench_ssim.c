@@ -1,4 +1,4 @@
-/* bench_ssim — image comparison and file I/O timings at 1920x1080 (medians).
+/* bench_ssim — image comparison (SSIM, PSNR, FLIP) and file I/O timings at 1920x1080 (medians).
  * Run: build/bench/bench_ssim [folder for temporary files, default /tmp] */
 #include <math.h>
 #include <stdio.h>
@@ -17,6 +17,13 @@ static void run_compare(void *p)
     ctx *c = p;
     sss_image_metrics m;
     sss_image_compare(&c->a, &c->b, 0.0, &m, NULL, NULL);
+}
+
+static void run_flip(void *p)
+{
+    ctx *c = p;
+    double mean;
+    sss_image_flip(&c->a, &c->b, 0.0, SSS_FLIP_DEFAULT_PPD, &mean, NULL, NULL);
 }
 
 static void run_compare_map(void *p)
@@ -59,7 +66,8 @@ int main(int argc, char **argv)
     }
     const char *ext[4] = {"png", "exr", "pfm", "hdr"};
     for (int i = 0; i < 4; i++) snprintf(c.path[i], sizeof c.path[i], "%s/bench_ssim_tmp.%s", dir, ext[i]);
-    bench_run("compare 1920x1080 (SSIM+PSNR)", 5, run_compare, &c);
+    bench_run("compare 1920x1080 (SSIM+PSNR+FLIP)", 5, run_compare, &c);
+    bench_run("FLIP alone 1920x1080 (67 ppd)", 5, run_flip, &c);
     bench_run("compare 1920x1080 with DSSIM map", 5, run_compare_map, &c);
     bench_run("write PNG 1920x1080", 3, run_write_png, &c);
     bench_run("read PNG 1920x1080", 5, run_read_png, &c);

@@ -79,9 +79,11 @@ static void print_usage(FILE *f)
             "Renders every technique and the CPU reference for each scene, compares them (DSSIM, FLIP, PSNR,\n"
             "RMSE on the tone-mapped 8-bit images), times every pass (median of N frames) and writes to DIR:\n"
             "results.json (schema docs/results.schema.json), results.csv, sheet_<scene>.png (reference,\n"
-            "techniques, their DSSIM and FLIP maps and zoomed crops), plot_dssim.png, plot_passes.png, plot_sam_rmse.png,\n"
-            "plot_resolution.png, and report.html (self-contained). A technique that fails is reported as\n"
-            "failed with its error, not dropped. A summary table goes to stdout.\n"
+            "techniques, their DSSIM and FLIP maps with colour bars, zoomed crops), crops_<scene>_<k>.png,\n"
+            "plot_dssim.png, plot_flip.png, plot_passes.png, plot_resolution.png (per scene),\n"
+            "plot_sam_rmse.png (when the SAM sweep ran) and report.html (self-contained; docs/eval.md\n"
+            "says how to read it). A technique that fails is reported as failed with its error, not\n"
+            "dropped. A summary table goes to stdout.\n"
             "SCENE.json@T evaluates an animated scene at time T seconds (default 0).\n"
             "\n");
     cli_print_options(f, &cli_spec_eval);

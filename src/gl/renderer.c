@@ -379,6 +379,8 @@ sss_result sss_gl_renderer_read(sss_gl_renderer *r, sss_image *out, sss_error *e
 static sss_result read_object_ids(const sss_gl_renderer *r, sss_image *out, sss_error *err)
 {
     int w = r->frame.width, h = r->frame.height;
+    if (!r->frame.nrm)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "technique %s has no G-buffer", r->tech->info.name);
     sss_result res = sss_image_create(out, w, h, err);
     if (res != SSS_OK) return res;
     size_t n = (size_t)w * (size_t)h;
@@ -395,7 +397,9 @@ static sss_result read_object_ids(const sss_gl_renderer *r, sss_image *out, sss_
                 out->pixels[((size_t)y * (size_t)w + (size_t)x) * 3 + (size_t)c] =
                     rgba[((size_t)(h - 1 - y) * (size_t)w + (size_t)x) * 4 + 3];
     free(rgba);
-    return gl_check(r->ctx, "the object id read-back", err);
+    res = gl_check(r->ctx, "the object id read-back", err);
+    if (res != SSS_OK) sss_image_free(out);
+    return res;
 }
 
 sss_result sss_gl_renderer_read_buffer(sss_gl_renderer *r, const char *name, sss_image *out, sss_error *err)

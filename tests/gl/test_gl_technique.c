@@ -5,7 +5,8 @@
  *    the disc-integrated kernel (measured: at most 1.1%); the naive centre-sample kernel
  *    (preintegrated = 0) changes brightness and colour (measured: 3x), as the paper shows;
  *  - a deforming mesh renders without precomputation and matches the reference of the deformed pose;
- *  - no NaN or Inf in the output or any intermediate buffer; timings name the seven passes;
+ *  - no NaN or Inf in the output or any intermediate buffer; timings name the seven passes; the
+ *    "object_id" buffer covers the sphere's disc;
  *  - parameter and technique errors name the culprit. */
 #include "gl_test_util.h"
 
@@ -213,11 +214,45 @@ static void test_buffers_and_timings(void)
     sss_scene_free(&scene);
 }
 
+/* "object_id": the G-buffer's object index + 1 (0: background). The sphere of zoom_scene at 0.4 m
+ * covers a disc of radius 64 tan(asin(0.012 / 0.4)) / tan(6 deg) = 18.3 pixels (1049 pixels). */
+static void test_object_ids(void)
+{
+    sss_scene scene;
+    if (!zoom_scene(0.4, &scene)) {
+        CHECK(0);
+        return;
+    }
+    sss_error err = {0};
+    sss_gl_renderer_desc d;
+    memset(&d, 0, sizeof d);
+    d.technique = "local";
+    sss_gl_renderer *r = NULL;
+    sss_image ids = {0};
+    CHECK(sss_gl_renderer_create(gt_ctx(), &scene, &d, &r, &err) == SSS_OK);
+    CHECK(r && sss_gl_renderer_render(r, 0.0, &err) == SSS_OK);
+    CHECK_MSG(r && sss_gl_renderer_read_buffer(r, "object_id", &ids, &err) == SSS_OK, "%s", err.message);
+    if (ids.pixels) {
+        int covered = 0, other = 0;
+        for (int i = 0; i < 128 * 128 * 3; i++) {
+            covered += ids.pixels[i] == 1.0f;
+            other += ids.pixels[i] != 0.0f && ids.pixels[i] != 1.0f;
+        }
+        CHECK(ids.width == 128 && ids.height == 128 && other == 0);
+        CHECK(ids.pixels[3 * (64 * 128 + 64)] == 1.0f && ids.pixels[0] == 0.0f);
+        CHECK_MSG(fabs(covered / 3 - 1049.0) < 0.05 * 1049.0, "sphere covers %d pixels, expected 1049", covered / 3);
+    }
+    sss_image_free(&ids);
+    sss_gl_renderer_destroy(r);
+    sss_scene_free(&scene);
+}
+
 int main(void)
 {
     test_zoom();
     test_animation();
     test_simplified_splats();
     test_buffers_and_timings();
+    test_object_ids();
     return CHECK_DONE();
 }
