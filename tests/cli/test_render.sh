@@ -82,6 +82,9 @@ expect 1 "no parameter 'bogus'" -- render "$SC/gl_area.json" -o "$T/e/x.png" --p
 expect 1 "layers" -- render "$SC/gl_area.json" -o "$T/e/x.png" --param layers=-3
 expect 2 "NAME=VALUE" -- render "$SC/gl_area.json" -o "$T/e/x.png" --param layers
 expect 2 "number" -- render "$SC/gl_area.json" -o "$T/e/x.png" --param layers=abc
+expect 2 "layers: 'paper'" -- render "$SC/gl_area.json" -o "$T/e/x.png" --param layers=paper
+"$SSS" render "$SC/gl_area.json" -o "$T/p.png" --width 24 --height 24 --param preset=paper 2>"$T/err.txt" ||
+    fail "--param preset=paper refused: $(cat "$T/err.txt")"
 expect 2 "missing -o" -- render "$SC/gl_area.json"
 expect 2 "missing SCENE" -- render -o "$T/e/x.png"
 expect 2 "--width" -- render "$SC/gl_area.json" -o "$T/e/x.png" --width 0

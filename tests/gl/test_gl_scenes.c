@@ -12,7 +12,8 @@
  *   area light       0.039      0.05    local 0.12
  *   environment      0.073      0.095   (local 0.048: the sqrt(i) brightening over-brightens here)
  *   spot + sun       0.037      0.05    local 0.068
- * Maisch & Ropinski 2020's brightening term sqrt(i) (default on, as the paper) adds 30-46% to these area- and
+ * (The measured column is with Maisch & Ropinski 2020's brightening term sqrt(i), the default then; it is
+ * off by default since issue 15, `preset=paper` turns it on.) The term adds 30-46% to these area- and
  * environment-lit scenes; without it the mean colour is within 4% of the reference, checked below. */
 #include "gl_test_util.h"
 
