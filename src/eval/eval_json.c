@@ -9,6 +9,7 @@
 
 #include "core/file_util.h"
 #include "eval/eval_internal.h"
+#include "sss/version.h"
 
 static void add_num(cJSON *o, const char *key, double v)
 {
@@ -90,7 +91,7 @@ static cJSON *results_json(const sss_eval_results *res)
     cJSON *root = cJSON_CreateObject();
     if (!root) return NULL;
     cJSON_AddStringToObject(root, "schema", "sss-eval-results/1");
-    cJSON_AddStringToObject(root, "generator", "sss eval 0.1.0");
+    cJSON_AddStringToObject(root, "generator", "sss eval " SSS_VERSION_STRING);
     cJSON_AddStringToObject(root, "created", res->created);
     add_num(root, "seconds", res->seconds);
     cJSON *gl = cJSON_AddObjectToObject(root, "gl");
