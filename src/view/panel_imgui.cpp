@@ -102,7 +102,8 @@ static void param_widget(viewer *v, const char *tech, const sss_gl_param_info *p
         next = k;
     } else {
         ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp;
-        if (p->min_value > 0.0 && p->max_value / p->min_value > 1000.0) flags |= ImGuiSliderFlags_Logarithmic;
+        if (p->min_value >= 0.0 && p->max_value > 1000.0 * fmax(p->min_value, 1e-3)) /* e.g. [0, 1e30] */
+            flags |= ImGuiSliderFlags_Logarithmic;
         changed = ImGui::SliderScalar(p->name, ImGuiDataType_Double, &next, &p->min_value, &p->max_value, "%.4g", flags);
     }
     tooltip(p->doc);
