@@ -104,6 +104,12 @@ extern "C" {
 /* Interreflection: the cap of desc.bounces and the stopping fraction of the default (see above). */
 #define SSS_REFERENCE_MAX_BOUNCES 16
 #define SSS_REFERENCE_BOUNCE_STOP 0.01
+/* The version of what the interreflection computes (bounces != 1): raised whenever the same scene and
+ * options give a different image, so that images cached with an older one are known to be stale
+ * (sss eval's sidecars record it). 1: the first interreflection; 2: bounce gathers follow the mirror
+ * reflection at subsurface interfaces, and the default stops relative to bounce 2. --bounces 1 has
+ * not changed since before interreflection. */
+#define SSS_REFERENCE_TRANSPORT_VERSION 2
 
 typedef enum sss_reference_quality {
     SSS_REFERENCE_FINAL = 0, /* default */

@@ -26,10 +26,12 @@ static int sidecar_path(const char *exr, char *out, size_t cap)
 }
 
 /* Reads the sidecar: 1 when it exists and parses; *hash 0 when absent in it; *bounces 1 when absent
- * (references from before interreflection are the single-event integral). */
-static int read_sidecar(const char *exr, uint64_t *hash, char quality[8], int *bounces)
+ * (references from before interreflection are the single-event integral); *transport 1 when absent
+ * (SSS_REFERENCE_TRANSPORT_VERSION). */
+static int read_sidecar(const char *exr, uint64_t *hash, char quality[8], int *bounces, int *transport)
 {
     *bounces = 1;
+    *transport = 1;
     char path[1100];
     *hash = 0;
     snprintf(quality, 8, "unknown");
@@ -49,6 +51,8 @@ static int read_sidecar(const char *exr, uint64_t *hash, char quality[8], int *b
         snprintf(quality, 8, "%s", q->valuestring);
     const cJSON *b = cJSON_GetObjectItemCaseSensitive(root, "bounces");
     if (cJSON_IsNumber(b)) *bounces = b->valueint;
+    const cJSON *t = cJSON_GetObjectItemCaseSensitive(root, "transport_version");
+    if (cJSON_IsNumber(t)) *transport = t->valueint;
     cJSON_Delete(root);
     return 1;
 }
@@ -72,10 +76,11 @@ static sss_result write_sidecar(const char *exr, const sss_eval_scene *es, int w
     if (bounces > 0) snprintf(tflag + n, sizeof tflag - (size_t)n, " --bounces %d", bounces);
     fprintf(f,
             "{\n  \"scene\": \"%s\",\n  \"scene_fnv1a64\": \"%016" PRIx64 "\",\n  \"width\": %d,\n  \"height\": %d,\n"
-            "  \"time\": %.17g,\n  \"quality\": \"%s\",\n  \"bounces\": %d,\n  \"seconds\": %.3f,\n"
+            "  \"time\": %.17g,\n  \"quality\": \"%s\",\n  \"bounces\": %d,\n  \"transport_version\": %d,\n"
+            "  \"seconds\": %.3f,\n"
             "  \"cpu_seconds\": %.3f,\n  \"bounces_done\": %u,\n  \"seconds_per_bounce\": [",
-            slash ? slash + 1 : es->path, eval_file_hash(es->path), w, h, es->time, quality, bounces, rec->seconds,
-            rec->cpu_seconds, rec->stats.bounces);
+            slash ? slash + 1 : es->path, eval_file_hash(es->path), w, h, es->time, quality, bounces,
+            SSS_REFERENCE_TRANSPORT_VERSION, rec->seconds, rec->cpu_seconds, rec->stats.bounces);
     for (uint32_t k = 0; k < rec->stats.bounces && k < SSS_REFERENCE_MAX_BOUNCES; k++)
         fprintf(f, "%s%.3f", k ? ", " : "", rec->stats.seconds_bounce[k]);
     fprintf(f, "],\n  \"seconds_pixels\": %.3f,\n  \"command\": \"sss reference %s%s -o OUT.exr --quality %s\"\n}\n",
@@ -114,8 +119,8 @@ sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const
         if (access(cached, R_OK) == 0) {
             uint64_t hash = 0;
             char quality[8];
-            int bounces;
-            int side = read_sidecar(cached, &hash, quality, &bounces);
+            int bounces, transport;
+            int side = read_sidecar(cached, &hash, quality, &bounces, &transport);
             uint64_t now = eval_file_hash(es->path);
             if (side && hash && hash != now) {
                 eval_note(prog, "%s: cached reference %s is stale (the scene file changed since it was rendered); "
@@ -123,6 +128,9 @@ sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const
             } else if (side && bounces != desc->reference_bounces) {
                 eval_note(prog, "%s: cached reference %s has bounces %d (0: full transport), not %d; rendering it",
                           es->name, cached, bounces, desc->reference_bounces);
+            } else if (side && bounces != 1 && transport != SSS_REFERENCE_TRANSPORT_VERSION) {
+                eval_note(prog, "%s: cached reference %s is stale (rendered by interreflection version %d, now %d); "
+                                "rendering it", es->name, cached, transport, SSS_REFERENCE_TRANSPORT_VERSION);
             } else {
                 double t0 = sss_time_seconds();
                 sss_error rerr = {0};

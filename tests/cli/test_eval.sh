@@ -218,6 +218,12 @@ echo " " >>"$T/scenes/ball.json"
     --reference-dir "$OUT/references" --out "$T/out3" >/dev/null 2>"$T/stderr3" || fail "stale run failed"
 grep -qi "stale" "$T/stderr3" || fail "no note about the stale reference: $(cat "$T/stderr3")"
 [ -s "$T/out3/references/ball_64x64.exr" ] || fail "stale reference was not re-rendered"
+# a reference cached by an older interreflection (sidecar transport_version) is stale too
+mkdir -p "$T/oldrefs" && cp "$OUT"/references/knot_* "$T/oldrefs/"
+sed -i 's/"transport_version": [0-9]*/"transport_version": 1/' "$T"/oldrefs/*.json
+"$SSS" eval "$T/scenes/knot.json@0.5" --techniques local --frames 1 --warmup 0 --cached-reference \
+    --reference-dir "$T/oldrefs" --out "$T/out5" >/dev/null 2>"$T/stderr5" || fail "old-transport run failed"
+grep -qi "interreflection version 1" "$T/stderr5" || fail "no note about the old transport: $(cat "$T/stderr5")"
 # a missing cached reference is rendered, with a note
 "$SSS" eval "$T/scenes/ball.json" --techniques local --frames 1 --warmup 0 --cached-reference \
     --reference-dir "$T/nowhere" --out "$T/out4" >/dev/null 2>"$T/stderr4" || fail "uncached run failed"
