@@ -1,7 +1,9 @@
 /* tests/gl/test_support_cutoff.c — maisch2020's and screen's support_cutoff skips outer layers that lie
  * wholly beyond the kernel's support r_max at the pixel's depth. It must be exact: their samples add
  * nothing (R'_d is 0 past r_max), so the image equals the one that reads every layer, up to float
- * rounding of the shader compiler, at every zoom — near (no layer skipped), far (most skipped). */
+ * rounding of the shader compiler, at every zoom — near (no layer skipped), far (most skipped).
+ * maisch2020 renders without its splatted translucency, which the cutoff does not touch and whose
+ * additive blending sums in an order that varies between frames (up to 1.2e-4 of the image). */
 #include "gl_test_util.h"
 
 static int load_view(double distance, sss_scene *scene)
@@ -36,13 +38,14 @@ int main(void)
             continue;
         }
         for (int t = 0; t < 2; t++) {
-            sss_gl_param_value all[] = {{"support_cutoff", 0}}, cut[] = {{"support_cutoff", 1}};
+            sss_gl_param_value all[] = {{"support_cutoff", 0}, {"translucency", 0}},
+                               cut[] = {{"support_cutoff", 1}, {"translucency", 0}};
             sss_image a, b;
-            if (!gt_render_k(&scene, techs[t], 0.0, all, 1, 0, &a)) {
+            if (!gt_render_k(&scene, techs[t], 0.0, all, t == 0 ? 2 : 1, 0, &a)) {
                 CHECK(0);
                 continue;
             }
-            if (gt_render_k(&scene, techs[t], 0.0, cut, 1, 0, &b)) {
+            if (gt_render_k(&scene, techs[t], 0.0, cut, t == 0 ? 2 : 1, 0, &b)) {
                 double max = 0.0, diff = 0.0;
                 for (size_t i = 0; i < (size_t)a.width * a.height * 3; i++) {
                     max = fmax(max, a.pixels[i]);

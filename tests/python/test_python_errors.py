@@ -135,7 +135,7 @@ class GilReleased(unittest.TestCase):
         scene = sss.Scene.load(AREA)
         small = sss.Scene.load(SMALL_SCENE)
         for name, fn in [("render", lambda: sss.render(scene, width=64, height=64)),
-                         ("reference", lambda: sss.reference(small, quality="final", threads=1))]:
+                         ("reference", lambda: sss.reference(small, quality="final", threads=1, spp=256))]:
             longest, total = self.longest_pause(fn)
             self.assertGreater(total, 0.1, name)  # long enough to tell
             # Holding the GIL, the whole call would be one pause; released, pauses are switch intervals
