@@ -143,6 +143,16 @@ void eval_text(cairo_t *cr, double x, double y, double size, int bold, double al
     cairo_show_text(cr, text);
 }
 
+sss_result eval_finish_canvas(cairo_surface_t *s, cairo_t *cr, const char *path, sss_error *err)
+{
+    sss_result r = cairo_status(cr) == CAIRO_STATUS_SUCCESS ? eval_write_surface(s, path, err)
+                                                            : sss_error_set(err, SSS_ERROR_UNSUPPORTED, "%s: cairo: %s",
+                                                                            path, cairo_status_to_string(cairo_status(cr)));
+    cairo_destroy(cr);
+    cairo_surface_destroy(s);
+    return r;
+}
+
 sss_result eval_write_surface(cairo_surface_t *s, const char *path, sss_error *err)
 {
     cairo_surface_flush(s);

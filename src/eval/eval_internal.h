@@ -128,6 +128,8 @@ void eval_text(cairo_t *cr, double x, double y, double size, int bold, double al
 double eval_text_width(cairo_t *cr, double size, int bold, const char *text);
 /* Writes an ARGB32/RGB24 surface as PNG atomically (sss_image_write_png8). */
 sss_result eval_write_surface(cairo_surface_t *s, const char *path, sss_error *err);
+/* Writes the canvas (unless cairo failed: the error names path) and destroys cr and s. */
+sss_result eval_finish_canvas(cairo_surface_t *s, cairo_t *cr, const char *path, sss_error *err);
 /* Surface + context of a white canvas; 0 on failure (both set to NULL). */
 int eval_canvas(int width, int height, cairo_surface_t **s, cairo_t **cr);
 

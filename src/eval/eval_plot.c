@@ -159,16 +159,6 @@ static cairo_t *measure_ctx(cairo_surface_t **s)
     return cairo_create(*s);
 }
 
-static sss_result finish(cairo_surface_t *s, cairo_t *cr, const char *path, sss_error *err)
-{
-    sss_result r = cairo_status(cr) == CAIRO_STATUS_SUCCESS ? eval_write_surface(s, path, err)
-                                                            : sss_error_set(err, SSS_ERROR_UNSUPPORTED, "%s: cairo: %s",
-                                                                            path, cairo_status_to_string(cairo_status(cr)));
-    cairo_destroy(cr);
-    cairo_surface_destroy(s);
-    return r;
-}
-
 /* ---- DSSIM and FLIP bars (Maisch & Ropinski 2020, Fig. 10) ------------------------------------------------ */
 
 static double metric_of(const sss_eval_entry *e, int flip) { return flip ? e->metrics.flip : e->metrics.dssim; }
@@ -226,7 +216,7 @@ static sss_result plot_metric_bars(const sss_eval_results *res, const char *path
     cairo_set_source_rgb(cr, 0.8, 0, 0);
     eval_text(cr, f.x0, H - 16, FONT - 2, 0, 0, "x = failed (see results.json); no bar = no reference");
     draw_legend(cr, f.x1 + 24, f.y0 + 10, "techniques", res->labels, ns, 0);
-    return finish(s, cr, path, err);
+    return eval_finish_canvas(s, cr, path, err);
 }
 
 sss_result sss_eval_plot_dssim(const sss_eval_results *res, const char *path, sss_error *err)
@@ -368,7 +358,7 @@ sss_result sss_eval_plot_passes(const sss_eval_results *res, const char *path, s
         }
     }
     draw_legend(cr, 20 + cols * pw_px + 10, 80, "passes", names, np, 0);
-    return finish(s, cr, path, err);
+    return eval_finish_canvas(s, cr, path, err);
 }
 
 /* ---- Line plots ------------------------------------------------------------------------------- */
@@ -439,7 +429,7 @@ static sss_result line_plot(const char *path, const char *title, const char *xla
         draw_series(cr, &f, sv, count);
         draw_legend(cr, f.x1 + 24, f.y0 + 10, heading, labels, count, 1);
     }
-    return finish(s, cr, path, err);
+    return eval_finish_canvas(s, cr, path, err);
 }
 
 sss_result sss_eval_plot_sam(const sss_eval_results *res, const char *path, sss_error *err)
@@ -538,5 +528,5 @@ sss_result sss_eval_plot_resolution(const sss_eval_results *res, const char *pat
     }
     draw_legend(cr, 20 + cols * pw_px + 10, 80, "techniques", res->labels, nl, 1);
     free(sv);
-    return finish(s, cr, path, err);
+    return eval_finish_canvas(s, cr, path, err);
 }

@@ -187,12 +187,7 @@ sss_result sss_eval_write_sheet(const sss_eval_results *res, int scene, const ch
         if (fs) cairo_surface_destroy(fs);
     }
     if (rs) cairo_surface_destroy(rs);
-    sss_result r = cairo_status(cr) == CAIRO_STATUS_SUCCESS ? eval_write_surface(s, path, err)
-                                                            : sss_error_set(err, SSS_ERROR_UNSUPPORTED, "%s: cairo: %s",
-                                                                            path, cairo_status_to_string(cairo_status(cr)));
-    cairo_destroy(cr);
-    cairo_surface_destroy(s);
-    return r;
+    return eval_finish_canvas(s, cr, path, err);
 }
 
 sss_result eval_write_crops(const sss_eval_results *res, int scene, int k, const char *path, sss_error *err)
@@ -218,10 +213,5 @@ sss_result eval_write_crops(const sss_eval_results *res, int scene, int k, const
     crop_pair(cr, rs, is, sil, MARGIN + 2 * box + GAP + 24, MARGIN / 2, box, "silhouette", SILHOUETTE_RGB);
     if (rs) cairo_surface_destroy(rs);
     if (is) cairo_surface_destroy(is);
-    sss_result r = cairo_status(cr) == CAIRO_STATUS_SUCCESS ? eval_write_surface(s, path, err)
-                                                            : sss_error_set(err, SSS_ERROR_UNSUPPORTED, "%s: cairo: %s",
-                                                                            path, cairo_status_to_string(cairo_status(cr)));
-    cairo_destroy(cr);
-    cairo_surface_destroy(s);
-    return r;
+    return eval_finish_canvas(s, cr, path, err);
 }
