@@ -22,7 +22,7 @@ endforeach()
 
 # Libraries with a pkg-config file: PREFIX=module gives the imported target PkgConfig::PREFIX.
 # sss.pc lists the same modules in Requires.private.
-set(sss_pkg_config_modules CJSON=libcjson STB=stb LAPACKE=lapacke CAIRO=cairo EPOXY=epoxy EGL=egl
+set(sss_pkg_config_modules CJSON=libcjson STB=stb JPEG=libjpeg LAPACKE=lapacke CAIRO=cairo EPOXY=epoxy EGL=egl
                            GLFW=glfw3 IMGUI=imgui)
 find_package(PkgConfig ${sss_find_mode})
 foreach(entry ${sss_pkg_config_modules})
