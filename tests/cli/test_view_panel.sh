@@ -162,6 +162,19 @@ render "$SC" -o "$T/param_render.png" --technique maisch2020 --param brightening
 d=$(dssim "$T/param.png" "$T/param_render.png")
 below "$d" 0.01 || fail "param: differs from sss render --param (DSSIM $d)"
 
+# 3b. the buffer selector: an intermediate buffer replaces the image, and `final` brings back the
+#     image `sss render` writes
+view "$T/buffer.log" "panel off
+buffer irradiance
+screenshot buffer_irr.png
+buffer final
+screenshot buffer_final.png"
+irr=$(dssim "$T/buffer_irr.png" "$T/render.png")
+d=$(dssim "$T/buffer_final.png" "$T/render.png")
+echo "buffer irradiance vs final: DSSIM $irr; back to final: $d"
+below 0.02 "$irr" || fail "buffer irradiance: the image did not change (DSSIM $irr)"
+below "$d" 0.01 || fail "buffer final: differs from sss render (DSSIM $d)"
+
 # 4. split between two techniques: left of one, right of the other (2 columns around the cut left out)
 view "$T/split.log" "panel off
 technique maisch2020

@@ -531,6 +531,56 @@ static void test_run(void)
     sss_eval_results_free(&res);
 }
 
+/* The zoomed crops' windows on maps built here: the worst window is the one holding a hot square
+ * (placed off the grid of any window step), the silhouette window the one holding the most edges of
+ * a disc's outline; both are brute-force checked against every other window position. */
+static void test_crop_windows(void)
+{
+    enum { W = 40, H = 30, SIZE = 8 };
+    CHECK(eval_crop_size(384, 384) == 48 && eval_crop_size(64, 40) == 12 && eval_crop_size(10, 30) == 10);
+    float flip[W * H * 3] = {0};
+    sss_image map = {.width = W, .height = H, .pixels = flip};
+    for (int y = 13; y < 13 + SIZE; y++) /* a square of FLIP 0.9 at (27, 13), faint noise elsewhere */
+        for (int x = 27; x < 27 + SIZE; x++) flip[3 * (y * W + x)] = 0.9f;
+    for (int i = 0; i < W * H; i += 7) flip[3 * i] += 0.01f;
+    eval_window worst = eval_worst_window(&map, SIZE);
+    CHECK_MSG(worst.valid && worst.x == 27 && worst.y == 13 && worst.size == SIZE, "worst window (%d, %d) valid %d",
+              worst.x, worst.y, worst.valid);
+    float zero[W * H * 3] = {0};
+    sss_image flat = {.width = W, .height = H, .pixels = zero};
+    CHECK(!eval_worst_window(&flat, SIZE).valid); /* no error anywhere: no worst window */
+
+    /* object ids at 2x the 40 x 30 output: a disc of id 1 (radius 10 output pixels) centred at (28, 15) */
+    float ids[2 * W * 2 * H * 3] = {0};
+    sss_image id_image = {.width = 2 * W, .height = 2 * H, .pixels = ids};
+    for (int Y = 0; Y < 2 * H; Y++)
+        for (int X = 0; X < 2 * W; X++) {
+            double dx = (X + 0.5) / 2 - 28, dy = (Y + 0.5) / 2 - 15;
+            ids[3 * (Y * 2 * W + X)] = dx * dx + dy * dy < 100 ? 1.0f : 0.0f;
+        }
+    eval_window sil = eval_silhouette_window(&id_image, W, H, SIZE);
+    CHECK(sil.valid);
+    /* brute force: the edge count of every window; the chosen one has the largest */
+    int best = -1, chosen = -1;
+    for (int y = 0; y + SIZE <= H; y++)
+        for (int x = 0; x + SIZE <= W; x++) {
+            int edges = 0;
+            for (int Y = 2 * y; Y < 2 * (y + SIZE); Y++)
+                for (int X = 2 * x; X < 2 * (x + SIZE); X++) {
+                    float c = ids[3 * (Y * 2 * W + X)];
+                    edges += (X + 1 < 2 * W && ids[3 * (Y * 2 * W + X + 1)] != c) +
+                             (Y + 1 < 2 * H && ids[3 * ((Y + 1) * 2 * W + X)] != c);
+                }
+            if (edges > best) best = edges;
+            if (x == sil.x && y == sil.y) chosen = edges;
+        }
+    CHECK_MSG(best > 0 && chosen == best, "silhouette window (%d, %d): %d edges, the most is %d", sil.x, sil.y, chosen,
+              best);
+    memset(ids, 0, sizeof ids); /* one object everywhere: no silhouette */
+    CHECK(!eval_silhouette_window(&id_image, W, H, SIZE).valid);
+    CHECK(!eval_silhouette_window(&id_image, W + 1, H, SIZE).valid); /* ids not a multiple of the output */
+}
+
 int main(void)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sss_test_eval_XXXXXX");
@@ -539,6 +589,7 @@ int main(void)
     test_sizes();
     test_ticks();
     test_outputs();
+    test_crop_windows();
     test_run_errors();
     test_run();
     char cmd[400];

@@ -160,7 +160,8 @@ def triangle_doc(uri):
             "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
             "buffers": [{"uri": uri, "byteLength": len(blob)}],
             "bufferViews": [{"buffer": 0, "byteLength": len(blob)}],
-            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}]}, blob
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                           "min": [0, 0, 0], "max": [1, 1, 0]}]}, blob  # min/max: required for POSITION
 
 
 def png_2x2(path):
@@ -181,7 +182,7 @@ def textured_doc():
     doc = {"asset": {"version": "2.0"}, "scenes": [{"nodes": [0, 1]}],
            "nodes": [{"mesh": 0}, {"rotation": list(quat((1, 0, 0), -20)),
                                    "extensions": {"KHR_lights_punctual": {"light": 0}}}],
-           "extensionsUsed": ["KHR_lights_punctual"],
+           "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_volume", "KHR_materials_volume_scatter"],
            "extensions": {"KHR_lights_punctual": {"lights": [{"type": "directional", "intensity": 3}]}},
            "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3,
                                        "material": 0}]}],
