@@ -12,8 +12,9 @@
 //    normalised to 4^l pixels (mip_reduce.comp.glsl), so w^2 / 4^l scales any texel to a cell;
 //  - each sample adds F_t E A R'_d(|x_i - x_o|, A) (Eq. 6) with world-space distances, A the sample's
 //    surface area (the mip texel's area scaled to the cell), times sqrt(i) for layer i (section 6.1);
-//    with FOOTPRINT_SPLIT (u_split > 1: footprint_split, a departure: docs/maisch2020.md) an obliquely seen sample is a
-//    strip, not a disc, and is cut into near-square pieces along it (oblique_pixel, cell);
+//    with FOOTPRINT_SPLIT (u_split > 1: footprint_split, a departure: docs/maisch2020.md) an
+//    obliquely seen sample is a strip, not a disc, and is cut into near-square pieces along it
+//    (oblique_pixel, cell);
 //  - supersampling (u_supersample = k): the pattern's sizes count output pixels, k render pixels each,
 //    so layer i covers the same part of the image (and gets the same sqrt(i)) at every k: the inner
 //    kernel is the square of (2n + 1) output pixels, every render pixel in it one sample (the ones its
