@@ -156,9 +156,10 @@ vec3 lut_fetch(float layer, float tr, float ta, float size)
     return textureLod(u_lut, vec3(uv, layer), 0.0).rgb;
 }
 
+// Written without early returns and with two fetches: llvmpipe runs every side of a branch for all
+// lanes of its SIMD group (masked), so each return path's fetches would be paid at every call.
 vec3 lut_eval(LutInfo L, float r, float area)
 {
-    if (r > L.rmax) return vec3(0.0); // beyond the kernel's cut-off radius (Maisch & Ropinski 2020, section 7.1)
     // A disc larger than the table's largest: all of R_d's energy lies inside it, so the mean falls as
     // 1/A (exact when r + r_A exceeds r_max everywhere the kernel is non-zero).
     float scale = 1.0;
@@ -176,17 +177,16 @@ vec3 lut_eval(LutInfo L, float r, float area)
     if (L.sqrt_axes) { tr = sqrt(tr); ta = sqrt(ta); }
     // ta of the first row above A = 0
     float t1 = 1.0 / (L.size - 1.0);
-    if (ta < t1) {
-        // Below the first row, interpolating the mean linearly towards R_d(r) (row 0) overestimates
-        // it near R_d's peak by orders of magnitude. There the disc integral grows like r_A (R_d ~ 1/r
-        // near 0), so R'(r, A) ~ sqrt(A_1 / A) R'(r, A_1); away from the peak R'(r, A) -> R_d(r).
-        vec3 row0 = lut_fetch(layer, tr, 0.0, L.size);
-        if (area <= 0.0) return scale * row0;
-        vec3 row1 = lut_fetch(layer, tr, t1, L.size);
-        float ratio = L.sqrt_axes ? t1 / ta : sqrt(t1 / ta); // sqrt(A_1 / A)
-        return scale * min(ratio * row1, row0);
-    }
-    return scale * lut_fetch(layer, tr, ta, L.size);
+    // Below the first row, interpolating the mean linearly towards R_d(r) (row 0) overestimates
+    // it near R_d's peak by orders of magnitude. There the disc integral grows like r_A (R_d ~ 1/r
+    // near 0), so R'(r, A) ~ sqrt(A_1 / A) R'(r, A_1); away from the peak R'(r, A) -> R_d(r).
+    bool below_row1 = ta < t1;
+    vec3 at_ta = lut_fetch(layer, tr, below_row1 ? 0.0 : ta, L.size); // row 0 below the first row
+    vec3 row1 = lut_fetch(layer, tr, t1, L.size);
+    float ratio = L.sqrt_axes ? t1 / ta : sqrt(t1 / ta); // sqrt(A_1 / A)
+    vec3 below = area <= 0.0 ? at_ta : min(ratio * row1, at_ta);
+    // beyond the kernel's cut-off radius: 0 (Maisch & Ropinski 2020, section 7.1)
+    return r > L.rmax ? vec3(0.0) : scale * (below_row1 ? below : at_ta);
 }
 
 vec3 lut_rd(int mat, float r, float area) { return lut_eval(lut_info(mat), r, area); }

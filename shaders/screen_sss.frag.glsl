@@ -6,20 +6,23 @@
 //    d_0 = 2n + 1, d_i = d_(i-1) n_l / (n_l - 2); each sample reads the mip level nearest to its
 //    footprint (one explicit level, never trilinear: GL-NOTES.md), where mip texels hold area-
 //    weighted sums of position and irradiance over one object and the summed projected area; the
-//    fetch is bilinear within the level (u_filtered 1; 2: the same, per texel across depth gaps,
-//    compiled only with PER_TEXEL_READS: llvmpipe runs even an untaken branch of it at twice the
-//    cost of the pass; 0: texelFetch, which snaps samples to the level's texel grid and shows the
+//    fetch is bilinear within the level (FILTERED_LAYERS 1; 2: the same, per texel across depth gaps;
+//    0: texelFetch, which snaps samples to the level's texel grid and shows the
 //    blocky copies of section 4.1); mip texels are sums
 //    normalised to 4^l pixels (mip_reduce.comp.glsl), so w^2 / 4^l scales any texel to a cell;
 //  - each sample adds F_t E A R'_d(|x_i - x_o|, A) (Eq. 6) with world-space distances, A the sample's
 //    surface area (the mip texel's area scaled to the cell), times sqrt(i) for layer i (section 6.1);
-//    with u_split > 1 (footprint_split, a departure: docs/maisch2020.md) an obliquely seen sample is a
-//    strip, not a disc, and is cut into near-square pieces along it (oblique_pixel, cell);
+//    with FOOTPRINT_SPLIT (u_split > 1: footprint_split, a departure: docs/maisch2020.md) an
+//    obliquely seen sample is a strip, not a disc, and is cut into near-square pieces along it
+//    (oblique_pixel, cell);
 //  - supersampling (u_supersample = k): the pattern's sizes count output pixels, k render pixels each,
 //    so layer i covers the same part of the image (and gets the same sqrt(i)) at every k: the inner
 //    kernel is the square of (2n + 1) output pixels, every render pixel in it one sample (the ones its
 //    edge cuts, for even k, with the covered fraction), and d_0 = k (2n + 1) render pixels.
 // The sum is written without the exit factor c_o, which the combination pass applies.
+// FILTERED_LAYERS (filtered_layers) and FOOTPRINT_SPLIT (footprint_split > 1) are compiled in
+// (tech_maisch2020.c): llvmpipe runs every side of a branch for all lanes, masked, so a branch on a
+// uniform costs the untaken side too (PER_TEXEL_READS alone once doubled the pass).
 #include "common.glsl"
 
 layout(binding = 0) uniform sampler2D t_pos; // mips: xyz, w area
@@ -31,7 +34,6 @@ uniform int u_nl;
 uniform int u_layers;
 uniform int u_brightening;
 uniform int u_preintegrated;
-uniform int u_filtered;
 uniform int u_screen_bound;
 uniform int u_support_cutoff; // skip layers past r_max (exact; needs u_screen_bound)
 uniform int u_layers_to_reach; // layers past u_layers until the image (or r_max) ends the pattern
@@ -70,29 +72,29 @@ vec3 cell(LutInfo L, vec3 xo, vec3 pos, vec3 irr, float a, float d_prev, float c
 {
     float depth = max(dot(pos - u_camera_pos.xyz, u_camera_fwd.xyz), u_misc.w);
     float r_min = u_screen_bound != 0 ? 0.5 * d_prev * depth * u_camera_fwd.w : 0.0;
-    if (u_split > 1) {
-        // An obliquely seen cell is a strip too (oblique_pixel): its area a over its face-on area
-        // (cell_px pixels at its depth) is its elongation, along the surface's tangent toward the
-        // viewer, which for a steep strip is nearly the view ray v; one disc of area a would reach
-        // x_o's kernel peak from beside it (a sphere's rim: +20-35% with grazing_sources).
-        float wf2 = cell_px * depth * depth * u_camera_fwd.w * u_camera_fwd.w;
-        float e = min(a / max(wf2, 1e-30), float(u_split));
-        int m = int(e + 0.5);
-        if (m > 1) {
-            float ae = min(a, float(u_split) * wf2);
-            float len = sqrt(ae * e);
-            vec3 v = normalize(u_camera_pos.xyz - pos);
-            float ap = ae / float(m);
-            vec3 s = vec3(0.0);
-            for (int k = 0; k < m; k++) {
-                float o = ((float(k) + 0.5) / float(m) - 0.5) * len;
-                s += lut_eval(L, max(length(pos + o * v - xo), r_min), u_preintegrated != 0 ? ap : 0.0);
-            }
-            return irr * ap * s;
-        }
+#if FOOTPRINT_SPLIT
+    // An obliquely seen cell is a strip too (oblique_pixel): its area a over its face-on area
+    // (cell_px pixels at its depth) is its elongation, along the surface's tangent toward the
+    // viewer, which for a steep strip is nearly the view ray v; one disc of area a would reach
+    // x_o's kernel peak from beside it (a sphere's rim: +20-35% with grazing_sources). m = 1 is the
+    // one disc (Eq. 6), evaluated by the same loop: llvmpipe would run both sides of a branch.
+    float wf2 = cell_px * depth * depth * u_camera_fwd.w * u_camera_fwd.w;
+    float e = min(a / max(wf2, 1e-30), float(u_split));
+    int m = max(int(e + 0.5), 1);
+    float ae = m > 1 ? min(a, float(u_split) * wf2) : a;
+    float len = sqrt(ae * e);
+    vec3 v = normalize(u_camera_pos.xyz - pos);
+    float ap = ae / float(m);
+    vec3 s = vec3(0.0);
+    for (int k = 0; k < m; k++) {
+        float o = ((float(k) + 0.5) / float(m) - 0.5) * len;
+        s += lut_eval(L, max(length(m > 1 ? pos + o * v - xo : pos - xo), r_min), u_preintegrated != 0 ? ap : 0.0);
     }
+    return irr * ap * s;
+#else
     float r = max(length(pos - xo), r_min);
     return irr * a * lut_eval(L, r, u_preintegrated != 0 ? a : 0.0);
+#endif
 }
 
 // A full-resolution sample's patch seen at n.v = c is a w x w/c strip on the surface (w^2 = a c, its
@@ -110,15 +112,15 @@ vec3 oblique_pixel(LutInfo L, vec3 xo, vec3 p, vec3 n, float a)
     float c = abs(nv);
     float e = min(1.0 / max(c, 1e-6), float(u_split)); // elongation of the (capped) strip
     int m = max(int(e + 0.5), 1);
-    if (m == 1) return a * lut_eval(L, length(p - xo), u_preintegrated != 0 ? a : 0.0);
-    float ae = a * min(1.0, c * float(u_split)); // area of the capped strip
-    float len = sqrt(ae * e);                    // its length: w e, w^2 = ae / e
-    vec3 t = normalize(v - nv * n);
+    // m = 1: one disc of area a at p (Eq. 6), by the same loop (llvmpipe would run both branches)
+    float ae = m > 1 ? a * min(1.0, c * float(u_split)) : a; // area of the capped strip
+    float len = sqrt(ae * e);                                 // its length: w e, w^2 = ae / e
+    vec3 t = normalize(v - nv * n);                           // NaN where n = v, which m = 1 leaves unused
     float ap = ae / float(m);
     vec3 s = vec3(0.0);
     for (int k = 0; k < m; k++) {
         float o = ((float(k) + 0.5) / float(m) - 0.5) * len;
-        s += lut_eval(L, length(p + o * t - xo), u_preintegrated != 0 ? ap : 0.0);
+        s += lut_eval(L, length(m > 1 ? p + o * t - xo : p - xo), u_preintegrated != 0 ? ap : 0.0);
     }
     return ap * s;
 }
@@ -148,12 +150,12 @@ void main()
             if (I.w != id || P.w <= 0.0) continue;
             // the fraction of the render pixel inside the square (1 but at its edge for even k)
             float a = P.w * clamp(h + 0.5 - float(abs(dx)), 0.0, 1.0) * clamp(h + 0.5 - float(abs(dy)), 0.0, 1.0);
-            if (u_split > 1) {
-                sum += I.rgb * oblique_pixel(L, xo, P.xyz, texelFetch(t_nrm, q, 0).xyz, a);
-            } else {
-                float r = length(P.xyz - xo);
-                sum += I.rgb * a * lut_eval(L, r, u_preintegrated != 0 ? a : 0.0);
-            }
+#if FOOTPRINT_SPLIT
+            sum += I.rgb * oblique_pixel(L, xo, P.xyz, texelFetch(t_nrm, q, 0).xyz, a);
+#else
+            float r = length(P.xyz - xo);
+            sum += I.rgb * a * lut_eval(L, r, u_preintegrated != 0 ? a : 0.0);
+#endif
         }
     vec2 centre = vec2(px) + 0.5;
     float d_prev = 2.0 * h;
@@ -175,7 +177,7 @@ void main()
             // ray), so every r >= k z_o / (1 + k + c), which grows with the layer: the first layer
             // past r_max ends the pattern. A far object's pixels skip most layers.
             float k = 0.5 * d_prev * u_camera_fwd.w;
-            float c = u_split > 1 ? 0.5 * float(u_split) * w * u_camera_fwd.w : 0.0;
+            float c = FOOTPRINT_SPLIT != 0 ? 0.5 * float(u_split) * w * u_camera_fwd.w : 0.0;
             if (k * z_o / (1.0 + k + c) > L.rmax) break;
         }
         int level = clamp(int(floor(log2(w) + 0.5)), 0, max_level);
@@ -203,13 +205,14 @@ void main()
                 float to_cell = area_scale * cover; // a texel's area -> this sample's
                 float cell_px = w * w * cover;      // the cell's pixels (face-on area at its depth)
                 sp = 0.5 * (lo + hi);
-                if (level == 0) {
-                    vec4 P = texelFetch(t_pos, ivec2(sp), 0);
-                    vec4 I = texelFetch(t_irr, ivec2(sp), 0);
-                    if (I.w != id || P.w <= 0.0) continue;
-                    layer_sum += cell(L, xo, P.xyz, I.rgb, P.w * to_cell, d_prev, cell_px);
-#ifdef PER_TEXEL_READS
-                } else if (u_filtered == 2) {
+                // level 0 reads the pixel under the sample; coarser levels their mean (below)
+                vec4 P_full = texelFetch(t_pos, ivec2(sp), 0), I_full = texelFetch(t_irr, ivec2(sp), 0);
+                bool full_res = level == 0;
+#if FILTERED_LAYERS == 2
+                if (full_res) {
+                    if (I_full.w != id || P_full.w <= 0.0) continue;
+                    layer_sum += cell(L, xo, P_full.xyz, I_full.rgb, P_full.w * to_cell, d_prev, cell_px);
+                } else {
                     // Bilinear weights on the four texels. Where their mean positions agree (each
                     // within its own size, sqrt(area), of the weighted mean: one surface) the weighted
                     // sums make one sample, as the filtered read does; where they do not (two surfaces
@@ -245,20 +248,25 @@ void main()
                                 layer_sum += wk[c] * cell(L, xo, Pk[c].xyz / Pk[c].w, Ik[c].rgb / Pk[c].w,
                                                           Pk[c].w * to_cell, d_prev, cell_px);
                     }
-#endif
-                } else if (u_filtered == 1) {
-                    // bilinear within the level: premultiplied sums, so the filtered means are
-                    // area-weighted and background texels drop out
-                    vec2 uv = level_coord(sp, texel, size, size0) / vec2(size);
-                    vec4 P = textureLod(t_pos, uv, float(level)), I = textureLod(t_irr, uv, float(level));
-                    if (!same_object(P, I, id)) continue;
-                    layer_sum += cell(L, xo, P.xyz / P.w, I.rgb / P.w, P.w * to_cell, d_prev, cell_px);
-                } else {
-                    ivec2 q = min(ivec2(floor(level_coord(sp, texel, size, size0))), size - 1);
-                    vec4 P = texelFetch(t_pos, q, level), I = texelFetch(t_irr, q, level);
-                    if (!same_object(P, I, id)) continue;
-                    layer_sum += cell(L, xo, P.xyz / P.w, I.rgb / P.w, P.w * to_cell, d_prev, cell_px);
                 }
+#else
+#if FILTERED_LAYERS == 1
+                // bilinear within the level: premultiplied sums, so the filtered means are
+                // area-weighted and background texels drop out
+                vec2 uv = level_coord(sp, texel, size, size0) / vec2(size);
+                vec4 P = textureLod(t_pos, uv, float(level)), I = textureLod(t_irr, uv, float(level));
+#else
+                ivec2 q = min(ivec2(floor(level_coord(sp, texel, size, size0))), size - 1);
+                vec4 P = texelFetch(t_pos, q, level), I = texelFetch(t_irr, q, level);
+#endif
+                // one cell() for both reads: llvmpipe would evaluate each side of a branch
+                bool found = full_res ? I_full.w == id && P_full.w > 0.0 : same_object(P, I, id);
+                if (!found) continue;
+                vec3 pos = full_res ? P_full.xyz : P.xyz / P.w;
+                vec3 irr = full_res ? I_full.rgb : I.rgb / P.w;
+                float area = (full_res ? P_full.w : P.w) * to_cell;
+                layer_sum += cell(L, xo, pos, irr, area, d_prev, cell_px);
+#endif
             }
         sum += bright * layer_sum;
         d_prev *= grow;

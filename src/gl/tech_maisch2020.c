@@ -6,6 +6,7 @@
  * renderer's shared passes), then here: (4) translucency = splat generation/culling (compute) +
  * receivers + additive splatting at 1/divisor resolution, (5) bicubic upsampling, (6) screen-space
  * pattern, (7) combination. */
+#include <stdio.h>
 #include <string.h>
 
 #include "gl/gl_internal.h"
@@ -109,8 +110,10 @@ static const sss_gl_param_value paper[] = {
 #define SPLAT_BYTES 48 /* three vec4: centre + area, normal + object, F_t E + disc radius */
 
 typedef struct maisch_state {
-    GLuint prog_gen, prog_recv, prog_splat, prog_up, prog_ss, prog_combine;
-    GLuint prog_ss_texel; /* the screen-space pass with filtered_layers = 2 (built when first used) */
+    GLuint prog_gen, prog_recv, prog_splat, prog_up, prog_combine;
+    /* the screen-space pass per filtered_layers and (footprint_split > 1), built when first used: the
+     * choices are compiled in because llvmpipe runs every side of a branch on a uniform */
+    GLuint prog_ss[3][2];
     GLuint prog_grazing;  /* grazing_sources: areas of the grazing pixels (built when first used) */
     GLuint splats, cmd;
     unsigned capacity;
@@ -179,7 +182,6 @@ static sss_result maisch_create(sss_gl_renderer *r, void *state, sss_error *err)
     if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "receivers.frag.glsl", NULL, &s->prog_recv, err);
     if (res == SSS_OK) res = gl_program_vf("splat.vert.glsl", "splat.frag.glsl", NULL, &s->prog_splat, err);
     if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "upsample.frag.glsl", NULL, &s->prog_up, err);
-    if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "screen_sss.frag.glsl", NULL, &s->prog_ss, err);
     if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "combine.frag.glsl", NULL, &s->prog_combine, err);
     if (res != SSS_OK) return res;
     s->capacity = r->gs.splat_total;
@@ -287,6 +289,21 @@ static sss_result pass_grazing(sss_gl_renderer *r, maisch_state *s, sss_error *e
     return res;
 }
 
+/* The screen-space program for filtered_layers (0-2) with or without footprint_split pieces. */
+static sss_result screen_program(maisch_state *s, int filtered, int split, GLuint *out, sss_error *err)
+{
+    GLuint *prog = &s->prog_ss[filtered][split != 0];
+    if (!*prog) {
+        char defines[96];
+        snprintf(defines, sizeof defines, "#define FILTERED_LAYERS %d\n#define FOOTPRINT_SPLIT %d\n", filtered,
+                 split != 0);
+        sss_result res = gl_program_vf("fullscreen.vert.glsl", "screen_sss.frag.glsl", defines, prog, err);
+        if (res != SSS_OK) return res;
+    }
+    *out = *prog;
+    return SSS_OK;
+}
+
 static sss_result maisch_render(sss_gl_renderer *r, void *state, sss_error *err)
 {
     maisch_state *s = state;
@@ -308,12 +325,9 @@ static sss_result maisch_render(sss_gl_renderer *r, void *state, sss_error *err)
         glViewport(0, 0, r->width, r->height);
         glDisable(GL_BLEND);
         int filtered = (int)gl_param(r, P_FILTERED);
-        if (filtered == 2 && !s->prog_ss_texel) {
-            res = gl_program_vf("fullscreen.vert.glsl", "screen_sss.frag.glsl", "#define PER_TEXEL_READS 1\n",
-                                &s->prog_ss_texel, err);
-            if (res != SSS_OK) return res;
-        }
-        GLuint prog = filtered == 2 ? s->prog_ss_texel : s->prog_ss;
+        GLuint prog = 0;
+        res = screen_program(s, filtered, (int)gl_param(r, P_SPLIT) > 1, &prog, err);
+        if (res != SSS_OK) return res;
         glUseProgram(prog);
         glBindTextureUnit(0, r->frame.pos);
         glBindTextureUnit(1, r->frame.irr);
@@ -324,7 +338,6 @@ static sss_result maisch_render(sss_gl_renderer *r, void *state, sss_error *err)
         set_i(prog, "u_layers", (int)gl_param(r, P_LAYERS));
         set_i(prog, "u_brightening", (int)gl_param(r, P_BRIGHTENING));
         set_i(prog, "u_preintegrated", (int)gl_param(r, P_PREINTEGRATED));
-        set_i(prog, "u_filtered", filtered);
         set_i(prog, "u_screen_bound", (int)gl_param(r, P_SCREEN_BOUND));
         set_i(prog, "u_support_cutoff", (int)gl_param(r, P_SUPPORT_CUTOFF));
         set_i(prog, "u_layers_to_reach", (int)gl_param(r, P_LAYERS_TO_REACH));
@@ -356,10 +369,12 @@ static void maisch_destroy(sss_gl_renderer *r, void *state)
     (void)r;
     maisch_state *s = state;
     free_targets(s);
-    GLuint p[8] = {s->prog_gen, s->prog_recv, s->prog_splat, s->prog_up,
-                   s->prog_ss, s->prog_combine, s->prog_ss_texel, s->prog_grazing};
-    for (int i = 0; i < 8; i++)
+    GLuint p[6] = {s->prog_gen, s->prog_recv, s->prog_splat, s->prog_up, s->prog_combine, s->prog_grazing};
+    for (int i = 0; i < 6; i++)
         if (p[i]) glDeleteProgram(p[i]);
+    for (int f = 0; f < 3; f++)
+        for (int k = 0; k < 2; k++)
+            if (s->prog_ss[f][k]) glDeleteProgram(s->prog_ss[f][k]);
     if (s->splats) glDeleteBuffers(1, &s->splats);
     if (s->cmd) glDeleteBuffers(1, &s->cmd);
 }
