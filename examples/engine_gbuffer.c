@@ -5,12 +5,13 @@
  *
  * --frames N renders N frames and prints the median wall time of the engine's frame and of the sss
  * pass in it (glFinish around each; the first frames include shader compilation).
- * The engine owns everything but the subsurface pass: its G-buffer shaders, its lighting, its shadow
+ * The engine owns everything but the subsurface pass: its OpenGL context (plain EGL, which sss adopts
+ * with sss_gl_context_adopt_current), its G-buffer shaders, its lighting, its shadow
  * maps (a distance cube map per point or spot light, an orthographic depth map per directional
  * light), written here from scratch; meshes, materials and lights come from the scene file through
  * the public scene and mesh API. sss only reads the engine's textures and writes the subsurface
  * radiance (plus the engine's reflected light) into the engine's output texture. The image is the one
- * `sss render SCENE --technique T` writes, within shadow-map details (tests/cli/test_engine_gbuffer.sh).
+ * `sss render SCENE --technique T` writes, within shadow-map details (tests/cli/engine_gbuffer.sh).
  *
  * Scope of this engine: point, spot and directional lights; subsurface and diffuse materials without
  * textures or specular layers; no animation (time 0). Other scenes are refused with a message.
@@ -21,6 +22,7 @@
 #include <string.h>
 #include <time.h>
 
+#include <epoxy/egl.h>
 #include <epoxy/gl.h>
 #include <sss/sss.h>
 
@@ -87,6 +89,53 @@ static void ortho(double half, double n, double f, float m[16])
     m[10] = (float)(-2.0 / (f - n));
     m[14] = (float)(-(f + n) / (f - n));
     m[15] = 1.0f;
+}
+
+/* ---- The engine's own context ------------------------------------------------------------------------
+ * Headless EGL as a windowed engine would use GLFW or SDL: sss adopts whatever context is current.
+ * eglGetPlatformDisplayEXT rather than the EGL 1.5 eglGetPlatformDisplay, which libepoxy cannot
+ * resolve before a display exists; surfaceless Mesa first, then the first EGL device. */
+
+typedef struct engine_context {
+    EGLDisplay display;
+    EGLContext context;
+} engine_context;
+
+static EGLDisplay engine_display(void)
+{
+    if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_base")) return EGL_NO_DISPLAY;
+    EGLDisplay dpy = EGL_NO_DISPLAY;
+    if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless"))
+        dpy = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
+    if (dpy != EGL_NO_DISPLAY && eglInitialize(dpy, NULL, NULL)) return dpy;
+    EGLDeviceEXT device;
+    EGLint count = 0;
+    if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") ||
+        !eglQueryDevicesEXT(1, &device, &count) || count < 1)
+        return EGL_NO_DISPLAY;
+    dpy = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, device, NULL);
+    return dpy != EGL_NO_DISPLAY && eglInitialize(dpy, NULL, NULL) ? dpy : EGL_NO_DISPLAY;
+}
+
+/* An OpenGL 4.5 core context without a surface (the engine renders into its own framebuffers). */
+static int engine_context_create(engine_context *c)
+{
+    c->context = EGL_NO_CONTEXT;
+    c->display = engine_display();
+    if (c->display == EGL_NO_DISPLAY || !eglBindAPI(EGL_OPENGL_API)) return 0;
+    EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                        EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    c->context = eglCreateContext(c->display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
+    return c->context != EGL_NO_CONTEXT &&
+           eglMakeCurrent(c->display, EGL_NO_SURFACE, EGL_NO_SURFACE, c->context);
+}
+
+static void engine_context_destroy(engine_context *c)
+{
+    if (c->context == EGL_NO_CONTEXT) return;
+    eglMakeCurrent(c->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(c->display, c->context);
+    eglReleaseThread(); /* no eglTerminate: Mesa's display is per process (as in sss) */
 }
 
 /* ---- The engine's shaders ------------------------------------------------------------------------ */
@@ -568,6 +617,7 @@ int main(int argc, char **argv)
         sss_scene_free(&scene);
         return 1;
     }
+    engine_context own = {EGL_NO_DISPLAY, EGL_NO_CONTEXT};
     sss_gl_context *context = NULL;
     sss_gl_pass *pass = NULL;
     engine e;
@@ -576,8 +626,12 @@ int main(int argc, char **argv)
     e.width = scene.camera.width;
     e.height = scene.camera.height;
     int status = 1;
-    sss_gl_context_desc cd = {0};
-    if (sss_gl_context_create(&cd, &context, &err) != SSS_OK) goto done;
+    if (!engine_context_create(&own)) {
+        snprintf(err.message, sizeof err.message, "engine_gbuffer: no headless OpenGL 4.5 core context (EGL)");
+        goto done;
+    }
+    /* sss uses the engine's context (current on this thread) without owning it. */
+    if (sss_gl_context_adopt_current(&context, &err) != SSS_OK) goto done;
     /* The pass: the scene registers the materials (surface id i + 1 = objects[i]) and, for
      * translucency techniques, the meshes and lights it lights its splats with. */
     sss_gl_pass_desc pd = {0};
@@ -611,9 +665,11 @@ int main(int argc, char **argv)
     status = 0;
 done:
     if (status) fprintf(stderr, "%s\n", err.message[0] ? err.message : "engine_gbuffer: out of memory");
-    sss_gl_pass_destroy(pass); /* GL objects go with the context */
+    sss_gl_pass_destroy(pass);
     free(e.meshes);
-    sss_gl_context_destroy(context);
+    sss_gl_context_destroy(context); /* the wrapper only: the engine's context stays */
+    /* The engine's GL objects go with its context. */
+    engine_context_destroy(&own);
     sss_scene_free(&scene);
     return status;
 }

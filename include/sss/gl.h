@@ -2,10 +2,11 @@
  * scene to a linear float image with per-pass timings.
  *
  * Does: headless contexts through EGL (Mesa's surfaceless platform, then the EGL device platform;
- * rendering goes to framebuffer objects) or a GLFW window; a registry of techniques selected by name,
- * each with a parameter table (name, type, default, range, doc); shared passes every technique can use
- * (G-buffer, shadow maps, illumination with mip chains, low-resolution splat meshes); rendering at a
- * time t (animated objects deform on the GPU every frame, nothing is precomputed from the geometry).
+ * rendering goes to framebuffer objects), a GLFW window, or the caller's own current context (adopted,
+ * not owned); a registry of techniques selected by name, each with a parameter table (name, type,
+ * default, range, doc); shared passes every technique can use (G-buffer, shadow maps, illumination
+ * with mip chains, low-resolution splat meshes); rendering at a time t (animated objects deform on
+ * the GPU every frame, nothing is precomputed from the geometry).
  * Does not: load scenes (sss/scene.h does), write files (sss/image.h does), print.
  *
  * Threading: a context and everything created with it belong to the thread that created it.
@@ -51,6 +52,16 @@ typedef struct sss_gl_context sss_gl_context;
  * window (with a hint to use `sss render`). Never aborts. */
 sss_result sss_gl_context_create(const sss_gl_context_desc *desc, sss_gl_context **out, sss_error *err);
 void sss_gl_context_destroy(sss_gl_context *ctx);
+
+/* Wraps the context the caller made current on this thread (an engine's own, from EGL, GLFW, SDL,
+ * Qt, ...) without owning it: the renderer and sss/gl_pass.h then use it. Checks that a context is
+ * current (SSS_ERROR_INVALID_ARGUMENT otherwise) and that it is OpenGL 4.5 core or later
+ * (SSS_ERROR_UNSUPPORTED otherwise). sss_gl_context_destroy frees only the wrapper: the caller's
+ * context stays current and alive. sss_gl_context_make_current makes an adopted EGL context current
+ * again; for other window systems it only reports whether some context is current (keep yours
+ * current while sss works). No debug callback is installed (the caller's stays), window helpers are
+ * no-ops. */
+sss_result sss_gl_context_adopt_current(sss_gl_context **out, sss_error *err);
 
 typedef struct sss_gl_context_info {
     const char *platform; /* "EGL surfaceless (Mesa)", "EGL device", "GLFW window" */

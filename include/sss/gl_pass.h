@@ -8,7 +8,8 @@
  * their own light-space shadow maps of those meshes); allocates nothing per frame; restores every GL
  * state it changes (SSS_GL_PASS_STATE below); resize, parameter, material and light updates.
  * Does not: render the caller's G-buffer, lighting or shadow maps, read the caller's shadow maps, tone
- * map, print, or create a context (the caller's context must be current, OpenGL 4.5 core).
+ * map, print, or create a context (the caller's context must be current, OpenGL 4.5 core:
+ * sss_gl_context_adopt_current wraps it).
  *
  * The sss_gl_renderer of sss/gl.h is a client of this API: it renders its own G-buffer and
  * illumination and hands them to the same pass.

@@ -229,9 +229,52 @@ sss_result sss_gl_context_create(const sss_gl_context_desc *desc_in, sss_gl_cont
     return SSS_OK;
 }
 
+sss_result sss_gl_context_adopt_current(sss_gl_context **out, sss_error *err)
+{
+    if (!out) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_context_adopt_current: out is NULL");
+    *out = NULL;
+    /* glGetString is NULL without a current context, whatever the window system (EGL, GLX, WGL). */
+    if (!glGetString(GL_VERSION))
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "sss_gl_context_adopt_current: no OpenGL context is current on this thread "
+                             "(make the engine's context current first)");
+    GLint profile = 0;
+    glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &profile);
+    while (glGetError() != GL_NO_ERROR) {}
+    if (!(profile & GL_CONTEXT_CORE_PROFILE_BIT))
+        return sss_error_set(err, SSS_ERROR_UNSUPPORTED,
+                             "sss_gl_context_adopt_current: the current context is not a core profile "
+                             "(%s, %s); OpenGL 4.5 core is required",
+                             (const char *)glGetString(GL_VERSION), (const char *)glGetString(GL_RENDERER));
+    sss_gl_context *ctx = calloc(1, sizeof *ctx);
+    if (!ctx) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (GL context)");
+    ctx->adopted = 1;
+    ctx->egl_context = eglGetCurrentContext();
+    if (ctx->egl_context != EGL_NO_CONTEXT) {
+        ctx->egl_display = eglGetCurrentDisplay();
+        ctx->egl_draw = eglGetCurrentSurface(EGL_DRAW);
+        ctx->egl_read = eglGetCurrentSurface(EGL_READ);
+        ctx->platform = "adopted (EGL)";
+    } else {
+        ctx->platform = "adopted";
+    }
+    /* No debug callback: the engine's own, if any, stays installed. */
+    sss_result r = finish_context(ctx, 4, 5, err);
+    if (r != SSS_OK) {
+        free(ctx);
+        return r;
+    }
+    *out = ctx;
+    return SSS_OK;
+}
+
 void sss_gl_context_destroy(sss_gl_context *ctx)
 {
     if (!ctx) return;
+    if (ctx->adopted) { /* the caller's context: only the wrapper goes */
+        free(ctx);
+        return;
+    }
     if (ctx->egl_display != EGL_NO_DISPLAY && ctx->egl_display) {
         eglMakeCurrent(ctx->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (ctx->egl_context != EGL_NO_CONTEXT && ctx->egl_context)
@@ -260,6 +303,10 @@ void sss_gl_context_get_info(const sss_gl_context *ctx, sss_gl_context_info *out
 int sss_gl_context_make_current(sss_gl_context *ctx)
 {
     if (!ctx) return 0;
+    if (ctx->adopted && ctx->egl_context == EGL_NO_CONTEXT) return glGetString(GL_VERSION) != NULL;
+    if (ctx->adopted && eglGetCurrentContext() == ctx->egl_context) return 1;
+    if (ctx->adopted)
+        return eglMakeCurrent(ctx->egl_display, ctx->egl_draw, ctx->egl_read, ctx->egl_context) == EGL_TRUE;
     if (ctx->window) {
         glfwMakeContextCurrent(ctx->window);
         return 1;

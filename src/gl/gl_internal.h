@@ -40,6 +40,10 @@ struct sss_gl_context {
     EGLContext egl_context;
     struct GLFWwindow *window;
     int glfw_initialised;
+    /* sss_gl_context_adopt_current: the caller's context, never made current elsewhere nor destroyed
+     * here; with EGL its display, context and surfaces are kept to make it current again. */
+    int adopted;
+    EGLSurface egl_draw, egl_read;
 };
 
 /* Reports a pending GL error (or KHR_debug message) as an error naming `what`. */
