@@ -24,6 +24,12 @@
 // (tech_maisch2020.c): llvmpipe runs every side of a branch for all lanes, masked, so a branch on a
 // uniform costs the untaken side too (PER_TEXEL_READS alone once doubled the pass).
 #include "common.glsl"
+#ifndef FILTERED_LAYERS // without defines: the technique's defaults
+#define FILTERED_LAYERS 1
+#endif
+#ifndef FOOTPRINT_SPLIT
+#define FOOTPRINT_SPLIT 1
+#endif
 
 layout(binding = 0) uniform sampler2D t_pos; // mips: xyz, w area
 layout(binding = 1) uniform sampler2D t_irr; // mips: rgb F_t E, w object id + 1
