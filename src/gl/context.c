@@ -303,10 +303,11 @@ void sss_gl_context_get_info(const sss_gl_context *ctx, sss_gl_context_info *out
 int sss_gl_context_make_current(sss_gl_context *ctx)
 {
     if (!ctx) return 0;
-    if (ctx->adopted && ctx->egl_context == EGL_NO_CONTEXT) return glGetString(GL_VERSION) != NULL;
-    if (ctx->adopted && eglGetCurrentContext() == ctx->egl_context) return 1;
-    if (ctx->adopted)
-        return eglMakeCurrent(ctx->egl_display, ctx->egl_draw, ctx->egl_read, ctx->egl_context) == EGL_TRUE;
+    if (ctx->adopted) { /* EGL: make it current again; other window systems: is some context current */
+        if (ctx->egl_context == EGL_NO_CONTEXT) return glGetString(GL_VERSION) != NULL;
+        return eglGetCurrentContext() == ctx->egl_context ||
+               eglMakeCurrent(ctx->egl_display, ctx->egl_draw, ctx->egl_read, ctx->egl_context) == EGL_TRUE;
+    }
     if (ctx->window) {
         glfwMakeContextCurrent(ctx->window);
         return 1;

@@ -59,7 +59,8 @@ static sss_result read_all(FILE *f, const char *path, unsigned char **bytes, siz
     return SSS_OK;
 }
 
-/* Decodes the scanlines into out (allocated here); cinfo is past jpeg_read_header. */
+/* Decodes the scanlines into out, allocated by the caller at the header's size; cinfo is past
+ * jpeg_read_header. */
 static sss_result decode_pixels(j_decompress_ptr cinfo, const char *path, unsigned char *row, sss_image *out,
                                 sss_error *err)
 {
@@ -85,7 +86,7 @@ typedef struct jpeg_job {
     jpeg_failure failure;
     unsigned char *row;
     sss_image image;
-    int width, height;
+    int width, height; /* the header's, kept for size_only: cinfo is not read after its destroy */
 } jpeg_job;
 
 static sss_result decode(jpeg_job *job, const unsigned char *bytes, size_t size, const char *path, int size_only,
