@@ -213,12 +213,12 @@ typedef struct gl_frame {
 /* ---- Techniques -------------------------------------------------------------------------------
  *
  * Adding a technique (the six planned ones: ssss, sam, mertens2003, dss, chen2012, screen):
- *  1. src/gl/tech_<name>.c defines `const gl_technique gl_technique_<name>` with its parameter table
+ *  1. src/gl/<name>/tech_<name>.c defines `const gl_technique gl_technique_<name>` with its parameter table
  *     (name, type, default = the paper's, range, one-line doc citing the paper), the shared passes it
  *     needs (GL_NEED_*) and its callbacks; registry.c gets one line. Parameters are read with
  *     gl_param(r, index) at render time (set_param only stores them; resize() is called after a
  *     technique parameter changes and after the frame size changes).
- *  2. Shaders are shaders/<name>_*.glsl with `#include "common.glsl"` (frame block, objects,
+ *  2. Shaders are src/gl/<name>/<name>_*.glsl with `#include "common.glsl"` (frame block, objects,
  *     materials, lights with shadows, Fresnel, animation, lut_eval of the kernel LUT, exit_factor).
  *  3. render() runs the technique's passes on the shared results of this frame and must end by
  *     writing the linear radiance of every pixel into frame.final (fbo_final), reflected light and

@@ -1,4 +1,4 @@
-/* gl/shader.c — GLSL programs from the embedded shaders/ files.
+/* gl/shader.c — GLSL programs from the embedded *.glsl files.
  *
  * Composition: a line `#include "name.glsl"` is replaced by that embedded file (recursively, each file
  * at most once per stage, like an include guard). Every file gets a GLSL source-string number through
@@ -199,7 +199,7 @@ static sss_result compile_stage(const gl_shader_stage *st, const char *defines, 
     const char *text = x.lookup(st->name, NULL);
     if (!text) {
         override_name = override_text = NULL;
-        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "shader file %s is not embedded (shaders/*.glsl)",
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "shader file %s is not embedded (*.glsl under src/gl and src/view)",
                              st->name);
     }
     file_index(&x, st->name, text);

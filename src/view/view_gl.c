@@ -1,7 +1,7 @@
-/* view/view_gl.c — the viewer's drawing: overlay quads (shaders/view_overlay.*.glsl), technique buffers
- * shown alone (shaders/view_image.*.glsl) and screenshots from the back buffer. The shaders are the
- * embedded shaders/ files, built by the GL module's program builder (gl_program_vf: errors name the
- * shader file and line). */
+/* view/view_gl.c — the viewer's drawing: overlay quads (src/view/shaders/view_overlay.*.glsl),
+ * technique buffers shown alone (src/view/shaders/view_image.*.glsl) and screenshots from the back
+ * buffer. The shaders are embedded like the renderer's and built by the GL module's program builder
+ * (gl_program_vf: errors name the shader file and line). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The documentation a user gets must not send them to files they do not have: the README, docs/,
-# include/, src/, shaders/ and the output of `sss help`, every `sss help COMMAND` and
+# include/, src/ and the output of `sss help`, every `sss help COMMAND` and
 # `sss techniques --params` must not cite the team's internal notes or paper files ("../shared",
 # "shared/", "seeds/", "seed 000", "FACTS.md", "SCENE.md"). Papers are cited by name
 # ("Maisch & Ropinski 2020, Eq. 5", docs/references.md), formulas by docs/physics.md, the scene
@@ -27,11 +27,11 @@ scan() { # scan NAME FILE...: reports every dangling reference in the given file
 }
 
 cd "$ROOT" || { echo "FAIL: no repo root $ROOT" >&2; exit 1; }
-for d in README.md docs include src shaders; do
+for d in README.md docs include src; do
     [ -e "$d" ] || err "$d missing"
 done
-mapfile -t files < <(find README.md docs include src shaders -type f | sort)
-[ "${#files[@]}" -gt 100 ] || err "only ${#files[@]} files to scan under README.md docs include src shaders"
+mapfile -t files < <(find README.md docs include src -type f | sort)
+[ "${#files[@]}" -gt 100 ] || err "only ${#files[@]} files to scan under README.md docs include src"
 scan "the sources and docs" "${files[@]}"
 
 "$SSS" help > "$T/help.txt" 2>&1 || err "sss help: exit $?"
@@ -49,6 +49,13 @@ scan "the help texts" "$T"/*.txt
 # What comments and docs point to must exist in the repository.
 for f in docs/scene-format.md docs/physics.md docs/references.md LICENSE assets/README.md; do
     [ -s "$f" ] || err "$f missing"
+done
+# Every repository file the sources and docs cite by path (src/gl/ssss/tech_ssss.c, docs/dss.md) exists.
+mapfile -t cited < <(grep -I -rhoE '(^|[^A-Za-z0-9_./-])(src|docs|include|tests|bench|tools|scenes|examples|python)/[A-Za-z0-9_./-]*[A-Za-z0-9_]\.(c|h|cpp|md|glsl|json|py|sh)\b' \
+                         "${files[@]}" | sed -E 's/^[^A-Za-z]*//' | sort -u)
+[ "${#cited[@]}" -ge 20 ] || err "only ${#cited[@]} cited paths found"
+for f in "${cited[@]}"; do
+    [ -e "$f" ] || err "a file or doc cites $f, which does not exist"
 done
 # Every "docs/physics.md §N" names a section heading "## N." / "### N" of docs/physics.md.
 mapfile -t sections < <(grep -rhoE 'docs/physics\.md §[0-9]+(\.[0-9]+)?' "${files[@]}" | sed 's/.*§//' | sort -u)

@@ -1,4 +1,4 @@
-/* chen2012 under environment lighting (src/gl/tech_chen2012.c; issue 5).
+/* chen2012 under environment lighting (src/gl/chen2012/tech_chen2012.c; issue 5).
  *
  * An environment map becomes 32 directional lights (median cut, src/gl/lights.c), each with its own
  * irradiance buffer and splats, so the splats of all lights together run into the millions. The

@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "gl_test_util.h"
-#include "gl/tech_sam.h"
+#include "gl/sam/tech_sam.h"
 #include "sss/sam.h"
 
 static void *read_buffer(GLuint b, size_t bytes)

@@ -34,7 +34,7 @@
  *    only 36-48 fragments a splat and the fine level's quads, (2 (2.5 + 0.375) k)^2 = 132, weigh; +5%
  *    on eval_backlit, +10% on eval_front). The pyramid starting at the render pixel made 3.0x
  *    (chen2012) and 12x (dss). */
-#include "gl/tech_dss_shells.h"
+#include "gl/dss/tech_dss_shells.h"
 #include "splat_plane_util.h"
 #include "gl_test_util.h"
 

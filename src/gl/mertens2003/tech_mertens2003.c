@@ -16,8 +16,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gl/tech_chen2012_tsm.h"
-#include "gl/tech_mertens2003.h"
+#include "gl/chen2012/tech_chen2012_tsm.h"
+#include "gl/mertens2003/tech_mertens2003.h"
 
 #define MAX_VIEWS 4
 #define SSBO_TABLES 10 /* binding of the sampling tables (mertens_estimate.frag.glsl) */

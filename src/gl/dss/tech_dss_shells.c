@@ -2,7 +2,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "gl/tech_dss_shells.h"
+#include "gl/dss/tech_dss_shells.h"
 
 sss_result shell_create(shell_targets *s, sss_error *err)
 {

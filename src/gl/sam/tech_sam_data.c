@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gl/tech_sam.h"
+#include "gl/sam/tech_sam.h"
 #include "sss/scene.h"
 
 static GLuint buffer(const void *data, size_t bytes, GLbitfield flags, size_t *count)

@@ -20,7 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gl/tech_ssss.h"
+#include "gl/ssss/tech_ssss.h"
 #include "sss/profile.h"
 
 #define ENERGY_RANGE 0.999   /* kernel ranges and T(s) tables span this fraction of the energy */

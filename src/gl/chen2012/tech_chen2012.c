@@ -24,8 +24,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "gl/tech_chen2012_tsm.h"
-#include "gl/tech_dss_shells.h"
+#include "gl/chen2012/tech_chen2012_tsm.h"
+#include "gl/dss/tech_dss_shells.h"
 
 enum { P_SIZE = 0, P_BUFFER_LEVELS, P_TEXEL_FRACTION, P_MAX_LIGHTS, P_PREINTEGRATED, P_IRRADIANCE_CULL,
        P_VIEW_LEVELS, P_VIEW_EPSILON, P_MAX_SPLATS, P_ENV_SIZE, P_FINE, P_COUNT };

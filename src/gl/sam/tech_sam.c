@@ -25,7 +25,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gl/tech_sam.h"
+#include "gl/sam/tech_sam.h"
 
 enum {
     P_N = 0,

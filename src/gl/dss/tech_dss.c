@@ -13,7 +13,7 @@
  * "receivers" (the pyramid), "splatting" (all levels), "resolve" (upsampling, sum, exit factor). */
 #include <string.h>
 
-#include "gl/tech_dss_shells.h"
+#include "gl/dss/tech_dss_shells.h"
 
 enum { P_LEVELS = 0, P_EPSILON, P_SURFEL_PIXELS, P_MAX_TESS, P_PREINTEGRATED, P_IRRADIANCE_CULL, P_SHADOW_OFFSET,
        P_SNAP, P_MAX_SURFELS, P_FINE, P_FOOTPRINT, P_COUNT };

@@ -2,7 +2,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "gl/tech_mertens2003.h"
+#include "gl/mertens2003/tech_mertens2003.h"
 
 /* The exact sampler of Mertens et al. 2003, section 4 as a quantile function: for PBD the table's own inverse CDF
  * (sss_pbd_sample_radius, PBRT Sample_Sr); for the dipole (and the Gaussian fit) the inverse of the

@@ -2,7 +2,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "gl/tech_chen2012_tsm.h"
+#include "gl/chen2012/tech_chen2012_tsm.h"
 
 static void grow(double lo[3], double hi[3], const double p[3])
 {
