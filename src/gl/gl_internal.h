@@ -232,7 +232,7 @@ typedef struct gl_frame {
  *  - gs.shadow_cube / gs.shadow_2d through light_irradiance() in any shader stage (compute too), so a
  *    technique can light its own sample points (splats, texture-space atlases, shadow-map texels);
  *  - gs.objects[i].splat_pos/splat_idx (GL_NEED_SPLAT_MESHES): the low-resolution splat mesh in
- *    object space at rest; deform with anim_deform() in the shader like splat_generate.comp.glsl;
+ *    object space at rest; deform with anim_deform() in the shader like maisch2020_splat_generate.comp.glsl;
  *  - the kernel LUT of every subsurface material (lut_info/lut_eval) and the materials' records;
  *  - gl_draw_objects() to rasterise the scene with the caller's program (u_object uniform), and
  *    gl_draw_fullscreen() for screen passes. */

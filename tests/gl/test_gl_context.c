@@ -127,9 +127,9 @@ static void test_shader_errors(void)
     static const char *const vf[][2] = {
         {"gbuffer.vert.glsl", "gbuffer.frag.glsl"},     {"shadow.vert.glsl", "shadow.frag.glsl"},
         {"fullscreen.vert.glsl", "illumination.frag.glsl"}, {"fullscreen.vert.glsl", "present.frag.glsl"},
-        {"fullscreen.vert.glsl", "local.frag.glsl"},    {"fullscreen.vert.glsl", "receivers.frag.glsl"},
-        {"splat.vert.glsl", "splat.frag.glsl"},         {"fullscreen.vert.glsl", "upsample.frag.glsl"},
-        {"fullscreen.vert.glsl", "screen_sss.frag.glsl"}, {"fullscreen.vert.glsl", "combine.frag.glsl"},
+        {"fullscreen.vert.glsl", "local.frag.glsl"},    {"fullscreen.vert.glsl", "maisch2020_receivers.frag.glsl"},
+        {"maisch2020_splat.vert.glsl", "maisch2020_splat.frag.glsl"},         {"fullscreen.vert.glsl", "maisch2020_upsample.frag.glsl"},
+        {"fullscreen.vert.glsl", "maisch2020_screen.frag.glsl"}, {"fullscreen.vert.glsl", "combine.frag.glsl"},
     };
     for (size_t i = 0; i < sizeof vf / sizeof vf[0]; i++) {
         sss_result r = gl_program_vf(vf[i][0], vf[i][1], NULL, &prog, &err);
@@ -137,7 +137,7 @@ static void test_shader_errors(void)
         if (r != SSS_OK) fprintf(stderr, "%s\n", err.message);
         else glDeleteProgram(prog);
     }
-    static const char *const comp[] = {"mip_reduce.comp.glsl", "splat_generate.comp.glsl"};
+    static const char *const comp[] = {"mip_reduce.comp.glsl", "maisch2020_splat_generate.comp.glsl"};
     for (size_t i = 0; i < 2; i++) {
         sss_result r = gl_program_compute(comp[i], NULL, &prog, &err);
         CHECK(r == SSS_OK);

@@ -2,7 +2,7 @@
  * Tong 2012) as Maisch & Ropinski 2020 configure it for its comparisons (section 8): per light an irradiance buffer
  * of 2048 x 2048 texels rendered from the light's view (positions, normals, transmitted irradiance;
  * tech_chen2012_tsm.h) with 3 mip levels; splats are selected from it, one per texel of the level
- * chosen by the splat's required radius (chen_select.comp.glsl), and splatted additively into the
+ * chosen by the splat's required radius (chen2012_select.comp.glsl), and splatted additively into the
  * camera view through the multi-resolution receiver pyramid shared with dss (tech_dss_shells.h),
  * with the profile at the splat centre (default, as the paper) or the disc-integrated R'_d(r, A).
  *
@@ -179,7 +179,7 @@ static sss_result chen_create(sss_gl_renderer *r, void *state, sss_error *err)
     chen_state *s = state;
     sss_result res = tsm_program(&s->prog_tsm, err);
     if (res == SSS_OK) res = gl_program_compute("mip_reduce.comp.glsl", "#define WITH_NORMALS 1\n", &s->prog_reduce, err);
-    if (res == SSS_OK) res = gl_program_compute("chen_select.comp.glsl", NULL, &s->prog_select, err);
+    if (res == SSS_OK) res = gl_program_compute("chen2012_select.comp.glsl", NULL, &s->prog_select, err);
     if (res == SSS_OK) res = shell_create(&s->shells, err);
     if (res != SSS_OK) return res;
     glCreateBuffers(1, &s->cmd);

@@ -162,7 +162,7 @@ int tsm_light_matrix(const sss_gl_renderer *r, const tsm_bounds *b, int light, f
 
 sss_result tsm_program(GLuint *prog, sss_error *err)
 {
-    return gl_program_vf("gbuffer.vert.glsl", "chen_tsm.frag.glsl", "#define LIGHT_VIEW 1\n", prog, err);
+    return gl_program_vf("gbuffer.vert.glsl", "chen2012_tsm.frag.glsl", "#define LIGHT_VIEW 1\n", prog, err);
 }
 
 void tsm_render(sss_gl_renderer *r, GLuint prog, GLuint fbo, int size, int light, const float vp[16])

@@ -2,7 +2,7 @@
 // Receivers of the shell-splatting pyramid (dss, chen2012; tech_dss_shells.h). A texel of level l
 // stands for 2^l x 2^l output pixels, u_divisor = k 2^l render pixels (k = u_base, the SSAA factor).
 // Its receiver is the one the k = 1 pyramid takes, the surface point seen at the centre of the output
-// pixel at the middle of its block (maisch2020's receivers.frag.glsl: the block's centre pixel), so
+// pixel at the middle of its block (maisch2020_receivers.frag.glsl: the block's centre pixel), so
 // that supersampling keeps the image: for odd k that point is the centre of a render pixel, for even
 // k the corner of four, where the receiver is the mean of their positions when the four lie on one
 // surface (same object, within a render pixel of their tangent plane), else the first of them on a

@@ -178,10 +178,10 @@ static sss_result make_targets(sss_gl_renderer *r, maisch_state *s, sss_error *e
 static sss_result maisch_create(sss_gl_renderer *r, void *state, sss_error *err)
 {
     maisch_state *s = state;
-    sss_result res = gl_program_compute("splat_generate.comp.glsl", NULL, &s->prog_gen, err);
-    if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "receivers.frag.glsl", NULL, &s->prog_recv, err);
-    if (res == SSS_OK) res = gl_program_vf("splat.vert.glsl", "splat.frag.glsl", NULL, &s->prog_splat, err);
-    if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "upsample.frag.glsl", NULL, &s->prog_up, err);
+    sss_result res = gl_program_compute("maisch2020_splat_generate.comp.glsl", NULL, &s->prog_gen, err);
+    if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "maisch2020_receivers.frag.glsl", NULL, &s->prog_recv, err);
+    if (res == SSS_OK) res = gl_program_vf("maisch2020_splat.vert.glsl", "maisch2020_splat.frag.glsl", NULL, &s->prog_splat, err);
+    if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "maisch2020_upsample.frag.glsl", NULL, &s->prog_up, err);
     if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "combine.frag.glsl", NULL, &s->prog_combine, err);
     if (res != SSS_OK) return res;
     s->capacity = r->gs.splat_total;
@@ -266,14 +266,14 @@ static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, sss_error *er
 }
 
 /* grazing_sources: the visible pixels Eq. 8 took out of the screen-space sum get their projected area
- * back in level 0 of the position chain (grazing_area.comp.glsl) and the mip chain is rebuilt from it,
+ * back in level 0 of the position chain (maisch2020_grazing_area.comp.glsl) and the mip chain is rebuilt from it,
  * so inner samples and outer layers both see them; the splats' Eq. 8 cut-off drops to match. */
 static sss_result pass_grazing(sss_gl_renderer *r, maisch_state *s, sss_error *err)
 {
     double gs = gl_param(r, P_GRAZING_SOURCES);
     if (!(gs > 0.0) || !(gs < gl_param(r, P_GRAZING))) return SSS_OK;
     if (!s->prog_grazing) {
-        sss_result res = gl_program_compute("grazing_area.comp.glsl", NULL, &s->prog_grazing, err);
+        sss_result res = gl_program_compute("maisch2020_grazing_area.comp.glsl", NULL, &s->prog_grazing, err);
         if (res != SSS_OK) return res;
     }
     gl_timer_begin(&r->timer, "grazing_area");
@@ -297,7 +297,7 @@ static sss_result screen_program(maisch_state *s, int filtered, int split, GLuin
         char defines[96];
         snprintf(defines, sizeof defines, "#define FILTERED_LAYERS %d\n#define FOOTPRINT_SPLIT %d\n", filtered,
                  split != 0);
-        sss_result res = gl_program_vf("fullscreen.vert.glsl", "screen_sss.frag.glsl", defines, prog, err);
+        sss_result res = gl_program_vf("fullscreen.vert.glsl", "maisch2020_screen.frag.glsl", defines, prog, err);
         if (res != SSS_OK) return res;
     }
     *out = *prog;

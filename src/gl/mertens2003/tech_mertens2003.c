@@ -20,7 +20,7 @@
 #include "gl/mertens2003/tech_mertens2003.h"
 
 #define MAX_VIEWS 4
-#define SSBO_TABLES 10 /* binding of the sampling tables (mertens_estimate.frag.glsl) */
+#define SSBO_TABLES 10 /* binding of the sampling tables (mertens2003_estimate.frag.glsl) */
 
 enum { P_SAMPLES = 0, P_UNIFORM, P_UNIFORM_RADIUS, P_PATTERN, P_BLUR, P_BLUR_NORMAL, P_JACOBIAN, P_RENORMALIZE,
        P_LIGHT_VIEWS, P_LIGHT_VIEW_SIZE, P_JITTER, P_SEED, P_COUNT };
@@ -163,9 +163,9 @@ static sss_result make_targets(sss_gl_renderer *r, mertens_state *s, sss_error *
 static sss_result mertens_create(sss_gl_renderer *r, void *state, sss_error *err)
 {
     mertens_state *s = state;
-    sss_result res = gl_program_vf("fullscreen.vert.glsl", "mertens_estimate.frag.glsl", NULL, &s->prog_est, err);
+    sss_result res = gl_program_vf("fullscreen.vert.glsl", "mertens2003_estimate.frag.glsl", NULL, &s->prog_est, err);
     if (res == SSS_OK)
-        res = gl_program_vf("fullscreen.vert.glsl", "mertens_resolve.frag.glsl", NULL, &s->prog_resolve, err);
+        res = gl_program_vf("fullscreen.vert.glsl", "mertens2003_resolve.frag.glsl", NULL, &s->prog_resolve, err);
     if (res == SSS_OK) res = tsm_program(&s->prog_tsm, err);
     if (res == SSS_OK) res = upload_tables(r, s, err);
     if (res != SSS_OK) return res;

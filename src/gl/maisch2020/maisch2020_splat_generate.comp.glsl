@@ -18,7 +18,7 @@
 //    projects outside the image (off the view frustum's sides): the screen-space pass gathers only
 //    surface on the image, so without it the kernel's light from beyond the image's edge is lost, more
 //    the more the camera zooms in. Tested on the same 16 sub-triangles; splats whose reach misses the
-//    image get an empty quad (splat.vert.glsl).
+//    image get an empty quad (maisch2020_splat.vert.glsl).
 #include "common.glsl"
 
 layout(local_size_x = 64) in;

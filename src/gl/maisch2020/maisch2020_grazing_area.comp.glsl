@@ -3,7 +3,7 @@
 // (Maisch & Ropinski 2020, section 6.2) takes out of the screen-space sum, n.v below grazing_cutoff, their projected
 // area back in level 0 of the position chain, before the mip chain is rebuilt from it. They are
 // surface the camera sees; the splats are for what it does not see (section 5), and with this their
-// Eq. 8 cut-off is grazing_sources instead (splat_generate.comp.glsl), so no surface is in both parts.
+// Eq. 8 cut-off is grazing_sources instead (maisch2020_splat_generate.comp.glsl), so no surface is in both parts.
 // The area is w^2 / |n.v|, w^2 the pixel's area across the view ray: what the G-buffer's
 // |dp/dx x dp/dy| is on the pixel's plane, from the shading normal (interpolated normals of a smooth
 // mesh; the triangle's plane at a silhouette is where the area diverges). Pixels steeper than

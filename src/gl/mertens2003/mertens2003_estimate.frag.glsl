@@ -14,7 +14,7 @@
 // the tangent plane: the light's ray through p' then meets the surface at p with
 // |p - x_o|^2 = r'^2 + t^2 (t along the ray), so R_d(r) <= R_d(r') and the weights stay bounded (in
 // the tangent plane a thin part seen through its back gives r << r' and rare huge weights).
-// The exit factor c_o is applied by mertens_resolve.frag.glsl.
+// The exit factor c_o is applied by mertens2003_resolve.frag.glsl.
 #include "common.glsl"
 
 layout(binding = 0) uniform sampler2D g_pos;        // xyz; w: projected area
