@@ -266,8 +266,30 @@ typedef struct gl_technique {
     int paper_count;
 } gl_technique;
 
+/* A technique that another one runs in place (screen runs maisch2020; sam runs ssss or screen for the
+ * front side): its callbacks with the parameter values passed explicitly, one per entry of
+ * tech->info.params in that order, so the caller keeps values of its own and the renderer's params stay
+ * those of the technique it was created with. The state is tech->state_size zeroed bytes. */
+typedef struct gl_inner_technique {
+    const gl_technique *tech;
+    sss_result (*create)(sss_gl_renderer *r, void *state, const double *params, sss_error *err);
+    sss_result (*resize)(sss_gl_renderer *r, void *state, const double *params, sss_error *err);
+    sss_result (*render)(sss_gl_renderer *r, void *state, const double *params, sss_error *err);
+    void (*stats)(sss_gl_renderer *r, void *state, const double *params, sss_gl_stats *out);
+    void (*destroy)(sss_gl_renderer *r, void *state);
+    GLuint (*buffer)(sss_gl_renderer *r, void *state, const char *name);
+} gl_inner_technique;
+
+extern const gl_inner_technique gl_inner_maisch2020, gl_inner_ssss, gl_inner_screen;
+
 /* The registry (registry.c). */
 const gl_technique *gl_technique_lookup(const char *name);
+/* Values for `to`'s parameter table: its defaults, then the value of every parameter of `from` with the
+ * same name (from_values in from's table order; from may be NULL). */
+void gl_params_by_name(const sss_gl_technique_info *to, double *to_values, const sss_gl_technique_info *from,
+                       const double *from_values);
+/* Sets parameter `name` of `info`'s table in values (no change when the table has no such parameter). */
+void gl_params_set(const sss_gl_technique_info *info, double *values, const char *name, double value);
 
 /* Shared parameter indices (params.c); values in r->shared[]. */
 enum {

@@ -82,6 +82,19 @@ const sss_gl_param_info *sss_gl_shared_params(int *count)
     return shared_params;
 }
 
+void gl_params_by_name(const sss_gl_technique_info *to, double *to_values, const sss_gl_technique_info *from,
+                       const double *from_values)
+{
+    for (int i = 0; i < to->param_count && i < GL_MAX_PARAMS; i++) to_values[i] = to->params[i].default_value;
+    for (int j = 0; from && j < from->param_count; j++) gl_params_set(to, to_values, from->params[j].name, from_values[j]);
+}
+
+void gl_params_set(const sss_gl_technique_info *info, double *values, const char *name, double value)
+{
+    for (int i = 0; i < info->param_count && i < GL_MAX_PARAMS; i++)
+        if (strcmp(info->params[i].name, name) == 0) values[i] = value;
+}
+
 double sss_gl_paper_value(const char *technique, const char *param)
 {
     const gl_technique *t = gl_technique_lookup(technique);

@@ -149,12 +149,12 @@ static GLuint fbo_for(const GLuint *tex, int count)
 /* The translucency divisor in render pixels: translucency_divisor counts output pixels, so with
  * supersampling (k) the low-resolution buffer keeps its size, width/d x height/d of the output, and the
  * image and the splatting cost stay those of k = 1 (docs/supersampling.md). */
-static int divisor(const sss_gl_renderer *r) { return (int)gl_param(r, P_DIVISOR) * gl_supersample(r); }
+static int divisor(const sss_gl_renderer *r, const double *p) { return (int)p[P_DIVISOR] * gl_supersample(r); }
 
-static sss_result make_targets(sss_gl_renderer *r, maisch_state *s, sss_error *err)
+static sss_result make_targets(sss_gl_renderer *r, maisch_state *s, const double *p, sss_error *err)
 {
     free_targets(s);
-    int d = divisor(r);
+    int d = divisor(r, p);
     s->low_w = (r->width + d - 1) / d;
     s->low_h = (r->height + d - 1) / d;
     s->tex_recv = gl_texture_2d(GL_RGBA32F, s->low_w, s->low_h, 1, &s->bytes);
@@ -175,7 +175,7 @@ static sss_result make_targets(sss_gl_renderer *r, maisch_state *s, sss_error *e
     return gl_check(r->ctx, "maisch2020: targets", err);
 }
 
-static sss_result maisch_create(sss_gl_renderer *r, void *state, sss_error *err)
+static sss_result maisch2020_create(sss_gl_renderer *r, void *state, const double *p, sss_error *err)
 {
     maisch_state *s = state;
     sss_result res = gl_program_compute("maisch2020_splat_generate.comp.glsl", NULL, &s->prog_gen, err);
@@ -189,25 +189,25 @@ static sss_result maisch_create(sss_gl_renderer *r, void *state, sss_error *err)
     glNamedBufferStorage(s->splats, (GLsizeiptr)SPLAT_BYTES * (s->capacity ? s->capacity : 1), NULL, 0);
     glCreateBuffers(1, &s->cmd);
     glNamedBufferStorage(s->cmd, 4 * sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
-    return make_targets(r, s, err);
+    return make_targets(r, s, p, err);
 }
 
-static sss_result maisch_resize(sss_gl_renderer *r, void *state, sss_error *err)
+static sss_result maisch2020_resize(sss_gl_renderer *r, void *state, const double *p, sss_error *err)
 {
     maisch_state *s = state;
-    int d = divisor(r);
+    int d = divisor(r, p);
     if (s->tex_screen && s->low_w == (r->width + d - 1) / d && s->low_h == (r->height + d - 1) / d) {
         GLint w = 0;
         glGetTextureLevelParameteriv(s->tex_screen, 0, GL_TEXTURE_WIDTH, &w);
         if (w == r->width) return SSS_OK;
     }
-    return make_targets(r, s, err);
+    return make_targets(r, s, p, err);
 }
 
 static void set_i(GLuint prog, const char *name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
 static void set_f(GLuint prog, const char *name, float v) { glUniform1f(glGetUniformLocation(prog, name), v); }
 
-static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, sss_error *err)
+static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, const double *p, sss_error *err)
 {
     const GLuint reset[4] = {4, 0, 0, 0}; /* triangle strip of 4 vertices per instance */
     glNamedBufferSubData(s->cmd, 0, sizeof reset, reset);
@@ -217,12 +217,12 @@ static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, sss_error *er
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_SPLAT_COUNT, s->cmd);
     glBindTextureUnit(0, r->frame.pos);
     glBindTextureUnit(1, r->frame.nrm);
-    set_i(s->prog_gen, "u_cull_rule", (int)gl_param(r, P_CULL_RULE));
-    set_f(s->prog_gen, "u_irradiance_cull", (float)gl_param(r, P_IRRADIANCE_CULL));
-    set_f(s->prog_gen, "u_shadow_offset", (float)gl_param(r, P_SHADOW_OFFSET));
-    set_f(s->prog_gen, "u_occluded_margin", (float)gl_param(r, P_OCCLUDED));
-    set_i(s->prog_gen, "u_offscreen", (int)gl_param(r, P_OFFSCREEN));
-    set_f(s->prog_gen, "u_grazing_sources", (float)gl_param(r, P_GRAZING_SOURCES));
+    set_i(s->prog_gen, "u_cull_rule", (int)p[P_CULL_RULE]);
+    set_f(s->prog_gen, "u_irradiance_cull", (float)p[P_IRRADIANCE_CULL]);
+    set_f(s->prog_gen, "u_shadow_offset", (float)p[P_SHADOW_OFFSET]);
+    set_f(s->prog_gen, "u_occluded_margin", (float)p[P_OCCLUDED]);
+    set_i(s->prog_gen, "u_offscreen", (int)p[P_OFFSCREEN]);
+    set_f(s->prog_gen, "u_grazing_sources", (float)p[P_GRAZING_SOURCES]);
     glUniform1ui(glGetUniformLocation(s->prog_gen, "u_capacity"), s->capacity);
     gl_dispatch_splat_triangles(r, s->prog_gen);
     sss_result res = gl_check(r->ctx, "maisch2020: splat generation", err);
@@ -233,7 +233,7 @@ static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, sss_error *er
     glViewport(0, 0, s->low_w, s->low_h);
     glDisable(GL_BLEND);
     glUseProgram(s->prog_recv);
-    set_i(s->prog_recv, "u_divisor", divisor(r));
+    set_i(s->prog_recv, "u_divisor", divisor(r, p));
     gl_draw_fullscreen(r);
     /* additive splatting into the accumulation target (float blending, no clamping) */
     glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_accum);
@@ -243,8 +243,8 @@ static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, sss_error *er
     glUseProgram(s->prog_splat);
     glBindTextureUnit(0, s->tex_recv);
     set_i(s->prog_splat, "u_preintegrated",
-          (int)gl_param(r, P_PREINTEGRATED) && (int)gl_param(r, P_SPLAT_PREINTEGRATED));
-    set_i(s->prog_splat, "u_disc_adjust", (int)gl_param(r, P_DISC));
+          (int)p[P_PREINTEGRATED] && (int)p[P_SPLAT_PREINTEGRATED]);
+    set_i(s->prog_splat, "u_disc_adjust", (int)p[P_DISC]);
     glBindVertexArray(r->vao_empty);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, s->cmd);
     glDrawArraysIndirect(GL_TRIANGLE_STRIP, NULL);
@@ -259,7 +259,7 @@ static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, sss_error *er
     glViewport(0, 0, r->width, r->height);
     glUseProgram(s->prog_up);
     glBindTextureUnit(0, s->tex_accum);
-    set_i(s->prog_up, "u_bicubic", (int)gl_param(r, P_BICUBIC));
+    set_i(s->prog_up, "u_bicubic", (int)p[P_BICUBIC]);
     glUniform2f(glGetUniformLocation(s->prog_up, "u_full_size"), (float)r->width, (float)r->height);
     gl_draw_fullscreen(r);
     return gl_check(r->ctx, "maisch2020: upsampling", err);
@@ -268,10 +268,10 @@ static sss_result pass_splats(sss_gl_renderer *r, maisch_state *s, sss_error *er
 /* grazing_sources: the visible pixels Eq. 8 took out of the screen-space sum get their projected area
  * back in level 0 of the position chain (maisch2020_grazing_area.comp.glsl) and the mip chain is rebuilt from it,
  * so inner samples and outer layers both see them; the splats' Eq. 8 cut-off drops to match. */
-static sss_result pass_grazing(sss_gl_renderer *r, maisch_state *s, sss_error *err)
+static sss_result pass_grazing(sss_gl_renderer *r, maisch_state *s, const double *p, sss_error *err)
 {
-    double gs = gl_param(r, P_GRAZING_SOURCES);
-    if (!(gs > 0.0) || !(gs < gl_param(r, P_GRAZING))) return SSS_OK;
+    double gs = p[P_GRAZING_SOURCES];
+    if (!(gs > 0.0) || !(gs < p[P_GRAZING])) return SSS_OK;
     if (!s->prog_grazing) {
         sss_result res = gl_program_compute("maisch2020_grazing_area.comp.glsl", NULL, &s->prog_grazing, err);
         if (res != SSS_OK) return res;
@@ -304,19 +304,19 @@ static sss_result screen_program(maisch_state *s, int filtered, int split, GLuin
     return SSS_OK;
 }
 
-static sss_result maisch_render(sss_gl_renderer *r, void *state, sss_error *err)
+static sss_result maisch2020_render(sss_gl_renderer *r, void *state, const double *p, sss_error *err)
 {
     maisch_state *s = state;
-    sss_result res = maisch_resize(r, s, err);
+    sss_result res = maisch2020_resize(r, s, p, err);
     if (res != SSS_OK) return res;
-    if ((int)gl_param(r, P_SCREEN)) {
-        res = pass_grazing(r, s, err);
+    if ((int)p[P_SCREEN]) {
+        res = pass_grazing(r, s, p, err);
         if (res != SSS_OK) return res;
     }
-    int use_trans = (int)gl_param(r, P_TRANSLUCENCY) && s->capacity > 0;
-    int use_screen = (int)gl_param(r, P_SCREEN);
+    int use_trans = (int)p[P_TRANSLUCENCY] && s->capacity > 0;
+    int use_screen = (int)p[P_SCREEN];
     if (use_trans) {
-        res = pass_splats(r, s, err);
+        res = pass_splats(r, s, p, err);
         if (res != SSS_OK) return res;
     }
     if (use_screen) {
@@ -324,23 +324,23 @@ static sss_result maisch_render(sss_gl_renderer *r, void *state, sss_error *err)
         glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_screen);
         glViewport(0, 0, r->width, r->height);
         glDisable(GL_BLEND);
-        int filtered = (int)gl_param(r, P_FILTERED);
+        int filtered = (int)p[P_FILTERED];
         GLuint prog = 0;
-        res = screen_program(s, filtered, (int)gl_param(r, P_SPLIT) > 1, &prog, err);
+        res = screen_program(s, filtered, (int)p[P_SPLIT] > 1, &prog, err);
         if (res != SSS_OK) return res;
         glUseProgram(prog);
         glBindTextureUnit(0, r->frame.pos);
         glBindTextureUnit(1, r->frame.irr);
         glBindTextureUnit(2, r->frame.nrm);
-        set_i(prog, "u_split", (int)gl_param(r, P_SPLIT));
-        set_i(prog, "u_n", (int)gl_param(r, P_N));
-        set_i(prog, "u_nl", (int)gl_param(r, P_NL));
-        set_i(prog, "u_layers", (int)gl_param(r, P_LAYERS));
-        set_i(prog, "u_brightening", (int)gl_param(r, P_BRIGHTENING));
-        set_i(prog, "u_preintegrated", (int)gl_param(r, P_PREINTEGRATED));
-        set_i(prog, "u_screen_bound", (int)gl_param(r, P_SCREEN_BOUND));
-        set_i(prog, "u_support_cutoff", (int)gl_param(r, P_SUPPORT_CUTOFF));
-        set_i(prog, "u_layers_to_reach", (int)gl_param(r, P_LAYERS_TO_REACH));
+        set_i(prog, "u_split", (int)p[P_SPLIT]);
+        set_i(prog, "u_n", (int)p[P_N]);
+        set_i(prog, "u_nl", (int)p[P_NL]);
+        set_i(prog, "u_layers", (int)p[P_LAYERS]);
+        set_i(prog, "u_brightening", (int)p[P_BRIGHTENING]);
+        set_i(prog, "u_preintegrated", (int)p[P_PREINTEGRATED]);
+        set_i(prog, "u_screen_bound", (int)p[P_SCREEN_BOUND]);
+        set_i(prog, "u_support_cutoff", (int)p[P_SUPPORT_CUTOFF]);
+        set_i(prog, "u_layers_to_reach", (int)p[P_LAYERS_TO_REACH]);
         /* the pattern's sizes count output pixels (docs/supersampling.md) */
         set_i(prog, "u_supersample", gl_supersample(r));
         gl_draw_fullscreen(r);
@@ -364,7 +364,7 @@ static sss_result maisch_render(sss_gl_renderer *r, void *state, sss_error *err)
     return gl_check(r->ctx, "maisch2020: combination", err);
 }
 
-static void maisch_destroy(sss_gl_renderer *r, void *state)
+static void maisch2020_destroy(sss_gl_renderer *r, void *state)
 {
     (void)r;
     maisch_state *s = state;
@@ -379,7 +379,7 @@ static void maisch_destroy(sss_gl_renderer *r, void *state)
     if (s->cmd) glDeleteBuffers(1, &s->cmd);
 }
 
-static GLuint maisch_buffer(sss_gl_renderer *r, void *state, const char *name)
+static GLuint maisch2020_buffer(sss_gl_renderer *r, void *state, const char *name)
 {
     (void)r;
     maisch_state *s = state;
@@ -389,7 +389,7 @@ static GLuint maisch_buffer(sss_gl_renderer *r, void *state, const char *name)
     return 0;
 }
 
-static void maisch_stats(sss_gl_renderer *r, void *state, sss_gl_stats *out)
+static void maisch2020_stats(sss_gl_renderer *r, void *state, const double *p, sss_gl_stats *out)
 {
     maisch_state *s = state;
     out->texture_bytes += s->bytes;
@@ -397,9 +397,29 @@ static void maisch_stats(sss_gl_renderer *r, void *state, sss_gl_stats *out)
     out->per_pixel_bytes += s->bytes / ((size_t)r->width * (size_t)r->height);
     out->per_splat_bytes = SPLAT_BYTES;
     GLuint cmd[4] = {0, 0, 0, 0};
-    if (s->cmd && r->frame_rendered && gl_param(r, P_TRANSLUCENCY) != 0.0)
+    if (s->cmd && r->frame_rendered && p[P_TRANSLUCENCY] != 0.0)
         glGetNamedBufferSubData(s->cmd, 0, sizeof cmd, cmd);
     out->splat_drawn = cmd[1];
+}
+
+static sss_result maisch_create(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    return maisch2020_create(r, state, r->params, err);
+}
+
+static sss_result maisch_resize(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    return maisch2020_resize(r, state, r->params, err);
+}
+
+static sss_result maisch_render(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    return maisch2020_render(r, state, r->params, err);
+}
+
+static void maisch_stats(sss_gl_renderer *r, void *state, sss_gl_stats *out)
+{
+    maisch2020_stats(r, state, r->params, out);
 }
 
 const gl_technique gl_technique_maisch2020 = {
@@ -412,9 +432,14 @@ const gl_technique gl_technique_maisch2020 = {
     .create = maisch_create,
     .resize = maisch_resize,
     .render = maisch_render,
-    .destroy = maisch_destroy,
-    .buffer = maisch_buffer,
+    .destroy = maisch2020_destroy,
+    .buffer = maisch2020_buffer,
     .stats = maisch_stats,
     .paper = paper,
     .paper_count = (int)(sizeof paper / sizeof paper[0]),
+};
+
+const gl_inner_technique gl_inner_maisch2020 = {
+    &gl_technique_maisch2020, maisch2020_create, maisch2020_resize, maisch2020_render, maisch2020_stats,
+    maisch2020_destroy, maisch2020_buffer,
 };

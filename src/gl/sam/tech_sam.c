@@ -68,57 +68,30 @@ static const sss_gl_param_info params[P_COUNT] = {
 
 /* ---- The surface technique ------------------------------------------------------------------- */
 
-static void enter(sss_gl_renderer *r, sam_state *s)
-{
-    memcpy(s->saved, r->params, sizeof s->saved);
-    memcpy(r->params, s->surface_params, sizeof s->surface_params);
-    s->saved_tech = r->tech;
-    r->tech = s->surface;
-}
-
-static void leave(sss_gl_renderer *r, sam_state *s)
-{
-    memcpy(s->surface_params, r->params, sizeof s->surface_params);
-    memcpy(r->params, s->saved, sizeof s->saved);
-    r->tech = s->saved_tech;
-}
-
 static sss_result surface_create(sss_gl_renderer *r, sam_state *s, sss_error *err)
 {
     int kind = (int)gl_param(r, P_SURFACE);
     if (kind == 0) return SSS_OK;
-    const char *name = kind == 1 ? "ssss" : "screen";
-    s->surface = gl_technique_lookup(name);
-    if (!s->surface)
-        return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "surface technique '%s' is not available (parameter surface)",
-                             name);
-    const sss_gl_technique_info *in = &s->surface->info;
-    for (int i = 0; i < in->param_count && i < GL_MAX_PARAMS; i++) {
-        double v = in->params[i].default_value;
-        /* SAM replaces the translucency of the surface techniques */
-        if (strcmp(in->params[i].name, "transmittance") == 0 || strcmp(in->params[i].name, "translucency") == 0)
-            v = 0.0;
-        /* Maisch & Ropinski 2020's brightening term compensates for light its translucency pass misses; the front side
-         * alone is what SAM needs */
-        if (strcmp(in->params[i].name, "brightening") == 0) v = 0.0;
-        s->surface_params[i] = v;
-    }
-    s->surface_state = calloc(1, s->surface->state_size ? s->surface->state_size : 1);
+    s->surface = kind == 1 ? &gl_inner_ssss : &gl_inner_screen;
+    const gl_technique *tech = s->surface->tech;
+    const char *name = tech->info.name;
+    gl_params_by_name(&tech->info, s->surface_params, NULL, NULL);
+    /* SAM replaces the translucency of the surface techniques */
+    gl_params_set(&tech->info, s->surface_params, "transmittance", 0.0);
+    gl_params_set(&tech->info, s->surface_params, "translucency", 0.0);
+    /* Maisch & Ropinski 2020's brightening term compensates for light its translucency pass misses; the front side
+     * alone is what SAM needs */
+    gl_params_set(&tech->info, s->surface_params, "brightening", 0.0);
+    s->surface_state = calloc(1, tech->state_size ? tech->state_size : 1);
     if (!s->surface_state) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (surface technique)");
-    enter(r, s);
-    sss_result res = s->surface->create ? s->surface->create(r, s->surface_state, err) : SSS_OK;
-    leave(r, s);
+    sss_result res = s->surface->create(r, s->surface_state, s->surface_params, err);
     if (res != SSS_OK) sss_error_prefix(err, name);
     return res;
 }
 
 static void surface_destroy(sss_gl_renderer *r, sam_state *s)
 {
-    if (s->surface && s->surface_state && s->surface->destroy) {
-        enter(r, s);
-        s->surface->destroy(r, s->surface_state);
-        leave(r, s);
-    }
+    if (s->surface && s->surface_state) s->surface->destroy(r, s->surface_state);
     free(s->surface_state);
     s->surface_state = NULL;
     s->surface = NULL;
@@ -245,11 +218,7 @@ static sss_result sam_resize(sss_gl_renderer *r, void *state, sss_error *err)
         if (res != SSS_OK) return res;
     }
     if (res == SSS_OK) res = make_targets(r, s, err);
-    if (res == SSS_OK && s->surface && s->surface->resize) {
-        enter(r, s);
-        res = s->surface->resize(r, s->surface_state, err);
-        leave(r, s);
-    }
+    if (res == SSS_OK && s->surface) res = s->surface->resize(r, s->surface_state, s->surface_params, err);
     return res;
 }
 
@@ -396,9 +365,7 @@ static sss_result sam_render(sss_gl_renderer *r, void *state, sss_error *err)
     }
     if (s->surface) {
         /* the surface technique writes frame.final (reflected light + c_o sqrt(albedo) L_o+) ... */
-        enter(r, s);
-        res = s->surface->render(r, s->surface_state, err);
-        leave(r, s);
+        res = s->surface->render(r, s->surface_state, s->surface_params, err);
         if (res != SSS_OK) return res;
         /* ... and the translucency is added to it */
         gl_timer_begin(&r->timer, "sam_combine");
@@ -451,23 +418,13 @@ static GLuint sam_buffer(sss_gl_renderer *r, void *state, const char *name)
 {
     sam_state *s = state;
     if (strcmp(name, "translucency") == 0 || strcmp(name, "translucency_full") == 0) return s->tex_trans;
-    if (s->surface && s->surface->buffer) {
-        enter(r, s);
-        GLuint t = s->surface->buffer(r, s->surface_state, name);
-        leave(r, s);
-        return t;
-    }
-    return 0;
+    return s->surface ? s->surface->buffer(r, s->surface_state, name) : 0;
 }
 
 static void sam_stats(sss_gl_renderer *r, void *state, sss_gl_stats *out)
 {
     sam_state *s = state;
-    if (s->surface && s->surface->stats) {
-        enter(r, s);
-        s->surface->stats(r, s->surface_state, out);
-        leave(r, s);
-    }
+    if (s->surface) s->surface->stats(r, s->surface_state, s->surface_params, out);
     size_t bytes = 0;
     for (int i = 0; i < s->count; i++) bytes += s->objs[i].bytes;
     out->buffer_bytes += bytes;

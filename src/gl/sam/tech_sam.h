@@ -73,12 +73,10 @@ typedef struct sam_state {
     size_t target_bytes;
     double last_time;
     int have_last;
-    /* the surface technique, run with its own parameter table */
-    const gl_technique *surface;
+    /* the surface technique, run in place with its own parameter values (in its table's order) */
+    const gl_inner_technique *surface;
     void *surface_state;
     double surface_params[GL_MAX_PARAMS];
-    double saved[GL_MAX_PARAMS];
-    const gl_technique *saved_tech;
     double build_seconds;
     double key[SAM_KEYS]; /* n, samples, seed, translucency, backside_triangles, backside_splat of the maps */
     int surface_kind; /* the surface parameter the surface technique was made for */

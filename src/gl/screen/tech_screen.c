@@ -1,16 +1,15 @@
-/* gl/tech_screen.c — technique "screen": the screen-space part of Maisch & Ropinski 2020 alone
+/* gl/screen/tech_screen.c — technique "screen": the screen-space part of Maisch & Ropinski 2020 alone
  * (section 4; the 'Screen' competitor of its section 8), i.e. maisch2020 without the translucency
- * pass. It runs maisch2020's own code (tech_maisch2020.c, through gl_technique_maisch2020's callbacks)
- * so both stay the same algorithm: around each call the renderer's parameter array is laid out as
- * maisch2020's table expects it (by name: this technique's values where it has the parameter, maisch's
- * defaults elsewhere, translucency = 0, screen_space = 1) and restored afterwards. Without
+ * pass. It runs maisch2020's own passes (gl_inner_maisch2020) so both stay the same algorithm, with
+ * maisch2020's parameters laid out from ours (by name: this technique's values where it has the
+ * parameter, maisch's defaults elsewhere, translucency = 0, screen_space = 1). Without
  * GL_NEED_SPLAT_MESHES the scene has no splat meshes, so maisch2020 allocates no splat storage. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "gl/gl_internal.h"
 
-extern const gl_technique gl_technique_maisch2020;
+extern const gl_technique gl_technique_screen;
 
 /* The screen-space parameters of maisch2020 (same names, defaults, ranges; test_screen checks it). */
 static const sss_gl_param_info params[] = {
@@ -51,66 +50,53 @@ static const sss_gl_param_value paper[] = {
 };
 
 typedef struct screen_state {
-    void *inner; /* maisch2020's state */
-    double saved[GL_MAX_PARAMS];
+    void *inner;                        /* maisch2020's state */
+    double inner_params[GL_MAX_PARAMS]; /* in maisch2020's table order */
 } screen_state;
 
-/* Lays r->params out as maisch2020's table (saving ours). */
-static void enter(sss_gl_renderer *r, screen_state *s)
+/* maisch2020's parameter values for ours: same-named ones carried over, its defaults elsewhere, the
+ * screen-space part on and the translucency off. */
+static const double *inner_params(screen_state *s, const double *values)
 {
-    memcpy(s->saved, r->params, sizeof s->saved);
-    const sss_gl_technique_info *mi = &gl_technique_maisch2020.info;
-    for (int i = 0; i < mi->param_count && i < GL_MAX_PARAMS; i++) {
-        const char *name = mi->params[i].name;
-        double v = mi->params[i].default_value;
-        for (int j = 0; j < PARAM_COUNT; j++)
-            if (strcmp(params[j].name, name) == 0) v = s->saved[j];
-        if (strcmp(name, "translucency") == 0) v = 0.0;
-        if (strcmp(name, "screen_space") == 0) v = 1.0;
-        r->params[i] = v;
-    }
+    const sss_gl_technique_info *mi = &gl_inner_maisch2020.tech->info;
+    gl_params_by_name(mi, s->inner_params, &gl_technique_screen.info, values);
+    gl_params_set(mi, s->inner_params, "translucency", 0.0);
+    gl_params_set(mi, s->inner_params, "screen_space", 1.0);
+    return s->inner_params;
 }
 
-static void leave(sss_gl_renderer *r, screen_state *s) { memcpy(r->params, s->saved, sizeof s->saved); }
-
-static sss_result screen_create(sss_gl_renderer *r, void *state, sss_error *err)
+static sss_result screen_create_with(sss_gl_renderer *r, void *state, const double *values, sss_error *err)
 {
     screen_state *s = state;
-    s->inner = calloc(1, gl_technique_maisch2020.state_size);
+    s->inner = calloc(1, gl_inner_maisch2020.tech->state_size);
     if (!s->inner) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (technique state)");
-    enter(r, s);
-    sss_result res = gl_technique_maisch2020.create(r, s->inner, err);
-    leave(r, s);
-    return res;
+    return gl_inner_maisch2020.create(r, s->inner, inner_params(s, values), err);
 }
 
-static sss_result screen_resize(sss_gl_renderer *r, void *state, sss_error *err)
+static sss_result screen_resize_with(sss_gl_renderer *r, void *state, const double *values, sss_error *err)
 {
     screen_state *s = state;
-    if (!s->inner) return SSS_OK;
-    enter(r, s);
-    sss_result res = gl_technique_maisch2020.resize(r, s->inner, err);
-    leave(r, s);
-    return res;
+    return s->inner ? gl_inner_maisch2020.resize(r, s->inner, inner_params(s, values), err) : SSS_OK;
 }
 
-static sss_result screen_render(sss_gl_renderer *r, void *state, sss_error *err)
+static sss_result screen_render_with(sss_gl_renderer *r, void *state, const double *values, sss_error *err)
 {
     screen_state *s = state;
-    enter(r, s);
-    sss_result res = gl_technique_maisch2020.render(r, s->inner, err);
-    leave(r, s);
-    return res;
+    return gl_inner_maisch2020.render(r, s->inner, inner_params(s, values), err);
+}
+
+static void screen_stats_with(sss_gl_renderer *r, void *state, const double *values, sss_gl_stats *out)
+{
+    screen_state *s = state;
+    if (!s->inner) return;
+    gl_inner_maisch2020.stats(r, s->inner, inner_params(s, values), out);
+    out->per_splat_bytes = 0;
 }
 
 static void screen_destroy(sss_gl_renderer *r, void *state)
 {
     screen_state *s = state;
-    if (s->inner) {
-        enter(r, s);
-        gl_technique_maisch2020.destroy(r, s->inner);
-        leave(r, s);
-    }
+    if (s->inner) gl_inner_maisch2020.destroy(r, s->inner);
     free(s->inner);
     s->inner = NULL;
 }
@@ -119,17 +105,27 @@ static GLuint screen_buffer(sss_gl_renderer *r, void *state, const char *name)
 {
     screen_state *s = state;
     if (strcmp(name, "screen") != 0 || !s->inner) return 0; /* no translucency buffers here */
-    return gl_technique_maisch2020.buffer(r, s->inner, name);
+    return gl_inner_maisch2020.buffer(r, s->inner, name);
+}
+
+static sss_result screen_create(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    return screen_create_with(r, state, r->params, err);
+}
+
+static sss_result screen_resize(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    return screen_resize_with(r, state, r->params, err);
+}
+
+static sss_result screen_render(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    return screen_render_with(r, state, r->params, err);
 }
 
 static void screen_stats(sss_gl_renderer *r, void *state, sss_gl_stats *out)
 {
-    screen_state *s = state;
-    if (!s->inner) return;
-    enter(r, s);
-    gl_technique_maisch2020.stats(r, s->inner, out);
-    leave(r, s);
-    out->per_splat_bytes = 0;
+    screen_stats_with(r, state, r->params, out);
 }
 
 const gl_technique gl_technique_screen = {
@@ -147,4 +143,9 @@ const gl_technique gl_technique_screen = {
     .stats = screen_stats,
     .paper = paper,
     .paper_count = (int)(sizeof paper / sizeof paper[0]),
+};
+
+const gl_inner_technique gl_inner_screen = {
+    &gl_technique_screen, screen_create_with, screen_resize_with, screen_render_with, screen_stats_with,
+    screen_destroy, screen_buffer,
 };

@@ -9,7 +9,6 @@
  * projection of world-space tap offsets, depth correction of Eq. 7, stochastic rotation of section 6),
  * the vertical ones summed additively; (3) combine: c_o sqrt(albedo) x total reflectance x the sum.
  * The kernels are built on the CPU once per parameter set (tech_ssss_kernel.c). */
-#include <math.h>
 #include <string.h>
 
 #include "gl/ssss/tech_ssss.h"
@@ -56,10 +55,13 @@ static const sss_gl_param_info svd_params[] = {
     P_TRANS,
 };
 
+extern const gl_technique gl_technique_ssss, gl_technique_ssss_gauss6, gl_technique_ssss_svd;
+
 /* ---- State ----------------------------------------------------------------------------------- */
 
 typedef struct ssss_state {
     ssss_variant variant;
+    const sss_gl_technique_info *info; /* the variant's parameter table: the order of `params` */
     GLuint prog_prep, prog_blur, prog_combine;
     GLuint ssbo, trans_tex, samp_cube, samp_2d;
     GLuint tex_prep, tex_tmp, tex_sum;
@@ -69,23 +71,26 @@ typedef struct ssss_state {
     size_t target_bytes, kernel_bytes;
 } ssss_state;
 
-static double param(const sss_gl_renderer *r, const char *name, double fallback)
+/* The value of parameter `name` (params in the variant's table order), or fallback when it has none. */
+static double param(const ssss_state *s, const double *params, const char *name, double fallback)
 {
-    double v = sss_gl_renderer_get_param(r, name);
-    return isnan(v) ? fallback : v;
+    for (int i = 0; i < s->info->param_count; i++)
+        if (strcmp(s->info->params[i].name, name) == 0) return params[i];
+    return fallback;
 }
 
-static void opts_from_params(const sss_gl_renderer *r, ssss_variant v, ssss_kernel_opts *o)
+static void opts_from_params(const ssss_state *s, const double *params, ssss_kernel_opts *o)
 {
+    ssss_variant v = s->variant;
     memset(o, 0, sizeof *o);
     o->variant = v;
-    o->taps = (int)param(r, "taps", 7);
-    o->kernel = v == SSSS_VARIANT_SEPARABLE ? (int)param(r, "kernel", 0) : 0;
-    o->preset = (int)param(r, "artist_preset", 0);
-    o->guide_k = param(r, "guide_k", 2);
-    o->guide_b_mm = param(r, "guide_b", 50);
-    o->rank = (int)param(r, "rank", 3);
-    o->grid = (int)param(r, "svd_grid", 24);
+    o->taps = (int)param(s, params, "taps", 7);
+    o->kernel = v == SSSS_VARIANT_SEPARABLE ? (int)param(s, params, "kernel", 0) : 0;
+    o->preset = (int)param(s, params, "artist_preset", 0);
+    o->guide_k = param(s, params, "guide_k", 2);
+    o->guide_b_mm = param(s, params, "guide_b", 50);
+    o->rank = (int)param(s, params, "rank", 3);
+    o->grid = (int)param(s, params, "svd_grid", 24);
 }
 
 static void free_targets(ssss_state *s)
@@ -134,10 +139,10 @@ static sss_result make_targets(sss_gl_renderer *r, ssss_state *s, sss_error *err
 }
 
 /* (Re)builds the kernel block and the T(s) table when the kernel parameters changed. */
-static sss_result make_kernel(sss_gl_renderer *r, ssss_state *s, sss_error *err)
+static sss_result make_kernel(sss_gl_renderer *r, ssss_state *s, const double *params, sss_error *err)
 {
     ssss_kernel_opts o;
-    opts_from_params(r, s->variant, &o);
+    opts_from_params(s, params, &o);
     if (s->have_kernel && memcmp(&o, &s->built, sizeof o) == 0) return SSS_OK;
     ssss_kernel_data d;
     sss_result res = ssss_kernel_build(r, &o, &d, err);
@@ -161,18 +166,20 @@ static sss_result make_kernel(sss_gl_renderer *r, ssss_state *s, sss_error *err)
     return gl_check(r->ctx, "ssss: kernel upload", err);
 }
 
-static sss_result ssss_resize(sss_gl_renderer *r, void *state, sss_error *err)
+static sss_result ssss_resize_with(sss_gl_renderer *r, void *state, const double *params, sss_error *err)
 {
     ssss_state *s = state;
     sss_result res = SSS_OK;
     if (s->width != r->width || s->height != r->height || !s->tex_prep) res = make_targets(r, s, err);
-    if (res == SSS_OK) res = make_kernel(r, s, err);
+    if (res == SSS_OK) res = make_kernel(r, s, params, err);
     return res;
 }
 
-static sss_result create_variant(sss_gl_renderer *r, ssss_state *s, ssss_variant v, sss_error *err)
+static sss_result create_variant(sss_gl_renderer *r, ssss_state *s, ssss_variant v, const sss_gl_technique_info *info,
+                                 const double *params, sss_error *err)
 {
     s->variant = v;
+    s->info = info;
     sss_result res = gl_program_vf("fullscreen.vert.glsl", "ssss_prepare.frag.glsl", TRANS_DEFINE, &s->prog_prep, err);
     if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "ssss_blur.frag.glsl", NULL, &s->prog_blur, err);
     if (res == SSS_OK)
@@ -191,20 +198,28 @@ static sss_result create_variant(sss_gl_renderer *r, ssss_state *s, ssss_variant
     }
     s->samp_cube = samp[0];
     s->samp_2d = samp[1];
-    return ssss_resize(r, s, err);
+    return ssss_resize_with(r, s, params, err);
 }
 
+static sss_result ssss_create_with(sss_gl_renderer *r, void *state, const double *params, sss_error *err)
+{
+    return create_variant(r, state, SSSS_VARIANT_SEPARABLE, &gl_technique_ssss.info, params, err);
+}
 static sss_result ssss_create(sss_gl_renderer *r, void *state, sss_error *err)
 {
-    return create_variant(r, state, SSSS_VARIANT_SEPARABLE, err);
+    return ssss_create_with(r, state, r->params, err);
 }
 static sss_result gauss6_create(sss_gl_renderer *r, void *state, sss_error *err)
 {
-    return create_variant(r, state, SSSS_VARIANT_GAUSS6, err);
+    return create_variant(r, state, SSSS_VARIANT_GAUSS6, &gl_technique_ssss_gauss6.info, r->params, err);
 }
 static sss_result svd_create(sss_gl_renderer *r, void *state, sss_error *err)
 {
-    return create_variant(r, state, SSSS_VARIANT_SVD, err);
+    return create_variant(r, state, SSSS_VARIANT_SVD, &gl_technique_ssss_svd.info, r->params, err);
+}
+static sss_result ssss_resize(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    return ssss_resize_with(r, state, r->params, err);
 }
 
 static void set_i(GLuint prog, const char *name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
@@ -216,10 +231,10 @@ static const char *const names_h[8] = {"ssss_blur_h1", "ssss_blur_h2", "ssss_blu
 static const char *const names_v[8] = {"ssss_blur_v1", "ssss_blur_v2", "ssss_blur_v3", "ssss_blur_v4",
                                        "ssss_blur_v5", "ssss_blur_v6", "ssss_blur_v7", "ssss_blur_v8"};
 
-static sss_result ssss_render(sss_gl_renderer *r, void *state, sss_error *err)
+static sss_result ssss_render_with(sss_gl_renderer *r, void *state, const double *params, sss_error *err)
 {
     ssss_state *s = state;
-    sss_result res = ssss_resize(r, s, err);
+    sss_result res = ssss_resize_with(r, s, params, err);
     if (res != SSS_OK) return res;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSSS_SSBO_BINDING, s->ssbo);
     glViewport(0, 0, r->width, r->height);
@@ -238,7 +253,7 @@ static sss_result ssss_render(sss_gl_renderer *r, void *state, sss_error *err)
     glBindSampler(6, s->samp_cube);
     glBindTextureUnit(7, r->gs.shadow_2d);
     glBindSampler(7, s->samp_2d);
-    set_i(s->prog_prep, "u_transmittance", (int)param(r, "transmittance", 1) && r->gs.light_count > 0);
+    set_i(s->prog_prep, "u_transmittance", (int)param(s, params, "transmittance", 1) && r->gs.light_count > 0);
     gl_draw_fullscreen(r);
     glBindSampler(6, 0);
     glBindSampler(7, 0);
@@ -249,8 +264,8 @@ static sss_result ssss_render(sss_gl_renderer *r, void *state, sss_error *err)
     glClearNamedFramebufferfv(s->fbo_sum, GL_COLOR, 0, zero);
     glUseProgram(s->prog_blur);
     glBindTextureUnit(1, r->frame.pos);
-    set_i(s->prog_blur, "u_follow", (int)param(r, "follow_surface", 1));
-    glUniform1f(glGetUniformLocation(s->prog_blur, "u_rotate"), (float)param(r, "rotation", 0.1));
+    set_i(s->prog_blur, "u_follow", (int)param(s, params, "follow_surface", 1));
+    glUniform1f(glGetUniformLocation(s->prog_blur, "u_rotate"), (float)param(s, params, "rotation", 0.1));
     GLint u_vertical = glGetUniformLocation(s->prog_blur, "u_vertical");
     GLint u_term = glGetUniformLocation(s->prog_blur, "u_term");
     glBlendEquation(GL_FUNC_ADD);
@@ -314,11 +329,22 @@ static GLuint ssss_buffer(sss_gl_renderer *r, void *state, const char *name)
     return 0;
 }
 
+static sss_result ssss_render(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    return ssss_render_with(r, state, r->params, err);
+}
+
 static void ssss_stats(sss_gl_renderer *r, void *state, sss_gl_stats *out)
 {
     ssss_state *s = state;
     out->texture_bytes += s->target_bytes + s->kernel_bytes;
     out->per_pixel_bytes += s->target_bytes / ((size_t)r->width * (size_t)r->height);
+}
+
+static void ssss_stats_with(sss_gl_renderer *r, void *state, const double *params, sss_gl_stats *out)
+{
+    (void)params;
+    ssss_stats(r, state, out);
 }
 
 #define SSSS_NEEDS (GL_NEED_GBUFFER | GL_NEED_SHADOWS | GL_NEED_ILLUMINATION | GL_NEED_LIGHTS)
@@ -362,4 +388,9 @@ const gl_technique gl_technique_ssss_svd = {
     .destroy = ssss_destroy,
     .buffer = ssss_buffer,
     .stats = ssss_stats,
+};
+
+/* The separable variant with its parameters passed explicitly (sam's front side). */
+const gl_inner_technique gl_inner_ssss = {
+    &gl_technique_ssss, ssss_create_with, ssss_resize_with, ssss_render_with, ssss_stats_with, ssss_destroy, ssss_buffer,
 };
