@@ -67,7 +67,7 @@ static void *worker(void *arg)
     return NULL;
 }
 
-static char *dup_str(const char *s)
+char *view_dup_str(const char *s)
 {
     if (!s) s = "";
     char *d = malloc(strlen(s) + 1);
@@ -81,9 +81,9 @@ sss_result view_ref_start(const char *json, const char *base_dir, const char *na
     *out = NULL;
     view_ref_job *j = calloc(1, sizeof *j);
     if (!j) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (reference job)");
-    j->json = dup_str(json);
-    j->base_dir = dup_str(base_dir ? base_dir : ".");
-    j->name = dup_str(name ? name : "scene");
+    j->json = view_dup_str(json);
+    j->base_dir = view_dup_str(base_dir ? base_dir : ".");
+    j->name = view_dup_str(name ? name : "scene");
     j->time = time;
     j->draft = draft;
     j->stage = "setup";
@@ -156,7 +156,7 @@ const sss_image *view_ref_cache_find(view_ref_cache *c, const char *key)
 
 sss_result view_ref_cache_put(view_ref_cache *c, const char *key, sss_image *image, sss_error *err)
 {
-    char *k = dup_str(key);
+    char *k = view_dup_str(key);
     if (!k) {
         sss_image_free(image);
         return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (reference cache)");
