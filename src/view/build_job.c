@@ -11,25 +11,23 @@
 #include "view/view_internal.h"
 
 struct view_build_job {
-    pthread_t thread;
-    pthread_mutex_t lock;
+    view_job base; /* first: the thread */
     char *json, *base_dir, *name;
     sss_gl_renderer_desc desc;
     sss_gl_param_value *params;
     char (*param_names)[64];
     double delay_s;
-    /* results: written by the worker before done is set under lock */
-    int done, abandoned;
-    sss_result result;
+    sss_result result; /* results: written by the worker before it is done */
     sss_error err;
     sss_scene *scene;
     sss_gl_tables *tables;
     double scene_ms, tables_ms;
 };
 
-static void job_free(view_build_job *j)
+static void job_free(view_job *base)
 {
-    pthread_mutex_destroy(&j->lock);
+    view_build_job *j = (view_build_job *)base;
+    view_job_destroy(&j->base);
     if (j->scene) sss_scene_free(j->scene);
     free(j->scene);
     sss_gl_tables_free(j->tables);
@@ -66,19 +64,10 @@ static sss_result build(view_build_job *j, sss_error *err)
     return res;
 }
 
-static void *worker(void *arg)
+static void worker(view_job *base)
 {
-    view_build_job *j = arg;
-    sss_error err = {0};
-    sss_result res = build(j, &err);
-    pthread_mutex_lock(&j->lock);
-    j->result = res;
-    j->err = err;
-    j->done = 1;
-    int abandoned = j->abandoned;
-    pthread_mutex_unlock(&j->lock);
-    if (abandoned) job_free(j); /* nobody will join: the thread was detached */
-    return NULL;
+    view_build_job *j = (view_build_job *)base;
+    j->result = build(j, &j->err);
 }
 
 /* The desc with its own copy of the parameter names (the viewer's may change while the worker runs). */
@@ -105,37 +94,27 @@ sss_result view_build_start(const char *json, const char *base_dir, const char *
     *out = NULL;
     view_build_job *j = calloc(1, sizeof *j);
     if (!j) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (build job)");
-    if (pthread_mutex_init(&j->lock, NULL) != 0) {
-        free(j);
-        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "cannot create a mutex for the build job");
-    }
     j->json = view_dup_str(json);
     j->base_dir = view_dup_str(base_dir ? base_dir : ".");
     j->name = view_dup_str(name ? name : "scene");
     j->delay_s = delay_s;
-    if (!j->json || !j->base_dir || !j->name || !copy_desc(j, desc)) {
-        job_free(j);
-        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (build job)");
-    }
-    if (pthread_create(&j->thread, NULL, worker, j) != 0) {
-        job_free(j);
-        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "cannot start the build thread");
+    sss_result res = view_job_init(&j->base, worker, job_free, err);
+    if (res == SSS_OK && (!j->json || !j->base_dir || !j->name || !copy_desc(j, desc)))
+        res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (build job)");
+    if (res == SSS_OK) res = view_job_start(&j->base, err);
+    if (res != SSS_OK) {
+        job_free(&j->base);
+        return res;
     }
     *out = j;
     return SSS_OK;
 }
 
-int view_build_poll(view_build_job *j)
-{
-    pthread_mutex_lock(&j->lock);
-    int done = j->done;
-    pthread_mutex_unlock(&j->lock);
-    return done;
-}
+int view_build_poll(view_build_job *j) { return view_job_done(&j->base); }
 
 sss_result view_build_finish(view_build_job *j, view_build_result *out, sss_error *err)
 {
-    pthread_join(j->thread, NULL);
+    view_job_join(&j->base);
     memset(out, 0, sizeof *out);
     sss_result res = j->result;
     if (res == SSS_OK) {
@@ -148,23 +127,13 @@ sss_result view_build_finish(view_build_job *j, view_build_result *out, sss_erro
     } else if (err) {
         *err = j->err;
     }
-    job_free(j);
+    job_free(&j->base);
     return res;
 }
 
 void view_build_abandon(view_build_job *j)
 {
-    if (!j) return;
-    pthread_mutex_lock(&j->lock);
-    int done = j->done;
-    j->abandoned = 1;
-    pthread_mutex_unlock(&j->lock);
-    if (done) {
-        pthread_join(j->thread, NULL);
-        job_free(j);
-    } else {
-        pthread_detach(j->thread);
-    }
+    if (j) view_job_abandon(&j->base);
 }
 
 void view_build_result_free(view_build_result *r)

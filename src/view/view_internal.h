@@ -57,6 +57,26 @@ sss_result view_material_json(const char *text, size_t size, const char *name, i
 sss_result view_light_json(const char *text, size_t size, const char *name, int light, const char *field,
                            const double values[3], char **out, sss_error *err);
 
+/* ---- Background jobs (job.c) ------------------------------------------------------------------ */
+
+/* The first member of a job: its thread and the lock guarding done, abandoned (and the job's own
+ * progress fields). run computes on the worker; free releases the whole job. */
+typedef struct view_job {
+    pthread_t thread;
+    pthread_mutex_t lock;
+    int lock_ready, done, abandoned;
+    void (*run)(struct view_job *job);
+    void (*free)(struct view_job *job);
+} view_job;
+
+sss_result view_job_init(view_job *j, void (*run)(view_job *), void (*free_job)(view_job *), sss_error *err);
+sss_result view_job_start(view_job *j, sss_error *err); /* runs j->run on a new thread */
+int view_job_done(view_job *j);
+void view_job_join(view_job *j);
+/* Gives up on the job: freed now when done, else by the worker when run returns. */
+void view_job_abandon(view_job *j);
+void view_job_destroy(view_job *j); /* the lock (call from the job's free) */
+
 /* ---- The reference in the background (reference_job.c) ---------------------------------------- */
 
 typedef struct view_ref_job view_ref_job; /* one render in a worker thread */
