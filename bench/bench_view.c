@@ -1,6 +1,7 @@
 /* bench_view — the cost of the viewer's panel per frame: median frame time (render, panel, swap) of
  * `sss view --script` frames with the panel shown and hidden, alternating in one run (warm-up first),
- * and the rebuild time of material edits (scene loader, LUTs, kernels, renderer). Needs a display
+ * and material edits: the worker's time (scene loader, LUTs), the frames drawn meanwhile, and the
+ * longest frame on the window thread (the one that creates the renderer from the worker's tables). Needs a display
  * (`xvfb-run -a bench_view`); without one it says so and exits 0.
  * Usage: bench_view [scene.json] [frames] [rounds]   (defaults scenes/gl_area.json 40 3) */
 #include <stdio.h>
@@ -13,7 +14,7 @@
 static void print_message(void *user, const char *message)
 {
     (void)user;
-    if (strstr(message, "frames:") || strstr(message, "rebuilt")) printf("  %s\n", message);
+    if (strstr(message, "frames:") || strstr(message, "rebuilt") || strstr(message, "wait:")) printf("  %s\n", message);
 }
 
 int main(int argc, char **argv)
@@ -34,7 +35,9 @@ int main(int argc, char **argv)
     fprintf(f, "frames %d\n", frames); /* warm-up */
     for (int r = 0; r < rounds; r++) fprintf(f, "panel on\nframes %d\npanel off\nframes %d\n", frames, frames);
     static const double scales[] = {2.0, 0.5, 1.0};
-    for (int r = 0; r < 3; r++) fprintf(f, "material 0 scale %g\nframes 1\n", scales[r]);
+    /* each edit builds in the background: `wait` draws frames until it is applied and reports the
+     * longest of them (the window thread's stall: the frame that creates the renderer) */
+    for (int r = 0; r < 3; r++) fprintf(f, "material 0 scale %g\nwait\n", scales[r]);
     fclose(f);
     printf("bench_view: %s, %d frames per measurement, %d rounds (panel shown / hidden)\n", scene, frames, rounds);
     sss_view_desc d;

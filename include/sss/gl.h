@@ -132,6 +132,9 @@ typedef struct sss_gl_param_value {
     double value;
 } sss_gl_param_value;
 
+/* CPU tables precomputed for a scene (sss_gl_tables_build below). */
+typedef struct sss_gl_tables sss_gl_tables;
+
 /* Zero-initialised means: the scene's technique at the scene camera's size, default parameters. */
 typedef struct sss_gl_renderer_desc {
     const char *technique;            /* NULL -> scene->render.technique */
@@ -147,9 +150,24 @@ typedef struct sss_gl_renderer_desc {
                                          mapping) to width x height in the timed pass "resolve_ssaa".
                                          Technique parameters counted in pixels follow k, so the image is the
                                          one at k = 1, antialiased (docs/supersampling.md). */
+    const sss_gl_tables *tables;      /* CPU tables of sss_gl_tables_build for this same scene object, read
+                                         during sss_gl_renderer_create only (free them after it); NULL: the
+                                         renderer computes every table itself. Either way the image is the same. */
 } sss_gl_renderer_desc;
 
 #define SSS_GL_MAX_SUPERSAMPLE 4
+
+/* The CPU-only tables sss_gl_renderer_create would compute for `scene` under `desc` (its technique and
+ * parameters; sizes are ignored): today the kernel LUT cascade of every distinct subsurface material
+ * (Maisch & Ropinski 2020, section 7.1), most of the cost of a renderer on software GL. Needs no GL
+ * context and touches nothing shared, so it may run on any thread (the viewer builds the tables of an
+ * edited scene on a worker while its window keeps drawing), while another thread reads the same scene.
+ * A renderer created with desc.tables takes a material's LUTs from them when the material, its PBD table
+ * and the LUT parameters match exactly, and computes them otherwise. Errors as sss_gl_renderer_create's
+ * for the technique and parameters, and the LUT builder's, prefixed "kernel LUT". */
+sss_result sss_gl_tables_build(const struct sss_scene *scene, const sss_gl_renderer_desc *desc, sss_gl_tables **out,
+                               sss_error *err);
+void sss_gl_tables_free(sss_gl_tables *tables); /* NULL is accepted */
 
 typedef struct sss_gl_renderer sss_gl_renderer;
 
@@ -246,6 +264,7 @@ typedef struct sss_gl_stats {
     size_t per_pixel_bytes;     /* bytes of screen-sized targets per output pixel (mips included) */
     size_t per_splat_bytes;     /* bytes per splat record (0 when the technique does not splat) */
     size_t lut_bytes;           /* the kernel LUTs */
+    int luts_precomputed;       /* materials whose LUTs were taken from desc.tables (not computed) */
     unsigned splat_total;       /* triangles of the splat meshes */
     unsigned splat_drawn;       /* splats that survived culling in the last frame */
     int material_count, light_count, virtual_light_count, object_count;

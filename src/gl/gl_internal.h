@@ -185,6 +185,7 @@ typedef struct gl_scene {
     struct gl_env_cache *env_cache; /* each environment map read once, downsampled (lights.c) */
     int env_cache_count;
     size_t texture_bytes, buffer_bytes, lut_bytes;
+    int luts_precomputed;         /* materials whose LUT cascade came from sss_gl_renderer_desc.tables */
     unsigned splat_total;
     int splats_ready;
 } gl_scene;
@@ -315,6 +316,7 @@ struct sss_gl_renderer {
     const sss_scene *scene;
     const gl_technique *tech;
     void *tech_state;
+    const sss_gl_tables *tables;   /* sss_gl_renderer_desc.tables while sss_gl_renderer_create runs, else NULL */
     const char *data_file;         /* sss_gl_renderer_desc.data_file (may be NULL) */
     double params[GL_MAX_PARAMS];  /* technique parameters, in info.params order */
     double shared[GL_P_SHARED_COUNT];
@@ -358,6 +360,18 @@ GLuint gl_output_texture(const sss_gl_renderer *r);
 
 /* scene_gpu.c */
 sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err);
+/* The kernel LUT cascade of a material (`levels` layers) under r's LUT parameters; CPU only. */
+sss_result gl_build_lut(const sss_gl_renderer *r, const sss_scene_material *m, sss_lut *luts, int levels,
+                        sss_error *err);
+/* tables.c: the cascade of m precomputed in t under r's LUT parameters, copied into luts: 1 when
+ * found, 0 when t is NULL or has none (the caller computes it), -1 out of memory. */
+int gl_tables_take(const sss_gl_tables *t, const sss_gl_renderer *r, const sss_scene_material *m, sss_lut *luts,
+                   int levels);
+/* renderer.c: the technique a desc names (else the scene's), and r->params / r->shared from its
+ * defaults, the preset and desc.params (r->tech set); no GL. */
+sss_result gl_technique_for(const sss_scene *scene, const sss_gl_renderer_desc *desc, const gl_technique **out,
+                            sss_error *err);
+sss_result gl_params_from_desc(sss_gl_renderer *r, const sss_gl_renderer_desc *desc, sss_error *err);
 sss_result gl_scene_prepare_splats(sss_gl_renderer *r, sss_error *err); /* splat meshes on demand */
 void gl_scene_free(gl_scene *gs);
 /* textures.c: albedo textures as one RGBA16F array (common size, bilinear resampling, mipmapped);

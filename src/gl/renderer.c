@@ -168,25 +168,71 @@ sss_result sss_gl_renderer_create(sss_gl_context *ctx, const sss_scene *scene, c
     return gl_runtime_create(ctx, scene, desc, 0, out, err);
 }
 
+sss_result gl_technique_for(const sss_scene *scene, const sss_gl_renderer_desc *desc, const gl_technique **out,
+                            sss_error *err)
+{
+    const char *name = desc->technique ? desc->technique : scene->render.technique;
+    if (!name || !name[0]) name = SSS_SCENE_DEFAULT_TECHNIQUE;
+    *out = gl_technique_lookup(name);
+    if (*out) return SSS_OK;
+    char list[256] = "";
+    size_t at = 0;
+    for (int i = 0; i < sss_gl_technique_count() && at < sizeof list; i++)
+        at += (size_t)snprintf(list + at, sizeof list - at, "%s%s", i ? ", " : "", sss_gl_technique_at(i)->name);
+    if (desc->technique)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "unknown technique '%s' (known: %s)", name, list);
+    return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: render.technique: unknown technique '%s' (known: %s)",
+                         scene->name ? scene->name : "scene", name, list);
+}
+
+sss_result gl_params_from_desc(sss_gl_renderer *r, const sss_gl_renderer_desc *desc, sss_error *err)
+{
+    const gl_technique *tech = r->tech;
+    if (tech->info.param_count > GL_MAX_PARAMS)
+        return sss_error_set(err, SSS_ERROR_LIMIT, "technique %s declares too many parameters", tech->info.name);
+    for (int i = 0; i < tech->info.param_count; i++) r->params[i] = tech->info.params[i].default_value;
+    int n = 0;
+    const sss_gl_param_info *sp = sss_gl_shared_params(&n);
+    for (int i = 0; i < n; i++) r->shared[i] = sp[i].default_value;
+    /* the preset first, so that the parameters given with it override it */
+    sss_result res = SSS_OK;
+    for (int pass = 0; pass < 2; pass++)
+        for (int i = 0; i < desc->param_count && res == SSS_OK; i++) {
+            int is_preset = desc->params[i].name && strcmp(desc->params[i].name, sp[GL_P_PRESET].name) == 0;
+            if (is_preset == (pass == 0)) res = set_param_value(r, desc->params[i].name, desc->params[i].value, NULL, err);
+        }
+    return res;
+}
+
+/* Everything of a new renderer that needs the GL; r->tables is read here only. */
+static sss_result create_gl_parts(sss_gl_renderer *r, const sss_gl_tables *tables, sss_error *err)
+{
+    while (glGetError() != GL_NO_ERROR) {}
+    r->tables = tables;
+    sss_result res = build_programs(r, err);
+    if (res == SSS_OK) {
+        glCreateBuffers(1, &r->ubo_frame);
+        glNamedBufferStorage(r->ubo_frame, (GLsizeiptr)gl_frame_ubo_size(), NULL, GL_DYNAMIC_STORAGE_BIT);
+        glCreateVertexArrays(1, &r->vao_empty);
+        res = build_scene(r, err);
+    }
+    r->tables = NULL;
+    if (res == SSS_OK) res = create_frame(r, err);
+    if (res == SSS_OK) res = gl_ssaa_resize(r, err);
+    if (res == SSS_OK) res = create_technique(r, err);
+    if (res == SSS_OK) res = gl_check(r->ctx, "renderer creation", err);
+    return res;
+}
+
 sss_result gl_runtime_create(sss_gl_context *ctx, const sss_scene *scene, const sss_gl_renderer_desc *desc_in,
                              int external, sss_gl_renderer **out, sss_error *err)
 {
     sss_gl_renderer_desc desc;
     memset(&desc, 0, sizeof desc);
     if (desc_in) desc = *desc_in;
-    const char *name = desc.technique ? desc.technique : scene->render.technique;
-    if (!name || !name[0]) name = SSS_SCENE_DEFAULT_TECHNIQUE;
-    const gl_technique *tech = gl_technique_lookup(name);
-    if (!tech) {
-        char list[256] = "";
-        size_t at = 0;
-        for (int i = 0; i < sss_gl_technique_count() && at < sizeof list; i++)
-            at += (size_t)snprintf(list + at, sizeof list - at, "%s%s", i ? ", " : "", sss_gl_technique_at(i)->name);
-        if (desc.technique)
-            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "unknown technique '%s' (known: %s)", name, list);
-        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: render.technique: unknown technique '%s' (known: %s)",
-                             scene->name ? scene->name : "scene", name, list);
-    }
+    const gl_technique *tech = NULL;
+    sss_result res = gl_technique_for(scene, &desc, &tech, err);
+    if (res != SSS_OK) return res;
     int width = desc.width > 0 ? desc.width : scene->camera.width;
     int height = desc.height > 0 ? desc.height : scene->camera.height;
     if (width < 1 || height < 1 || width > ctx->max_texture_size || height > ctx->max_texture_size ||
@@ -195,10 +241,8 @@ sss_result gl_runtime_create(sss_gl_context *ctx, const sss_scene *scene, const 
                              ctx->max_texture_size < SSS_SCENE_MAX_IMAGE_SIZE ? ctx->max_texture_size
                                                                              : SSS_SCENE_MAX_IMAGE_SIZE);
     int k = desc.supersample == 0 ? 1 : desc.supersample;
-    sss_result res = gl_ssaa_check(ctx, width, height, k, err);
+    res = gl_ssaa_check(ctx, width, height, k, err);
     if (res != SSS_OK) return res;
-    if (tech->info.param_count > GL_MAX_PARAMS)
-        return sss_error_set(err, SSS_ERROR_LIMIT, "technique %s declares too many parameters", tech->info.name);
     if (!sss_gl_context_make_current(ctx))
         return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "cannot make the GL context current");
     sss_gl_renderer *r = calloc(1, sizeof *r);
@@ -213,29 +257,9 @@ sss_result gl_runtime_create(sss_gl_context *ctx, const sss_scene *scene, const 
     r->out_height = height;
     r->width = width * k;
     r->height = height * k;
-    for (int i = 0; i < tech->info.param_count; i++) r->params[i] = tech->info.params[i].default_value;
-    int n = 0;
-    const sss_gl_param_info *sp = sss_gl_shared_params(&n);
-    for (int i = 0; i < n; i++) r->shared[i] = sp[i].default_value;
-    /* the preset first, so that the parameters given with it override it */
-    for (int pass = 0; pass < 2; pass++)
-        for (int i = 0; i < desc.param_count && res == SSS_OK; i++) {
-            int is_preset = desc.params[i].name && strcmp(desc.params[i].name, sp[GL_P_PRESET].name) == 0;
-            if (is_preset == (pass == 0)) res = set_param_value(r, desc.params[i].name, desc.params[i].value, NULL, err);
-        }
+    res = gl_params_from_desc(r, &desc, err);
     gl_timer_init(&r->timer, desc.timings, ctx->software);
-    while (glGetError() != GL_NO_ERROR) {}
-    if (res == SSS_OK) res = build_programs(r, err);
-    if (res == SSS_OK) {
-        glCreateBuffers(1, &r->ubo_frame);
-        glNamedBufferStorage(r->ubo_frame, (GLsizeiptr)gl_frame_ubo_size(), NULL, GL_DYNAMIC_STORAGE_BIT);
-        glCreateVertexArrays(1, &r->vao_empty);
-        res = build_scene(r, err);
-    }
-    if (res == SSS_OK) res = create_frame(r, err);
-    if (res == SSS_OK) res = gl_ssaa_resize(r, err);
-    if (res == SSS_OK) res = create_technique(r, err);
-    if (res == SSS_OK) res = gl_check(ctx, "renderer creation", err);
+    if (res == SSS_OK) res = create_gl_parts(r, desc.tables, err);
     if (res != SSS_OK) {
         sss_gl_renderer_destroy(r);
         return res;
@@ -463,6 +487,7 @@ void sss_gl_renderer_stats(sss_gl_renderer *r, sss_gl_stats *out)
     out->texture_bytes = r->gs.texture_bytes + r->frame.bytes + r->ssaa_bytes;
     out->buffer_bytes = r->gs.buffer_bytes;
     out->lut_bytes = r->gs.lut_bytes;
+    out->luts_precomputed = r->gs.luts_precomputed;
     /* per render pixel here and in the technique's stats, then per output pixel (k^2 of them) */
     out->per_pixel_bytes = r->frame.bytes / ((size_t)r->width * (size_t)r->height);
     out->splat_total = r->gs.splat_total;

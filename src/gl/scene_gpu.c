@@ -84,8 +84,8 @@ static double energy_radius(const sss_scene_material *m, double fraction)
     return rm;
 }
 
-static sss_result build_lut(sss_gl_renderer *r, const sss_scene_material *m, sss_lut *luts, int levels,
-                            sss_error *err)
+sss_result gl_build_lut(const sss_gl_renderer *r, const sss_scene_material *m, sss_lut *luts, int levels,
+                        sss_error *err)
 {
     sss_profile prof;
     sss_result res = sss_profile_init(&prof, sss_scene_material_profile_model(m), &m->optical, m->table, err);
@@ -175,7 +175,10 @@ sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err)
             if (gm->subsurface) {
                 rec->params[0] = (float)sm->optical.eta;
                 rec->params[1] = (float)sss_bssrdf_normalization(sm->optical.eta);
-                res = build_lut(r, sm, &luts[lut_layers], levels, err);
+                int taken = gl_tables_take(r->tables, r, sm, &luts[lut_layers], levels);
+                if (taken < 0) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (kernel LUT copy)");
+                else if (taken) gs->luts_precomputed++;
+                else res = gl_build_lut(r, sm, &luts[lut_layers], levels, err);
                 if (res != SSS_OK) {
                     sss_error_prefix(err, "kernel LUT");
                     break;

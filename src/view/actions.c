@@ -50,38 +50,44 @@ static double user_value(const viewer *v, const sss_gl_technique_info *info, int
     return info->params[index].default_value;
 }
 
-/* A renderer of technique `info` for the viewer's scene and size: --param values, then the panel's. */
+/* The desc of the viewer's renderers of technique `info` at its size: the --param values (those the
+ * technique knows, once a renderer runs: switching must not fail on another's), then the panel's and
+ * the script's. *params is allocated: free() it. */
+sss_result view_renderer_desc(viewer *v, const sss_gl_technique_info *info, sss_gl_renderer_desc *d,
+                              sss_gl_param_value **params, sss_error *err)
+{
+    int shared_count = 0;
+    const sss_gl_param_info *shared = sss_gl_shared_params(&shared_count);
+    int n = v->desc->param_count, all = info->param_count + shared_count, kept = 0;
+    *params = calloc((size_t)(n + all), sizeof **params);
+    if (!*params) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (parameters)");
+    for (int i = 0; i < n; i++)
+        if (!v->r || technique_knows(info, v->desc->params[i].name)) (*params)[kept++] = v->desc->params[i];
+    for (int i = 0; i < all; i++) {
+        const char *name = i < info->param_count ? info->params[i].name : shared[i - info->param_count].name;
+        double set = view_set_param_value(v, info->name, name);
+        if (!isnan(set)) (*params)[kept++] = (sss_gl_param_value){name, set};
+    }
+    memset(d, 0, sizeof *d);
+    d->technique = info->name;
+    d->width = v->width;
+    d->height = v->height;
+    d->params = *params;
+    d->param_count = kept;
+    d->timings = 1;
+    d->supersample = v->desc->supersample;
+    return SSS_OK;
+}
+
 sss_result view_create_renderer(viewer *v, const sss_gl_technique_info *info, sss_gl_renderer **out,
                                 sss_error *err)
 {
-    /* --param values go to the techniques that know them (switching must not fail on another's). */
-    int n = v->desc->param_count, kept = 0;
-    sss_gl_param_value *params = calloc((size_t)(n > 0 ? n : 1), sizeof *params);
-    if (!params) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (parameters)");
-    for (int i = 0; i < n; i++)
-        if (!v->r || technique_knows(info, v->desc->params[i].name)) params[kept++] = v->desc->params[i];
     sss_gl_renderer_desc d;
-    memset(&d, 0, sizeof d);
-    d.technique = info->name;
-    d.width = v->width;
-    d.height = v->height;
-    d.params = params;
-    d.param_count = kept;
-    d.timings = 1;
-    d.supersample = v->desc->supersample;
-    sss_result res = sss_gl_renderer_create(v->ctx, v->scene, &d, out, err);
+    sss_gl_param_value *params = NULL;
+    sss_result res = view_renderer_desc(v, info, &d, &params, err);
+    d.tables = v->tables;
+    if (res == SSS_OK) res = sss_gl_renderer_create(v->ctx, v->scene, &d, out, err);
     free(params);
-    int shared_count = 0;
-    const sss_gl_param_info *shared = sss_gl_shared_params(&shared_count);
-    for (int i = 0; res == SSS_OK && i < info->param_count + shared_count; i++) {
-        const char *name = i < info->param_count ? info->params[i].name : shared[i - info->param_count].name;
-        double set = view_set_param_value(v, info->name, name);
-        if (!isnan(set)) res = sss_gl_renderer_set_param(*out, name, set, err);
-    }
-    if (res != SSS_OK) {
-        sss_gl_renderer_destroy(*out);
-        *out = NULL;
-    }
     return res;
 }
 
@@ -242,51 +248,15 @@ sss_result view_edited_json(viewer *v, char **json, sss_error *err)
     return view_scene_json(v->text, v->text_size, v->scene->name, &e, json, err);
 }
 
-/* Materials changed: the edited file goes through the loader again (PBD tables, LUTs), then a renderer
- * for it (kernels, uploads). On failure the old scene and renderer stay. */
-sss_result view_reload_scene(viewer *v, sss_error *err)
+static void rebuild_scene(viewer *v)
 {
-    double start = sss_time_seconds();
-    char *json = NULL;
-    sss_scene *s = calloc(1, sizeof *s), *old = v->scene;
-    sss_result res = s ? view_edited_json(v, &json, err) : sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
-    if (res == SSS_OK) res = sss_scene_parse(json, strlen(json), old->base_dir, old->name, NULL, s, err);
-    free(json);
-    double parsed = sss_time_seconds();
-    if (res == SSS_OK) {
-        v->scene = s;
-        res = view_make_renderer(v, v->tech, err);
-        if (res != SSS_OK) {
-            v->scene = old;
-            sss_scene_free(s);
-        }
-    }
-    if (res != SSS_OK) {
-        free(s);
-        return res;
-    }
-    view_split_refresh(v); /* it read the old scene */
-    sss_scene_free(old);
-    free(old);
-    v->rebuild_ms = 1000.0 * (sss_time_seconds() - start);
-    v->rebuild_scene_ms = 1000.0 * (parsed - start);
-    view_invalidate(v);
-    return SSS_OK;
-}
-
-static void rebuild_scene(viewer *v, int old_medium, double old_scale)
-{
-    sss_error err = {0};
-    if (view_reload_scene(v, &err) != SSS_OK) {
-        v->medium = old_medium;
-        v->scale_factor = old_scale;
-        view_message(v, "material change failed: %s", err.message);
-        return;
-    }
+    char what[128];
     if (v->medium >= 0)
-        view_message(v, "medium %s, scale x%g", sss_measured_medium_at((size_t)v->medium)->name, v->scale_factor);
+        snprintf(what, sizeof what, "medium %s, scale x%g", sss_measured_medium_at((size_t)v->medium)->name,
+                 v->scale_factor);
     else
-        view_message(v, "the scene's materials, scale x%g", v->scale_factor);
+        snprintf(what, sizeof what, "the scene's materials, scale x%g", v->scale_factor);
+    view_request_rebuild(v, what, 0);
 }
 
 /* ---- Reference and DSSIM -------------------------------------------------------------------- */
@@ -435,8 +405,6 @@ void view_run_actions(viewer *v)
         v->act_buffer = 0;
     }
     if (v->act_medium || v->act_scale != 0.0) {
-        int old_medium = v->medium;
-        double old_scale = v->scale_factor;
         if (v->act_medium) {
             int m = (int)sss_measured_medium_count() + 1; /* -1 (the file's) and the table */
             v->medium = ((v->medium + 1 + v->act_medium) % m + m) % m - 1;
@@ -444,7 +412,7 @@ void view_run_actions(viewer *v)
         if (v->act_scale != 0.0) v->scale_factor *= v->act_scale;
         v->act_medium = 0;
         v->act_scale = 0.0;
-        rebuild_scene(v, old_medium, old_scale);
+        rebuild_scene(v);
     }
     if (v->act_light) {
         if (v->has_light) {

@@ -75,20 +75,12 @@ sss_result view_cmd_material(viewer *v, int object, const char *field, const cha
     sss_result res = view_material_json(v->text, v->text_size, v->scene->name, object, field, medium, values,
                                         value_count, &v->scene->objects[object].material, &text, err);
     if (res != SSS_OK) return res;
-    char *old = v->text;
-    size_t old_size = v->text_size;
+    free(v->text);
     v->text = text;
     v->text_size = strlen(text);
-    res = view_reload_scene(v, err);
-    if (res != SSS_OK) {
-        v->text = old;
-        v->text_size = old_size;
-        free(text);
-        return res;
-    }
-    free(old);
-    view_message(v, "objects[%d].material.%s set (rebuilt in %.1f ms: scene %.1f ms, renderer %.1f ms)", object,
-                 field, v->rebuild_ms, v->rebuild_scene_ms, v->rebuild_ms - v->rebuild_scene_ms);
+    char what[96];
+    snprintf(what, sizeof what, "objects[%d].material.%s set", object, field);
+    view_request_rebuild(v, what, v->script_line);
     return SSS_OK;
 }
 
@@ -235,6 +227,7 @@ sss_result view_cmd_run(viewer *v, const view_command *c, sss_error *err)
         view_run_actions(v);
         return SSS_OK;
     case VIEW_CMD_FRAMES:
+    case VIEW_CMD_WAIT:
     case VIEW_CMD_SCREENSHOT: break;
     }
     return SSS_OK;

@@ -1,7 +1,7 @@
 /* view/panel_imgui.cpp — the viewer's Dear ImGui panel (view/panel.h): Debian's libimgui with its
  * GLFW and OpenGL 3 backends. Every widget calls a view/commands.c function (the ones `--script` lines
- * call); failures become the viewer's message. Material fields apply when an edit ends (a rebuild per
- * drag step would stall the window), lights and parameters while they are dragged. */
+ * call); failures become the viewer's message. Material fields apply when an edit ends (each is a
+ * rebuild, in the background: view/rebuild.c), lights and parameters while they are dragged. */
 #include <float.h>
 #include <math.h>
 #include <new>
@@ -194,7 +194,10 @@ static void material_object(viewer *v, int i)
 static void materials_section(viewer *v)
 {
     if (!ImGui::CollapsingHeader("Materials")) return;
-    ImGui::Text("last rebuild (scene, LUTs, kernels, renderer): %.1f ms", v->rebuild_ms);
+    if (view_rebuild_busy(v))
+        ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "rebuilding in the background (%d frames so far)",
+                           v->build_frames);
+    ImGui::Text("last rebuild: %.1f ms, of which %.1f ms on the window thread", v->rebuild_ms, v->rebuild_window_ms);
     for (size_t i = 0; i < v->scene->object_count; i++) material_object(v, (int)i);
 }
 

@@ -8,23 +8,21 @@
 #include "view/view_internal.h"
 
 struct view_ref_job {
-    pthread_t thread;
-    pthread_mutex_t lock;
+    view_job base; /* first: the thread, and the lock that also guards progress and stage */
     char *json, *base_dir, *name;
     double time;
     int draft;
-    /* under lock */
-    double progress;
+    double progress; /* under base.lock */
     const char *stage;
-    int done, abandoned;
-    sss_result result;
+    sss_result result; /* written by the worker before it is done */
     sss_error err;
     sss_image image;
 };
 
-static void job_free(view_ref_job *j)
+static void job_free(view_job *base)
 {
-    pthread_mutex_destroy(&j->lock);
+    view_ref_job *j = (view_ref_job *)base;
+    view_job_destroy(&j->base);
     sss_image_free(&j->image);
     free(j->json);
     free(j->base_dir);
@@ -35,15 +33,15 @@ static void job_free(view_ref_job *j)
 static void on_progress(void *user, double fraction, const char *stage)
 {
     view_ref_job *j = user;
-    pthread_mutex_lock(&j->lock);
+    pthread_mutex_lock(&j->base.lock);
     j->progress = fraction;
     j->stage = stage;
-    pthread_mutex_unlock(&j->lock);
+    pthread_mutex_unlock(&j->base.lock);
 }
 
-static void *worker(void *arg)
+static void worker(view_job *base)
 {
-    view_ref_job *j = arg;
+    view_ref_job *j = (view_ref_job *)base;
     sss_error err = {0};
     sss_image img = {0};
     sss_scene scene;
@@ -56,18 +54,12 @@ static void *worker(void *arg)
         res = sss_reference_render(&scene, &d, &img, on_progress, j, NULL, &err);
         sss_scene_free(&scene);
     }
-    pthread_mutex_lock(&j->lock);
     j->result = res;
     j->err = err;
     j->image = img;
-    j->done = 1;
-    int abandoned = j->abandoned;
-    pthread_mutex_unlock(&j->lock);
-    if (abandoned) job_free(j); /* nobody will join: the thread was detached */
-    return NULL;
 }
 
-static char *dup_str(const char *s)
+char *view_dup_str(const char *s)
 {
     if (!s) s = "";
     char *d = malloc(strlen(s) + 1);
@@ -81,26 +73,19 @@ sss_result view_ref_start(const char *json, const char *base_dir, const char *na
     *out = NULL;
     view_ref_job *j = calloc(1, sizeof *j);
     if (!j) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (reference job)");
-    j->json = dup_str(json);
-    j->base_dir = dup_str(base_dir ? base_dir : ".");
-    j->name = dup_str(name ? name : "scene");
+    j->json = view_dup_str(json);
+    j->base_dir = view_dup_str(base_dir ? base_dir : ".");
+    j->name = view_dup_str(name ? name : "scene");
     j->time = time;
     j->draft = draft;
     j->stage = "setup";
-    if (pthread_mutex_init(&j->lock, NULL) != 0) {
-        free(j->json);
-        free(j->base_dir);
-        free(j->name);
-        free(j);
-        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "cannot create a mutex for the reference job");
-    }
-    if (!j->json || !j->base_dir || !j->name) {
-        job_free(j);
-        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (reference job)");
-    }
-    if (pthread_create(&j->thread, NULL, worker, j) != 0) {
-        job_free(j);
-        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "cannot start the reference thread");
+    sss_result res = view_job_init(&j->base, worker, job_free, err);
+    if (res == SSS_OK && (!j->json || !j->base_dir || !j->name))
+        res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (reference job)");
+    if (res == SSS_OK) res = view_job_start(&j->base, err);
+    if (res != SSS_OK) {
+        job_free(&j->base);
+        return res;
     }
     *out = j;
     return SSS_OK;
@@ -108,17 +93,17 @@ sss_result view_ref_start(const char *json, const char *base_dir, const char *na
 
 int view_ref_poll(view_ref_job *j, double *progress, const char **stage)
 {
-    pthread_mutex_lock(&j->lock);
-    int done = j->done;
+    pthread_mutex_lock(&j->base.lock);
+    int done = j->base.done;
     if (progress) *progress = j->progress;
     if (stage) *stage = j->stage;
-    pthread_mutex_unlock(&j->lock);
+    pthread_mutex_unlock(&j->base.lock);
     return done;
 }
 
 sss_result view_ref_finish(view_ref_job *j, sss_image *image, sss_error *err)
 {
-    pthread_join(j->thread, NULL);
+    view_job_join(&j->base);
     sss_result res = j->result;
     if (res == SSS_OK) {
         *image = j->image;
@@ -126,23 +111,13 @@ sss_result view_ref_finish(view_ref_job *j, sss_image *image, sss_error *err)
     } else if (err) {
         *err = j->err;
     }
-    job_free(j);
+    job_free(&j->base);
     return res;
 }
 
 void view_ref_abandon(view_ref_job *j)
 {
-    if (!j) return;
-    pthread_mutex_lock(&j->lock);
-    int done = j->done;
-    j->abandoned = 1;
-    pthread_mutex_unlock(&j->lock);
-    if (done) {
-        pthread_join(j->thread, NULL);
-        job_free(j);
-    } else {
-        pthread_detach(j->thread);
-    }
+    if (j) view_job_abandon(&j->base);
 }
 
 /* ---- Cache ---------------------------------------------------------------------------------- */
@@ -156,7 +131,7 @@ const sss_image *view_ref_cache_find(view_ref_cache *c, const char *key)
 
 sss_result view_ref_cache_put(view_ref_cache *c, const char *key, sss_image *image, sss_error *err)
 {
-    char *k = dup_str(key);
+    char *k = view_dup_str(key);
     if (!k) {
         sss_image_free(image);
         return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (reference cache)");

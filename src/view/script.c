@@ -224,10 +224,14 @@ static int parse_words(char **w, int n, view_command *c, char *why, size_t cap)
             return bad(why, cap, "frames: expected a count in 1..%d", SCRIPT_MAX_FRAMES);
         return 1;
     }
+    if (strcmp(verb, "wait") == 0) {
+        c->kind = VIEW_CMD_WAIT;
+        return n == 1 ? 1 : bad(why, cap, "wait: takes no arguments");
+    }
     if (strcmp(verb, "screenshot") == 0) return c->kind = VIEW_CMD_SCREENSHOT, parse_screenshot(w, n, c, why, cap);
     return bad(why, cap,
                "unknown action '%s' (technique, param, material, light, buffer, split, errormap, panel, reference, "
-               "key, frames, screenshot)",
+               "key, frames, wait, screenshot)",
                verb);
 }
 

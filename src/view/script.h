@@ -23,6 +23,7 @@ typedef enum view_command_kind {
     VIEW_CMD_REFERENCE,  /* index: 1 draft, 0 final */
     VIEW_CMD_KEY,        /* name: an input event of --input (keys, orbit:DX:DY, pan:DX:DY, zoom:STEPS) */
     VIEW_CMD_FRAMES,     /* index: frames to render */
+    VIEW_CMD_WAIT,       /* frames until the material edits building in the background are applied */
     VIEW_CMD_SCREENSHOT  /* text: a .png path, the window as shown (panel included when shown) */
 } view_command_kind;
 

@@ -67,6 +67,7 @@ void view_overlay_text(viewer *v, char *buf, size_t cap)
     } else {
         put(&b, "DSSIM: no reference of this view (R computes one)\n");
     }
+    if (view_rebuild_busy(v)) put(&b, "rebuilding the materials in the background (%d frames so far)\n", v->build_frames);
     if (v->message[0] && sss_time_seconds() < v->message_until) put(&b, "%s\n", v->message);
     if (v->help) put(&b, "\n%s", sss_view_help_text());
     else put(&b, "H: keys and mouse");

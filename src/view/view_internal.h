@@ -6,6 +6,7 @@
 #include <pthread.h>
 #include <stddef.h>
 
+#include "sss/gl.h"
 #include "sss/image.h"
 #include "sss/scene.h"
 #include "sss/view.h"
@@ -56,6 +57,26 @@ sss_result view_material_json(const char *text, size_t size, const char *name, i
 sss_result view_light_json(const char *text, size_t size, const char *name, int light, const char *field,
                            const double values[3], char **out, sss_error *err);
 
+/* ---- Background jobs (job.c) ------------------------------------------------------------------ */
+
+/* The first member of a job: its thread and the lock guarding done, abandoned (and the job's own
+ * progress fields). run computes on the worker; free releases the whole job. */
+typedef struct view_job {
+    pthread_t thread;
+    pthread_mutex_t lock;
+    int lock_ready, done, abandoned;
+    void (*run)(struct view_job *job);
+    void (*free)(struct view_job *job);
+} view_job;
+
+sss_result view_job_init(view_job *j, void (*run)(view_job *), void (*free_job)(view_job *), sss_error *err);
+sss_result view_job_start(view_job *j, sss_error *err); /* runs j->run on a new thread */
+int view_job_done(view_job *j);
+void view_job_join(view_job *j);
+/* Gives up on the job: freed now when done, else by the worker when run returns. */
+void view_job_abandon(view_job *j);
+void view_job_destroy(view_job *j); /* the lock (call from the job's free) */
+
 /* ---- The reference in the background (reference_job.c) ---------------------------------------- */
 
 typedef struct view_ref_job view_ref_job; /* one render in a worker thread */
@@ -70,6 +91,31 @@ int view_ref_poll(view_ref_job *job, double *progress, const char **stage);
 sss_result view_ref_finish(view_ref_job *job, sss_image *image, sss_error *err); /* joins and frees */
 /* Gives up on a running job: the worker frees it when the render returns. */
 void view_ref_abandon(view_ref_job *job);
+
+/* A copy of s (NULL -> ""); free() it. NULL when out of memory. */
+char *view_dup_str(const char *s);
+
+/* ---- A material edit's CPU part in the background (build_job.c) ------------------------------- */
+
+typedef struct view_build_job view_build_job; /* one build in a worker thread */
+
+typedef struct view_build_result {
+    sss_scene *scene;       /* the edited scene (allocated; sss_scene_free + free) */
+    sss_gl_tables *tables;  /* its renderer's CPU tables */
+    double scene_ms, tables_ms; /* the worker's loader and table times */
+} view_build_result;
+
+/* Starts, on a worker thread, sss_scene_parse of json (base_dir for its paths, name for messages) and
+ * sss_gl_tables_build of that scene under desc (copied: the caller's may change). delay_s > 0 makes
+ * the worker wait that long first (a test hook for a slow build). */
+sss_result view_build_start(const char *json, const char *base_dir, const char *name,
+                            const sss_gl_renderer_desc *desc, double delay_s, view_build_job **out, sss_error *err);
+int view_build_poll(view_build_job *job); /* 1 when done */
+/* Joins and frees the job; on success *out owns the scene and tables. */
+sss_result view_build_finish(view_build_job *job, view_build_result *out, sss_error *err);
+/* Gives up on a running build: the worker frees it when done. */
+void view_build_abandon(view_build_job *job);
+void view_build_result_free(view_build_result *r);
 
 /* A few references by key (scene JSON + time + quality), most recent first. */
 #define VIEW_REF_CACHE 8

@@ -133,8 +133,11 @@ static sss_result draw_overlay(viewer *v, sss_error *err)
 /* One frame. Render failures end a fixed-frame run; interactively they become a message. */
 static sss_result frame(viewer *v, int fixed, const char *screenshot, sss_error *err)
 {
+    double entered = sss_time_seconds();
+    int building = view_rebuild_busy(v);
     check_size(v);
     view_run_actions(v);
+    view_poll_rebuild(v);
     if (v->playing && !fixed) {
         double now = glfwGetTime();
         v->t += now - v->wall_last;
@@ -202,6 +205,9 @@ static sss_result frame(viewer *v, int fixed, const char *screenshot, sss_error 
     }
     sss_gl_window_swap(v->ctx);
     if (rendered) v->frame_ms = 1000.0 * (sss_time_seconds() - start);
+    v->frame_wall_ms = 1000.0 * (sss_time_seconds() - entered);
+    if (building && view_rebuild_busy(v)) v->build_frames++; /* drawn while the worker ran */
+    if (building && v->frame_wall_ms > v->build_longest_ms) v->build_longest_ms = v->frame_wall_ms;
     view_update_title(v);
     return SSS_OK;
 }
@@ -255,6 +261,11 @@ static sss_result run_fixed(viewer *v, sss_error *err)
             }
         sss_result res = frame(v, 1, k == d->frames - 1 ? d->screenshot : NULL, err);
         if (res != SSS_OK) return res;
+        while (view_rebuild_busy(v)) { /* one event per frame: an edit's build applies before the next */
+            glfwPollEvents();
+            sleep_ms(10);
+            view_poll_rebuild(v);
+        }
         if (glfwWindowShouldClose(v->window)) break;
     }
     if (d->reference) {
@@ -273,6 +284,30 @@ static void wait_reference(viewer *v)
     }
 }
 
+/* A material edit of the script that failed in the worker: the script stops (at that edit's line). */
+static sss_result script_build_error(viewer *v, sss_error *err)
+{
+    if (!v->build_failed_line) return SSS_OK;
+    *err = v->build_err;
+    return err->code;
+}
+
+/* Frames until the material edits in the background are applied: the window keeps drawing. */
+static sss_result wait_rebuild(viewer *v, int *frames, double *longest_ms, sss_error *err)
+{
+    *frames = 0;
+    *longest_ms = 0.0;
+    sss_result res = SSS_OK;
+    while (res == SSS_OK && view_rebuild_busy(v)) {
+        glfwPollEvents();
+        res = frame(v, 1, NULL, err);
+        (*frames)++;
+        if (v->frame_wall_ms > *longest_ms) *longest_ms = v->frame_wall_ms;
+    }
+    if (res == SSS_OK) res = script_build_error(v, err);
+    return res;
+}
+
 /* --script: each line's action, `frames N` renders N frames, `screenshot F` renders one and writes
  * the window as shown (after the reference in the background, when one is running, has finished). */
 static sss_result run_script(viewer *v, const view_script *script, sss_error *err)
@@ -284,6 +319,9 @@ static sss_result run_script(viewer *v, const view_script *script, sss_error *er
         if (c->kind == VIEW_CMD_FRAMES || c->kind == VIEW_CMD_SCREENSHOT) {
             int n = c->kind == VIEW_CMD_FRAMES ? c->index : 1;
             if (c->kind == VIEW_CMD_SCREENSHOT) {
+                int waited = 0;
+                double longest = 0.0;
+                res = wait_rebuild(v, &waited, &longest, &cerr);
                 wait_reference(v);
                 v->shot_path = c->text;
             }
@@ -294,6 +332,7 @@ static sss_result run_script(viewer *v, const view_script *script, sss_error *er
                 res = frame(v, 1, NULL, &cerr);
                 ms[k] = v->frame_ms;
                 overlay_ms[k] = v->overlay_ms;
+                if (res == SSS_OK) res = script_build_error(v, &cerr);
             }
             if (res == SSS_OK && c->kind == VIEW_CMD_SCREENSHOT) view_message(v, "saved %s", c->text);
             else if (res == SSS_OK) /* wall time from render to swap, the panel (when shown) included */
@@ -301,15 +340,29 @@ static sss_result run_script(viewer *v, const view_script *script, sss_error *er
                              v->overlay ? (v->panel ? "panel" : "text overlay") : "hidden panel",
                              sss_median(overlay_ms, n));
             free(ms);
+        } else if (c->kind == VIEW_CMD_WAIT) {
+            int frames = 0;
+            double longest = 0.0;
+            res = wait_rebuild(v, &frames, &longest, &cerr);
+            if (res == SSS_OK)
+                view_message(v, "wait: %d frames drawn until the material edits were applied (longest %.1f ms)",
+                             frames, longest);
         } else {
+            v->script_line = c->line;
             res = view_cmd_run(v, c, &cerr);
+            v->script_line = 0;
         }
         if (res != SSS_OK) {
             v->shot_path = NULL;
-            return sss_error_set(err, res, "%s:%d: %s", v->desc->script, c->line, cerr.message);
+            int line = v->build_failed_line ? v->build_failed_line : c->line;
+            return sss_error_set(err, res, "%s:%d: %s", v->desc->script, line, cerr.message);
         }
     }
-    return SSS_OK;
+    int frames = 0;
+    double longest = 0.0;
+    sss_error cerr = {0};
+    if (wait_rebuild(v, &frames, &longest, &cerr) == SSS_OK) return SSS_OK; /* the last edits applied */
+    return sss_error_set(err, cerr.code, "%s:%d: %s", v->desc->script, v->build_failed_line, cerr.message);
 }
 
 static void run_interactive(viewer *v)
@@ -320,7 +373,7 @@ static void run_interactive(viewer *v)
         int busy = v->need_render || v->playing || v->act_tech || v->act_part || v->act_buffer || v->act_medium ||
                    v->act_light || v->act_reference || v->act_screenshot || v->act_scale != 0.0;
         if (busy) glfwPollEvents();
-        else glfwWaitEventsTimeout(v->job ? 0.25 : v->panel && v->overlay ? 0.1 : 1.0); /* ImGui settles in a few frames */
+        else glfwWaitEventsTimeout(view_rebuild_busy(v) ? 0.05 : v->job ? 0.25 : v->panel && v->overlay ? 0.1 : 1.0); /* ImGui settles in a few frames */
         sss_error err = {0};
         frame(v, 0, NULL, &err);
     }
@@ -387,6 +440,10 @@ sss_result sss_view_run(const sss_view_desc *desc, sss_error *err)
             v.scene->camera.height = v.height;
             view_camera_changed(&v);
             res = view_make_renderer(&v, v.tech, err);
+            v.live_text = view_dup_str(v.text);
+            v.live_medium = v.medium;
+            v.live_scale = v.scale_factor;
+            if (res == SSS_OK && !v.live_text) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene text)");
         }
     }
     if (res == SSS_OK) res = view_gl_init(&v.gl, err);
@@ -398,6 +455,7 @@ sss_result sss_view_run(const sss_view_desc *desc, sss_error *err)
         else run_interactive(&v);
     }
     view_script_free(&script);
+    view_rebuild_free(&v);
     if (v.job) view_ref_abandon(v.job); /* the worker finishes on its own and frees its job */
     free(v.job_key);
     view_ref_cache_free(&v.cache);

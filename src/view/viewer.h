@@ -17,6 +17,15 @@ enum { PART_ALL = 0, PART_TRANSLUCENCY, PART_SCREEN };
 enum { VIEW_SPLIT_OFF = 0, VIEW_SPLIT_REFERENCE, VIEW_SPLIT_TECHNIQUE };
 struct view_command;
 
+typedef struct view_rebuild_request {
+    char *text;       /* the scene file's text with the edit (NULL: no request) */
+    int medium;
+    double scale;
+    char what[128];   /* for the message: "objects[0].material.scale set" */
+    int line;         /* the script line, 0 otherwise */
+    double started;   /* sss_time_seconds() of the request */
+} view_rebuild_request;
+
 /* Buffers of sss_gl_renderer_read_buffer the B key cycles through ("final" is the normal view). */
 #define VIEW_BUFFER_COUNT 6
 extern const char *const view_buffer_names[VIEW_BUFFER_COUNT];
@@ -59,6 +68,7 @@ struct viewer {
     unsigned shown_gen;    /* image_gen of the buffer uploaded for display */
     const char *shown_name; /* and its name */
     double frame_ms;
+    double frame_wall_ms;  /* the last frame from its start to the swap, actions and rebuilds included */
     double overlay_ms;     /* drawing the panel or text overlay in the last frame (scripts: GL finished) */
     sss_gl_timings timings;              /* medians of timing_series */
     sss_gl_timing_series timing_series; /* the renderer's frames after warm-up, the latest few */
@@ -90,12 +100,40 @@ struct viewer {
     unsigned composed_gen;        /* image_gen of the split / error-map image on screen (0: none) */
     const sss_image *composed_ref;
     sss_image other_img, composed_img, map_img;
-    double rebuild_ms;            /* the last material edit: scene reloaded, LUTs, kernels, renderer */
-    double rebuild_scene_ms;      /* of which the scene loader (PBD tables, materials) */
+    /* material edits, built in the background (rebuild.c): the worker loads the edited scene and
+     * computes its LUTs, the window thread then only creates the renderer from them */
+    view_build_job *build;        /* running, or NULL */
+    view_rebuild_request building, pending; /* the running build's edit; the latest edit made meanwhile */
+    char *live_text;              /* text, medium and scale of the scene on screen (restored on failure) */
+    int live_medium;
+    double live_scale;
+    const sss_gl_tables *tables;  /* handed to view_create_renderer while a build is applied */
+    int build_frames;             /* frames drawn while the current build ran */
+    double build_longest_ms;      /* the longest of them (render to swap, wall clock) */
+    int build_dropped;            /* builds dropped for a newer edit since the last applied one */
+    int script_line;              /* the script line being run (0: none) */
+    int build_failed_line;        /* a script line whose edit failed in the worker (0: none) */
+    sss_error build_err;
+    double rebuild_ms;            /* the last applied edit: from the request to the new renderer */
+    double rebuild_window_ms;     /* of which on the window thread (renderer creation, uploads) */
+    double rebuild_scene_ms, rebuild_tables_ms; /* the worker's loader and LUT times */
     const char *shot_path;        /* a script's screenshot, taken after the panel is drawn */
 };
 
 typedef struct viewer viewer;
+
+/* rebuild.c: material edits off the window thread. view_request_rebuild takes the viewer's current
+ * text, medium and scale (what names the edit in messages; line is the script line, 0 otherwise) and
+ * starts a build, or replaces the one waiting behind the running build (latest wins). view_poll_rebuild
+ * (every frame) applies a finished build, or drops it when a newer edit waits and starts that one. A
+ * failure restores the scene on screen's text, medium and scale and says why in the message. */
+void view_request_rebuild(viewer *v, const char *what, int line);
+void view_poll_rebuild(viewer *v);
+int view_rebuild_busy(const viewer *v); /* a build runs or waits */
+void view_rebuild_free(viewer *v);
+/* The desc of the viewer's renderers of a technique (--param, then the panel's values); free(*params). */
+sss_result view_renderer_desc(viewer *v, const sss_gl_technique_info *info, sss_gl_renderer_desc *d,
+                              sss_gl_param_value **params, sss_error *err);
 
 /* input.c */
 void view_install_callbacks(viewer *v);
@@ -118,9 +156,6 @@ sss_result view_create_renderer(viewer *v, const sss_gl_technique_info *info, ss
                                 sss_error *err);
 /* The scene file's text with the viewer's edits (camera, light 0, preset, scale); free() it. */
 sss_result view_edited_json(viewer *v, char **json, sss_error *err);
-/* The edited text through the loader again and a renderer for it (rebuild_ms measures it); on failure
- * the old scene and renderer stay. */
-sss_result view_reload_scene(viewer *v, sss_error *err);
 void view_camera_changed(viewer *v);
 /* The view changed (camera, light, materials, size, time): the reference is looked up again. */
 void view_invalidate(viewer *v);

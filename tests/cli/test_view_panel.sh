@@ -140,6 +140,39 @@ below "$d" 0.01 || fail "material edit: differs from sss render of the edited sc
 below 0.02 "$changed" || fail "material edit: the image did not change (DSSIM $changed)"
 grep -q "rebuilt in" "$T/mat.log" || fail "material edit: no rebuild time reported"
 
+# 2a. the window is not frozen by a material edit: with the worker held back 3 s
+#     (SSS_VIEW_BUILD_DELAY_MS, a test hook), the window draws frames while the build runs (`wait`
+#     counts them), a second edit made during the build replaces the one waiting (the first build is
+#     dropped), and the image is the second edit's: `sss render` of it, not of the first
+SSS_VIEW_BUILD_DELAY_MS=3000 view "$T/async.log" "panel off
+material 0 scale 2
+frames 1
+material 0 scale 0.5
+wait
+screenshot async.png"
+edit "$SC" "$T/half.json" "s['objects'][0]['material']['scale'] = 0.5"
+edit "$SC" "$T/double.json" "s['objects'][0]['material']['scale'] = 2"
+render "$T/half.json" -o "$T/half.png"
+render "$T/double.json" -o "$T/double.png"
+waited=$(sed -n 's/.*wait: \([0-9]*\) frames drawn.*/\1/p' "$T/async.log" | tail -n 1)
+during=$(sed -n 's/.*while \([0-9]*\) frames were drawn.*/\1/p' "$T/async.log" | tail -n 1)
+dropped=$(sed -n 's/.* \([0-9]*\) older edits dropped.*/\1/p' "$T/async.log" | tail -n 1)
+d=$(dssim "$T/async.png" "$T/half.png")
+first=$(dssim "$T/async.png" "$T/double.png")
+echo "edits in the background: $waited frames drawn while waiting, $during during the last build, $dropped dropped;" \
+    "DSSIM vs the second edit $d, vs the first $first"
+[ -n "$waited" ] && [ "$waited" -gt 0 ] && [ -n "$during" ] && [ "$during" -gt 0 ] ||
+    fail "the window drew no frames while the material was rebuilt: $(grep -E 'wait|rebuilt' "$T/async.log")"
+[ "$dropped" = "1" ] || fail "the first build was not dropped for the second edit ($dropped)"
+below "$d" 0.01 || fail "edit during a build: differs from sss render of the second edit (DSSIM $d)"
+below 0.02 "$first" || fail "edit during a build: looks like the first edit (DSSIM $first)"
+# a value the loader refuses fails in the worker: the script stops naming the edit's line, exit 1
+printf 'panel off\nmaterial 0 eta 9\nframes 1\n' >"$T/bad_eta.txt"
+(cd "$T" && xvfb-run -a env LSAN_OPTIONS=exitcode=0 "$SSS" view "$SC" --script bad_eta.txt) >"$T/bad_eta.log" 2>&1
+rc=$?
+[ "$rc" -eq 1 ] && grep -q "bad_eta.txt:2: .*eta" "$T/bad_eta.log" ||
+    fail "a refused edit: exit $rc, $(tail -n 2 "$T/bad_eta.log")"
+
 # 2b. light edits (moved in place, no rebuild): equal `sss render` of the scene edited here
 view "$T/light.log" "panel off
 light 0 position -0.5 1.5 0.8
