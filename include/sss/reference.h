@@ -46,9 +46,16 @@
  *    the sum of T A (per channel) and the T A-weighted centroid; desc.exact sums all samples instead.
  *
  * Bounces (ref_bounce.c), when desc.bounces != 1:
- *  - transport samples: every object with a surface takes part. Transport spacing H = 2 pixel
- *    footprints (draft 4; objects without a footprint, behind the camera: bounding box diagonal / 64),
- *    grown until all objects together have at most 256 k transport samples. Diffuse objects (and
+ *  - resolution: the interreflected light must not depend on the image size, so with bounces the
+ *    surface-sample spacing h of the density rule below is also at most (diagonal of the object's
+ *    bounding box) / 384 / 2 (draft / 384): the samples of an image in which the object spans 384
+ *    footprints, whatever the image's size (ref_internal.h, REF_TRANSPORT_DIVISIONS; eval_front's
+ *    interreflected red grew by two thirds from 96 to 384 px when h followed the footprint alone).
+ *  - transport samples: every object with a surface takes part. Transport spacing H = 4 h = R0 for
+ *    subsurface objects (a wider cluster would take its own area whole at S_r(R0) in the exitance);
+ *    diffuse objects 2 pixel footprints (draft 4), at most 4 times the cap above (objects without a
+ *    footprint, behind the camera: bounding box diagonal / 64); all grown until all objects together
+ *    have at most 256 k transport samples. Diffuse objects (and
  *    subsurface objects without a footprint) get the cells of ref_points.c at spacing H, with their
  *    own direct E (T). A subsurface object's pixel-density samples are grouped into clusters of
  *    diameter <= H (median splits; split by normal where normals differ by more than ~30 degrees, so
@@ -107,9 +114,10 @@ extern "C" {
 /* The version of what the interreflection computes (bounces != 1): raised whenever the same scene and
  * options give a different image, so that images cached with an older one are known to be stale
  * (sss eval's sidecars record it). 1: the first interreflection; 2: bounce gathers follow the mirror
- * reflection at subsurface interfaces, and the default stops relative to bounce 2. --bounces 1 has
+ * reflection at subsurface interfaces, and the default stops relative to bounce 2; 3: the samples no
+ * longer coarsen with the image size (the resolution cap), clusters of diameter R0. --bounces 1 has
  * not changed since before interreflection. */
-#define SSS_REFERENCE_TRANSPORT_VERSION 2
+#define SSS_REFERENCE_TRANSPORT_VERSION 3
 
 typedef enum sss_reference_quality {
     SSS_REFERENCE_FINAL = 0, /* default */
@@ -122,7 +130,8 @@ typedef enum sss_reference_quality {
  * object's nearest visible points (the 1st percentile of the pixel footprints depth * 2 tan(fov/2) /
  * min(width, height) over the pixel centres that see the object; objects no centre sees use their
  * bounding box centre). Spacing h = fp / 2 (final: 4 samples per pixel^2 there) or h = fp (draft),
- * divided by sqrt(density). The total over all objects is capped at 16 M samples (final; draft 2 M;
+ * divided by sqrt(density); with bounces at most the resolution cap ("Bounces" above) divided by
+ * sqrt(density). The total over all objects is capped at 16 M samples (final; draft 2 M;
  * both times density) by growing h, and every triangle gets at least one sample. The mean free path
  * does not enter: below R0 = 4 h = 2 fp the profile is handled by the probes, and above it the sample
  * sum of a profile that is flat inside R0 is a smooth quadrature; on a uniformly lit plane the

@@ -22,7 +22,7 @@
 
 static double luminance(const float v[3]) { return 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2]; }
 
-static double diagonal(const ref_object *ro)
+double ref_object_diagonal(const ref_object *ro)
 {
     double d[3] = {ro->bounds_max[0] - ro->bounds_min[0], ro->bounds_max[1] - ro->bounds_min[1],
                    ro->bounds_max[2] - ro->bounds_min[2]};
@@ -45,7 +45,12 @@ void ref_transport_spacing(ref_ctx *ctx)
         double total = 0.0;
         for (size_t o = 0; o < ctx->object_count; o++) {
             ref_object *ro = &ctx->objects[o];
-            double base = ro->footprint > 0.0 ? f * ro->footprint : diagonal(ro) / 64.0;
+            /* Subsurface: clusters of diameter R0 = 4 h (wider ones would take their own area whole at
+             * S_r(R0) in the exitance, too much where S_r falls inside them). Diffuse: f footprints,
+             * at most what REF_TRANSPORT_DIVISIONS gives a subsurface object of the same size. */
+            double base = ro->subsurface && ro->spacing > 0.0 ? 4.0 * ro->spacing
+                          : ro->footprint > 0.0 ? fmin(f * ro->footprint, 4.0 * ref_transport_cap(ctx, ro))
+                                                : ref_object_diagonal(ro) / 64.0;
             ro->tspacing = base > 0.0 ? base * g : 0.0;
             if (needs_transport_spacing(ro)) ro->spacing = ro->tspacing;
             ro->tspacing = fmax(ro->tspacing, ro->spacing);
@@ -55,6 +60,12 @@ void ref_transport_spacing(ref_ctx *ctx)
         prev_total = total;
         g *= 1.2;
     }
+}
+
+double ref_transport_cap(const ref_ctx *ctx, const ref_object *ro)
+{
+    double q = ctx->desc.quality == SSS_REFERENCE_DRAFT ? 1.0 : 0.5;
+    return ctx->transport ? q * ref_object_diagonal(ro) / REF_TRANSPORT_DIVISIONS : INFINITY;
 }
 
 /* The sample of object o whose sub-triangle holds the point (u, v) of triangle prim (the cells of

@@ -332,7 +332,7 @@ static void choose_spacing(ref_ctx *ctx)
             ref_object *ro = &ctx->objects[o];
             ro->spacing = 0.0;
             if (!ro->subsurface || !(ro->footprint > 0.0)) continue;
-            ro->spacing = ro->footprint * f * g;
+            ro->spacing = fmin(ro->footprint * f, ref_transport_cap(ctx, ro) / sqrt(density)) * g;
             total += (double)ref_points_count(ro->src->mesh, ro->spacing);
         }
         /* Stop when within the budget, or when growing h no longer helps (one per triangle). */
