@@ -227,6 +227,7 @@ static void test_backlit_converges(void)
         memset(&d, 0, sizeof d);
         d.quality = SSS_REFERENCE_DRAFT;
         d.bounces = counts[k];
+        d.density = 0.25; /* the convergence in bounces holds at any sample density; this one is 4x cheaper */
         sss_image img;
         sss_reference_stats st;
         if (sss_reference_render(&scene, &d, &img, NULL, NULL, &st, &err) != SSS_OK) {
