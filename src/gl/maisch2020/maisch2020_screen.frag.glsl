@@ -211,9 +211,15 @@ void main()
                 float to_cell = area_scale * cover; // a texel's area -> this sample's
                 float cell_px = w * w * cover;      // the cell's pixels (face-on area at its depth)
                 sp = 0.5 * (lo + hi);
-                // level 0 reads the pixel under the sample; coarser levels their mean (below)
-                vec4 P_full = texelFetch(t_pos, ivec2(sp), 0), I_full = texelFetch(t_irr, ivec2(sp), 0);
+                // level 0 reads the pixel under the sample; coarser levels their mean (below). The level
+                // is the layer's, the same at every pixel: a loop of one or no pass (llvmpipe runs an
+                // if's body masked, but leaves a loop no lane is in) skips the fetches at coarse levels.
                 bool full_res = level == 0;
+                vec4 P_full = vec4(0.0), I_full = vec4(0.0);
+                for (int once = int(full_res); once > 0; once--) {
+                    P_full = texelFetch(t_pos, ivec2(sp), 0);
+                    I_full = texelFetch(t_irr, ivec2(sp), 0);
+                }
 #if FILTERED_LAYERS == 2
                 if (full_res) {
                     if (I_full.w != id || P_full.w <= 0.0) continue;
