@@ -13,14 +13,14 @@
 //  - each sample adds F_t E A R'_d(|x_i - x_o|, A) (Eq. 6) with world-space distances, A the sample's
 //    surface area (the mip texel's area scaled to the cell), times sqrt(i) for layer i (section 6.1);
 //    with FOOTPRINT_SPLIT (u_split > 1: footprint_split, a departure: docs/maisch2020.md) an
-//    obliquely seen sample is a strip, not a disc, and is cut into near-square pieces along it
-//    (oblique_pixel, cell);
+//    obliquely seen full-resolution sample is a strip, not a disc, and is cut into near-square pieces
+//    along it (oblique_pixel); FOOTPRINT_SPLIT 2 (split_layers) cuts the outer cells too (cell);
 //  - supersampling (u_supersample = k): the pattern's sizes count output pixels, k render pixels each,
 //    so layer i covers the same part of the image (and gets the same sqrt(i)) at every k: the inner
 //    kernel is the square of (2n + 1) output pixels, every render pixel in it one sample (the ones its
 //    edge cuts, for even k, with the covered fraction), and d_0 = k (2n + 1) render pixels.
 // The sum is written without the exit factor c_o, which the combination pass applies.
-// FILTERED_LAYERS (filtered_layers) and FOOTPRINT_SPLIT (footprint_split > 1) are compiled in
+// FILTERED_LAYERS (filtered_layers) and FOOTPRINT_SPLIT (footprint_split > 1, + split_layers) are compiled in
 // (tech_maisch2020.c): llvmpipe runs every side of a branch for all lanes, masked, so a branch on a
 // uniform costs the untaken side too (PER_TEXEL_READS alone once doubled the pass).
 #include "common.glsl"
@@ -28,7 +28,7 @@
 #define FILTERED_LAYERS 1
 #endif
 #ifndef FOOTPRINT_SPLIT
-#define FOOTPRINT_SPLIT 1
+#define FOOTPRINT_SPLIT 2
 #endif
 
 layout(binding = 0) uniform sampler2D t_pos; // mips: xyz, w area
@@ -78,7 +78,7 @@ vec3 cell(LutInfo L, vec3 xo, vec3 pos, vec3 irr, float a, float d_prev, float c
 {
     float depth = max(dot(pos - u_camera_pos.xyz, u_camera_fwd.xyz), u_misc.w);
     float r_min = u_screen_bound != 0 ? 0.5 * d_prev * depth * u_camera_fwd.w : 0.0;
-#if FOOTPRINT_SPLIT
+#if FOOTPRINT_SPLIT == 2
     // An obliquely seen cell is a strip too (oblique_pixel): its area a over its face-on area
     // (cell_px pixels at its depth) is its elongation, along the surface's tangent toward the
     // viewer, which for a steep strip is nearly the view ray v; one disc of area a would reach
@@ -183,7 +183,7 @@ void main()
             // ray), so every r >= k z_o / (1 + k + c), which grows with the layer: the first layer
             // past r_max ends the pattern. A far object's pixels skip most layers.
             float k = 0.5 * d_prev * u_camera_fwd.w;
-            float c = FOOTPRINT_SPLIT != 0 ? 0.5 * float(u_split) * w * u_camera_fwd.w : 0.0;
+            float c = FOOTPRINT_SPLIT == 2 ? 0.5 * float(u_split) * w * u_camera_fwd.w : 0.0;
             if (k * z_o / (1.0 + k + c) > L.rmax) break;
         }
         int level = clamp(int(floor(log2(w) + 0.5)), 0, max_level);
