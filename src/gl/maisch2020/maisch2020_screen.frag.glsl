@@ -14,13 +14,13 @@
 //    surface area (the mip texel's area scaled to the cell), times sqrt(i) for layer i (section 6.1);
 //    with FOOTPRINT_SPLIT (u_split > 1: footprint_split, a departure: docs/maisch2020.md) an
 //    obliquely seen full-resolution sample is a strip, not a disc, and is cut into near-square pieces
-//    along it (oblique_pixel); FOOTPRINT_SPLIT 2 (split_layers) cuts the outer cells too (cell);
+//    along it (oblique_pixel); FOOTPRINT_SPLIT 2 (layer_split > 1) cuts the outer cells too (cell);
 //  - supersampling (u_supersample = k): the pattern's sizes count output pixels, k render pixels each,
 //    so layer i covers the same part of the image (and gets the same sqrt(i)) at every k: the inner
 //    kernel is the square of (2n + 1) output pixels, every render pixel in it one sample (the ones its
 //    edge cuts, for even k, with the covered fraction), and d_0 = k (2n + 1) render pixels.
 // The sum is written without the exit factor c_o, which the combination pass applies.
-// FILTERED_LAYERS (filtered_layers) and FOOTPRINT_SPLIT (footprint_split > 1, + split_layers) are compiled in
+// FILTERED_LAYERS (filtered_layers) and FOOTPRINT_SPLIT (footprint_split > 1, layer_split > 1) are compiled in
 // (tech_maisch2020.c): llvmpipe runs every side of a branch for all lanes, masked, so a branch on a
 // uniform costs the untaken side too (PER_TEXEL_READS alone once doubled the pass).
 #include "common.glsl"
@@ -45,6 +45,7 @@ uniform int u_support_cutoff; // skip layers past r_max (exact; needs u_screen_b
 uniform int u_layers_to_reach; // layers past u_layers until the image (or r_max) ends the pattern
 uniform int u_supersample;
 uniform int u_split; // footprint_split: most pieces per oblique full-resolution sample (<= 1: one disc)
+uniform int u_layer_split; // min(layer_split, footprint_split): most pieces per oblique outer cell
 
 layout(location = 0) out vec4 o_sum;
 
@@ -85,9 +86,9 @@ vec3 cell(LutInfo L, vec3 xo, vec3 pos, vec3 irr, float a, float d_prev, float c
     // x_o's kernel peak from beside it (a sphere's rim: +20-35% with grazing_sources). m = 1 is the
     // one disc (Eq. 6), evaluated by the same loop: llvmpipe would run both sides of a branch.
     float wf2 = cell_px * depth * depth * u_camera_fwd.w * u_camera_fwd.w;
-    float e = min(a / max(wf2, 1e-30), float(u_split));
+    float e = min(a / max(wf2, 1e-30), float(u_layer_split));
     int m = max(int(e + 0.5), 1);
-    float ae = m > 1 ? min(a, float(u_split) * wf2) : a;
+    float ae = m > 1 ? min(a, float(u_layer_split) * wf2) : a;
     float len = sqrt(ae * e);
     vec3 v = normalize(u_camera_pos.xyz - pos);
     float ap = ae / float(m);
@@ -183,7 +184,7 @@ void main()
             // ray), so every r >= k z_o / (1 + k + c), which grows with the layer: the first layer
             // past r_max ends the pattern. A far object's pixels skip most layers.
             float k = 0.5 * d_prev * u_camera_fwd.w;
-            float c = FOOTPRINT_SPLIT == 2 ? 0.5 * float(u_split) * w * u_camera_fwd.w : 0.0;
+            float c = FOOTPRINT_SPLIT == 2 ? 0.5 * float(u_layer_split) * w * u_camera_fwd.w : 0.0;
             if (k * z_o / (1.0 + k + c) > L.rmax) break;
         }
         int level = clamp(int(floor(log2(w) + 0.5)), 0, max_level);

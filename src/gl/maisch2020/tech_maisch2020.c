@@ -35,7 +35,7 @@ enum {
     P_SUPPORT_CUTOFF,
     P_OFFSCREEN,
     P_LAYERS_TO_REACH,
-    P_SPLIT_LAYERS,
+    P_LAYER_SPLIT,
     P_COUNT
 };
 
@@ -89,9 +89,9 @@ static const sss_gl_param_info params[P_COUNT] = {
     [P_LAYERS_TO_REACH] = {"layers_to_reach", SSS_GL_PARAM_BOOL, 1, 0, 1,
                            "continue the pattern past `layers` until it covers the image or (support_cutoff) the kernel's support, " \
                            "at most 64 layers: a close object's kernel reaches farther; 0: exactly `layers` (the paper)"},
-    [P_SPLIT_LAYERS] = {"split_layers", SSS_GL_PARAM_BOOL, 1, 0, 1,
-                        "footprint_split also cuts the outer layers' oblique cells (e x their face-on area) into "
-                        "pieces; 0: only the inner kernel's full-resolution pixels (the outer layers' cost halves)"},
+    [P_LAYER_SPLIT] = {"layer_split", SSS_GL_PARAM_INT, 8, 1, 64,
+     "most pieces per oblique outer-layer cell (e x its face-on area), at most footprint_split: the split loop "
+     "runs to the largest count among neighbouring pixels; 1: one disc per cell (the outer layers' cost halves)"},
 };
 
 /* preset=paper: Maisch & Ropinski 2020 as published (docs/maisch2020.md lists each departure). */
@@ -116,8 +116,8 @@ static const sss_gl_param_value paper[] = {
 typedef struct maisch_state {
     GLuint prog_gen, prog_recv, prog_splat, prog_up, prog_combine;
     /* the screen-space pass per filtered_layers and split (0: none; 1: footprint_split > 1, inner pixels;
-     * 2: and split_layers), built when first used: the choices are compiled in because llvmpipe runs
-     * every side of a branch on a uniform */
+     * 2: and layer_split > 1, outer cells), built when first used: the choices are compiled in because
+     * llvmpipe runs every side of a branch on a uniform */
     GLuint prog_ss[3][3];
     GLuint prog_grazing;  /* grazing_sources: areas of the grazing pixels (built when first used) */
     GLuint splats, cmd;
@@ -331,7 +331,8 @@ static sss_result maisch2020_render(sss_gl_renderer *r, void *state, const doubl
         glDisable(GL_BLEND);
         int filtered = (int)p[P_FILTERED];
         GLuint prog = 0;
-        int split = (int)p[P_SPLIT] > 1 ? 1 + (int)p[P_SPLIT_LAYERS] : 0;
+        int layer_split = (int)(p[P_LAYER_SPLIT] < p[P_SPLIT] ? p[P_LAYER_SPLIT] : p[P_SPLIT]);
+        int split = (int)p[P_SPLIT] > 1 ? 1 + (layer_split > 1) : 0;
         res = screen_program(s, filtered, split, &prog, err);
         if (res != SSS_OK) return res;
         glUseProgram(prog);
@@ -339,6 +340,7 @@ static sss_result maisch2020_render(sss_gl_renderer *r, void *state, const doubl
         glBindTextureUnit(1, r->frame.irr);
         glBindTextureUnit(2, r->frame.nrm);
         set_i(prog, "u_split", (int)p[P_SPLIT]);
+        set_i(prog, "u_layer_split", layer_split);
         set_i(prog, "u_n", (int)p[P_N]);
         set_i(prog, "u_nl", (int)p[P_NL]);
         set_i(prog, "u_layers", (int)p[P_LAYERS]);
