@@ -13,14 +13,14 @@
 //  - each sample adds F_t E A R'_d(|x_i - x_o|, A) (Eq. 6) with world-space distances, A the sample's
 //    surface area (the mip texel's area scaled to the cell), times sqrt(i) for layer i (section 6.1);
 //    with FOOTPRINT_SPLIT (u_split > 1: footprint_split, a departure: docs/maisch2020.md) an
-//    obliquely seen sample is a strip, not a disc, and is cut into near-square pieces along it
-//    (oblique_pixel, cell);
+//    obliquely seen full-resolution sample is a strip, not a disc, and is cut into near-square pieces
+//    along it (oblique_pixel); FOOTPRINT_SPLIT 2 (layer_split > 1) cuts the outer cells too (cell);
 //  - supersampling (u_supersample = k): the pattern's sizes count output pixels, k render pixels each,
 //    so layer i covers the same part of the image (and gets the same sqrt(i)) at every k: the inner
 //    kernel is the square of (2n + 1) output pixels, every render pixel in it one sample (the ones its
 //    edge cuts, for even k, with the covered fraction), and d_0 = k (2n + 1) render pixels.
 // The sum is written without the exit factor c_o, which the combination pass applies.
-// FILTERED_LAYERS (filtered_layers) and FOOTPRINT_SPLIT (footprint_split > 1) are compiled in
+// FILTERED_LAYERS (filtered_layers) and FOOTPRINT_SPLIT (footprint_split > 1, layer_split > 1) are compiled in
 // (tech_maisch2020.c): llvmpipe runs every side of a branch for all lanes, masked, so a branch on a
 // uniform costs the untaken side too (PER_TEXEL_READS alone once doubled the pass).
 #include "common.glsl"
@@ -28,7 +28,7 @@
 #define FILTERED_LAYERS 1
 #endif
 #ifndef FOOTPRINT_SPLIT
-#define FOOTPRINT_SPLIT 1
+#define FOOTPRINT_SPLIT 2
 #endif
 
 layout(binding = 0) uniform sampler2D t_pos; // mips: xyz, w area
@@ -45,6 +45,7 @@ uniform int u_support_cutoff; // skip layers past r_max (exact; needs u_screen_b
 uniform int u_layers_to_reach; // layers past u_layers until the image (or r_max) ends the pattern
 uniform int u_supersample;
 uniform int u_split; // footprint_split: most pieces per oblique full-resolution sample (<= 1: one disc)
+uniform int u_layer_split; // min(layer_split, footprint_split): most pieces per oblique outer cell
 
 layout(location = 0) out vec4 o_sum;
 
@@ -78,16 +79,16 @@ vec3 cell(LutInfo L, vec3 xo, vec3 pos, vec3 irr, float a, float d_prev, float c
 {
     float depth = max(dot(pos - u_camera_pos.xyz, u_camera_fwd.xyz), u_misc.w);
     float r_min = u_screen_bound != 0 ? 0.5 * d_prev * depth * u_camera_fwd.w : 0.0;
-#if FOOTPRINT_SPLIT
+#if FOOTPRINT_SPLIT == 2
     // An obliquely seen cell is a strip too (oblique_pixel): its area a over its face-on area
     // (cell_px pixels at its depth) is its elongation, along the surface's tangent toward the
     // viewer, which for a steep strip is nearly the view ray v; one disc of area a would reach
     // x_o's kernel peak from beside it (a sphere's rim: +20-35% with grazing_sources). m = 1 is the
     // one disc (Eq. 6), evaluated by the same loop: llvmpipe would run both sides of a branch.
     float wf2 = cell_px * depth * depth * u_camera_fwd.w * u_camera_fwd.w;
-    float e = min(a / max(wf2, 1e-30), float(u_split));
+    float e = min(a / max(wf2, 1e-30), float(u_layer_split));
     int m = max(int(e + 0.5), 1);
-    float ae = m > 1 ? min(a, float(u_split) * wf2) : a;
+    float ae = m > 1 ? min(a, float(u_layer_split) * wf2) : a;
     float len = sqrt(ae * e);
     vec3 v = normalize(u_camera_pos.xyz - pos);
     float ap = ae / float(m);
@@ -183,7 +184,7 @@ void main()
             // ray), so every r >= k z_o / (1 + k + c), which grows with the layer: the first layer
             // past r_max ends the pattern. A far object's pixels skip most layers.
             float k = 0.5 * d_prev * u_camera_fwd.w;
-            float c = FOOTPRINT_SPLIT != 0 ? 0.5 * float(u_split) * w * u_camera_fwd.w : 0.0;
+            float c = FOOTPRINT_SPLIT == 2 ? 0.5 * float(u_layer_split) * w * u_camera_fwd.w : 0.0;
             if (k * z_o / (1.0 + k + c) > L.rmax) break;
         }
         int level = clamp(int(floor(log2(w) + 0.5)), 0, max_level);
@@ -211,9 +212,15 @@ void main()
                 float to_cell = area_scale * cover; // a texel's area -> this sample's
                 float cell_px = w * w * cover;      // the cell's pixels (face-on area at its depth)
                 sp = 0.5 * (lo + hi);
-                // level 0 reads the pixel under the sample; coarser levels their mean (below)
-                vec4 P_full = texelFetch(t_pos, ivec2(sp), 0), I_full = texelFetch(t_irr, ivec2(sp), 0);
+                // level 0 reads the pixel under the sample; coarser levels their mean (below). The level
+                // is the layer's, the same at every pixel: a loop of one or no pass (llvmpipe runs an
+                // if's body masked, but leaves a loop no lane is in) skips the fetches at coarse levels.
                 bool full_res = level == 0;
+                vec4 P_full = vec4(0.0), I_full = vec4(0.0);
+                for (int once = int(full_res); once > 0; once--) {
+                    P_full = texelFetch(t_pos, ivec2(sp), 0);
+                    I_full = texelFetch(t_irr, ivec2(sp), 0);
+                }
 #if FILTERED_LAYERS == 2
                 if (full_res) {
                     if (I_full.w != id || P_full.w <= 0.0) continue;

@@ -35,6 +35,7 @@ enum {
     P_SUPPORT_CUTOFF,
     P_OFFSCREEN,
     P_LAYERS_TO_REACH,
+    P_LAYER_SPLIT,
     P_COUNT
 };
 
@@ -88,6 +89,9 @@ static const sss_gl_param_info params[P_COUNT] = {
     [P_LAYERS_TO_REACH] = {"layers_to_reach", SSS_GL_PARAM_BOOL, 1, 0, 1,
                            "continue the pattern past `layers` until it covers the image or (support_cutoff) the kernel's support, " \
                            "at most 64 layers: a close object's kernel reaches farther; 0: exactly `layers` (the paper)"},
+    [P_LAYER_SPLIT] = {"layer_split", SSS_GL_PARAM_INT, 8, 1, 64,
+     "most pieces per oblique outer-layer cell (e x its face-on area), at most footprint_split: the split loop "
+     "runs to the largest count among neighbouring pixels; 1: one disc per cell (the outer layers' cost halves)"},
 };
 
 /* preset=paper: Maisch & Ropinski 2020 as published (docs/maisch2020.md lists each departure). */
@@ -111,9 +115,10 @@ static const sss_gl_param_value paper[] = {
 
 typedef struct maisch_state {
     GLuint prog_gen, prog_recv, prog_splat, prog_up, prog_combine;
-    /* the screen-space pass per filtered_layers and (footprint_split > 1), built when first used: the
-     * choices are compiled in because llvmpipe runs every side of a branch on a uniform */
-    GLuint prog_ss[3][2];
+    /* the screen-space pass per filtered_layers and split (0: none; 1: footprint_split > 1, inner pixels;
+     * 2: and layer_split > 1, outer cells), built when first used: the choices are compiled in because
+     * llvmpipe runs every side of a branch on a uniform */
+    GLuint prog_ss[3][3];
     GLuint prog_grazing;  /* grazing_sources: areas of the grazing pixels (built when first used) */
     GLuint splats, cmd;
     unsigned capacity;
@@ -289,14 +294,14 @@ static sss_result pass_grazing(sss_gl_renderer *r, maisch_state *s, const double
     return res;
 }
 
-/* The screen-space program for filtered_layers (0-2) with or without footprint_split pieces. */
+/* The screen-space program for filtered_layers (0-2) and split (0-2, FOOTPRINT_SPLIT). */
 static sss_result screen_program(maisch_state *s, int filtered, int split, GLuint *out, sss_error *err)
 {
-    GLuint *prog = &s->prog_ss[filtered][split != 0];
+    GLuint *prog = &s->prog_ss[filtered][split];
     if (!*prog) {
         char defines[96];
         snprintf(defines, sizeof defines, "#define FILTERED_LAYERS %d\n#define FOOTPRINT_SPLIT %d\n", filtered,
-                 split != 0);
+                 split);
         sss_result res = gl_program_vf("fullscreen.vert.glsl", "maisch2020_screen.frag.glsl", defines, prog, err);
         if (res != SSS_OK) return res;
     }
@@ -326,13 +331,16 @@ static sss_result maisch2020_render(sss_gl_renderer *r, void *state, const doubl
         glDisable(GL_BLEND);
         int filtered = (int)p[P_FILTERED];
         GLuint prog = 0;
-        res = screen_program(s, filtered, (int)p[P_SPLIT] > 1, &prog, err);
+        int layer_split = (int)(p[P_LAYER_SPLIT] < p[P_SPLIT] ? p[P_LAYER_SPLIT] : p[P_SPLIT]);
+        int split = (int)p[P_SPLIT] > 1 ? 1 + (layer_split > 1) : 0;
+        res = screen_program(s, filtered, split, &prog, err);
         if (res != SSS_OK) return res;
         glUseProgram(prog);
         glBindTextureUnit(0, r->frame.pos);
         glBindTextureUnit(1, r->frame.irr);
         glBindTextureUnit(2, r->frame.nrm);
         set_i(prog, "u_split", (int)p[P_SPLIT]);
+        set_i(prog, "u_layer_split", layer_split);
         set_i(prog, "u_n", (int)p[P_N]);
         set_i(prog, "u_nl", (int)p[P_NL]);
         set_i(prog, "u_layers", (int)p[P_LAYERS]);
@@ -373,7 +381,7 @@ static void maisch2020_destroy(sss_gl_renderer *r, void *state)
     for (int i = 0; i < 6; i++)
         if (p[i]) glDeleteProgram(p[i]);
     for (int f = 0; f < 3; f++)
-        for (int k = 0; k < 2; k++)
+        for (int k = 0; k < 3; k++)
             if (s->prog_ss[f][k]) glDeleteProgram(s->prog_ss[f][k]);
     if (s->splats) glDeleteBuffers(1, &s->splats);
     if (s->cmd) glDeleteBuffers(1, &s->cmd);

@@ -39,6 +39,9 @@ static const sss_gl_param_info params[] = {
     {"layers_to_reach", SSS_GL_PARAM_BOOL, 1, 0, 1,
      "continue the pattern past `layers` until it covers the image or (support_cutoff) the kernel's support, " \
      "at most 64 layers: a close object's kernel reaches farther; 0: exactly `layers` (the paper)"},
+    {"layer_split", SSS_GL_PARAM_INT, 8, 1, 64,
+     "most pieces per oblique outer-layer cell (e x its face-on area), at most footprint_split: the split loop "
+     "runs to the largest count among neighbouring pixels; 1: one disc per cell (the outer layers' cost halves)"},
 };
 #define PARAM_COUNT ((int)(sizeof params / sizeof params[0]))
 

@@ -156,8 +156,8 @@ vec3 lut_fetch(float layer, float tr, float ta, float size)
     return textureLod(u_lut, vec3(uv, layer), 0.0).rgb;
 }
 
-// Written without early returns and with two fetches: llvmpipe runs every side of a branch for all
-// lanes of its SIMD group (masked), so each return path's fetches would be paid at every call.
+// Written without early returns and with at most two fetches: llvmpipe runs every side of a branch for
+// all lanes of its SIMD group (masked), so each return path's fetches would be paid at every call.
 vec3 lut_eval(LutInfo L, float r, float area)
 {
     // A disc larger than the table's largest: all of R_d's energy lies inside it, so the mean falls as
@@ -182,7 +182,10 @@ vec3 lut_eval(LutInfo L, float r, float area)
     // near 0), so R'(r, A) ~ sqrt(A_1 / A) R'(r, A_1); away from the peak R'(r, A) -> R_d(r).
     bool below_row1 = ta < t1;
     vec3 at_ta = lut_fetch(layer, tr, below_row1 ? 0.0 : ta, L.size); // row 0 below the first row
-    vec3 row1 = lut_fetch(layer, tr, t1, L.size);
+    // row 1 only below it: a loop, not an if, since llvmpipe leaves a loop when no lane of the SIMD
+    // group is in it (an if runs masked), so groups of large areas (outer cells, splats) skip the fetch
+    vec3 row1 = vec3(0.0);
+    for (int once = int(below_row1); once > 0; once--) row1 = lut_fetch(layer, tr, t1, L.size);
     float ratio = L.sqrt_axes ? t1 / ta : sqrt(t1 / ta); // sqrt(A_1 / A)
     vec3 below = area <= 0.0 ? at_ta : min(ratio * row1, at_ta);
     // beyond the kernel's cut-off radius: 0 (Maisch & Ropinski 2020, section 7.1)
