@@ -50,6 +50,7 @@ fi
 dssim() { "$SSS" compare "$1" "$2" | sed -n 's/^dssim=\([0-9.e+-]*\).*/\1/p'; }
 # below A LIMIT: A < LIMIT as numbers
 below() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && a + 0 < b + 0) }'; }
+near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; exit !(a != "" && b != "" && d < t && -d < t) }'; }
 # Sanitizer builds: Mesa/GLX/xcb leak a few bytes whenever a window is opened (`sss render --window`
 # too); a viewer run may leak no more than that baseline.
 leaked() { sed -n 's/^SUMMARY: AddressSanitizer: \([0-9]*\) byte(s) leaked.*/\1/p' "$1" | head -n 1; }
@@ -140,7 +141,8 @@ got=$(sed -n 's/.*DSSIM of the last frame vs the final reference: \([0-9.]*\).*/
     fail "render/reference of the small scene failed"
 want=$(dssim "$T/small.png" "$T/small_ref.png")
 echo "reference key: viewer DSSIM $got, sss compare $want"
-[ -n "$got" ] && [ "$got" = "$want" ] || fail "the viewer's DSSIM ($got) differs from sss compare ($want)"
+# equal up to the run-to-run noise of maisch2020's additive splat blending (order varies: ~1e-6 DSSIM)
+near "$got" "$want" 2e-5 || fail "the viewer's DSSIM ($got) differs from sss compare ($want)"
 
 [ "$fails" -eq 0 ] || exit 1
 echo "all view tests passed"

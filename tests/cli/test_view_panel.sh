@@ -103,6 +103,7 @@ else:
 PYEOF
 columns() { "$PY" "$T/png.py" columns "$@"; }
 below() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && a + 0 < b + 0) }'; }
+near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; exit !(a != "" && b != "" && d < t && -d < t) }'; }
 render() { "$SSS" render "$@" 2>"$T/render.err" || fail "sss render $*: $(head -c 300 "$T/render.err")"; }
 dssim() { "$SSS" compare "$1" "$2" | sed -n 's/^dssim=\([0-9.e+-]*\).*/\1/p'; }
 
@@ -241,7 +242,8 @@ below "$L" 0.5 && below "$R" 0.5 || fail "split reference: halves differ ($L, $R
 got=$(sed -n 's/.*error map: DSSIM \([0-9.]*\), colour bar.*/\1/p' "$T/ref.log" | tail -n 1)
 want=$(dssim "$T/small.png" "$T/small_ref.png")
 echo "error map: DSSIM $got, sss compare $want"
-[ -n "$got" ] && [ "$got" = "$want" ] || fail "error map: DSSIM $got, sss compare says $want"
+# equal up to the run-to-run noise of maisch2020's additive splat blending (order varies: ~1e-6 DSSIM)
+near "$got" "$want" 2e-5 || fail "error map: DSSIM $got, sss compare says $want"
 # the colour bar: its bottom row runs from dark (left) to bright (right)
 "$PY" "$T/png.py" bar "$T/errormap.png" || fail "error map: no colour bar along the bottom"
 [ "$fails" -eq 0 ] || exit 1
