@@ -187,6 +187,22 @@ sss_result sss_gl_renderer_set_param(sss_gl_renderer *r, const char *name, doubl
  * must keep their number and kinds (the same virtual lights and shadow-map slots): otherwise
  * SSS_ERROR_INVALID_ARGUMENT, nothing changes, and a new renderer is needed. */
 sss_result sss_gl_renderer_update_lights(sss_gl_renderer *r, sss_error *err);
+/* New materials for the same geometry, without uploading meshes, lights, shadow maps or programs again:
+ * the material records and kernel LUTs are rebuilt (from `tables` when given, as desc.tables; else
+ * computed here) and the technique refreshes what it derived from materials (ssss its kernels,
+ * mertens2003 its sampling tables). `scene` NULL re-reads the renderer's own scene (edit
+ * objects[i].material in place); otherwise the renderer draws `scene` from now on (it must outlive the
+ * renderer, the previous one may then be freed), and `scene` must hold the same geometry: the same
+ * objects with equal meshes, splat meshes, transforms and animations, lights of the same kinds (their
+ * values are re-read as by sss_gl_renderer_update_lights) and equal textures. The next render equals a
+ * new renderer's for the scene. When an object starts or stops scattering, or (scene NULL) its
+ * transform or animation was edited, everything is rebuilt (the same result, the cost of a new
+ * renderer). Errors: SSS_ERROR_INVALID_ARGUMENT naming the first
+ * difference when the geometry differs (nothing changes: create a new renderer); the LUT builder's
+ * (prefixed "kernel LUT"). On any error the renderer keeps drawing its previous scene (no pointer to
+ * `scene` remains). */
+sss_result sss_gl_renderer_update_materials(sss_gl_renderer *r, const struct sss_scene *scene,
+                                            const sss_gl_tables *tables, sss_error *err);
 double sss_gl_renderer_get_param(const sss_gl_renderer *r, const char *name); /* NaN when unknown */
 /* Sizes are the output's (what sss_gl_renderer_read returns); passes render at supersample x them. */
 sss_result sss_gl_renderer_resize(sss_gl_renderer *r, int width, int height, sss_error *err);

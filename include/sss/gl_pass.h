@@ -80,7 +80,8 @@ sss_result sss_gl_pass_resize(sss_gl_pass *pass, int width, int height, sss_erro
 /* Changes a technique or shared parameter (as sss_gl_renderer_set_param). */
 sss_result sss_gl_pass_set_param(sss_gl_pass *pass, const char *name, double value, sss_error *err);
 /* Re-reads the materials of the registered scene (edit objects[i].material in place; the number of
- * objects must not change): LUTs and records are rebuilt before the next frame. */
+ * objects must not change): LUTs and records are rebuilt now, meshes and programs stay (as
+ * sss_gl_renderer_update_materials with scene NULL). */
 sss_result sss_gl_pass_update_materials(sss_gl_pass *pass, sss_error *err);
 /* Re-reads the lights (same rules as sss_gl_renderer_update_lights). */
 sss_result sss_gl_pass_update_lights(sss_gl_pass *pass, sss_error *err);

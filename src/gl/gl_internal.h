@@ -157,6 +157,8 @@ typedef struct gl_object {
     uint32_t splat_vertex_count, splat_triangle_count;
     int subsurface, material, animated;
     int emitter; /* an area light's visible rectangle (no shadows, no scattering) */
+    double uploaded_matrix[16];        /* the transform and animation of the upload (material_update.c) */
+    sss_animation uploaded_animation;
 } gl_object;
 
 typedef struct gl_material {
@@ -184,8 +186,9 @@ typedef struct gl_scene {
     float env_rotate_y, env_scale[3];
     struct gl_env_cache *env_cache; /* each environment map read once, downsampled (lights.c) */
     int env_cache_count;
-    size_t texture_bytes, buffer_bytes, lut_bytes;
+    size_t texture_bytes, buffer_bytes, lut_bytes; /* lut_bytes: not in texture_bytes */
     int luts_precomputed;         /* materials whose LUT cascade came from sss_gl_renderer_desc.tables */
+    size_t record_bytes;          /* the object and material records and LUT scales (not in buffer_bytes) */
     unsigned splat_total;
     int splats_ready;
 } gl_scene;
@@ -258,6 +261,9 @@ typedef struct gl_technique {
     sss_result (*resize)(sss_gl_renderer *r, void *state, sss_error *err); /* after frame targets change */
     sss_result (*render)(sss_gl_renderer *r, void *state, sss_error *err); /* writes frame.final */
     void (*destroy)(sss_gl_renderer *r, void *state);
+    /* after sss_gl_renderer_update_materials re-uploaded the material records and LUTs (same meshes and
+     * subsurface objects): refresh what create() derived from materials. NULL: destroy + create. */
+    sss_result (*materials_changed)(sss_gl_renderer *r, void *state, sss_error *err);
     /* optional: intermediate buffers by name (sss_gl_renderer_read_buffer), statistics */
     GLuint (*buffer)(sss_gl_renderer *r, void *state, const char *name);
     void (*stats)(sss_gl_renderer *r, void *state, sss_gl_stats *out);
@@ -360,18 +366,38 @@ GLuint gl_output_texture(const sss_gl_renderer *r);
 
 /* scene_gpu.c */
 sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err);
-/* The kernel LUT cascade of a material (`levels` layers) under r's LUT parameters; CPU only. */
-sss_result gl_build_lut(const sss_gl_renderer *r, const sss_scene_material *m, sss_lut *luts, int levels,
-                        sss_error *err);
-/* tables.c: the cascade of m precomputed in t under r's LUT parameters, copied into luts: 1 when
- * found, 0 when t is NULL or has none (the caller computes it), -1 out of memory. */
-int gl_tables_take(const sss_gl_tables *t, const sss_gl_renderer *r, const sss_scene_material *m, sss_lut *luts,
-                   int levels);
+/* The materials part again (records, LUT cascades) over the meshes already uploaded, into a gl_scene
+ * whose material part is empty (0 handles, NULL materials): the scene's objects must have the meshes,
+ * subsurface flags and textures of the upload (material_update.c checks). */
+sss_result gl_scene_update_materials(sss_gl_renderer *r, sss_error *err);
+void gl_scene_free_materials(gl_scene *gs); /* records, LUT array and scales */
+/* A subsurface material's kernel LUT cascade ready for upload: `levels` layers of size^2 RGBA32F texels
+ * holding R'_d / scales[layer] (alpha 0); r_max, a_max and axes of the first, widest level. */
+typedef struct gl_lut_cascade {
+    int size, levels;
+    double r_max, a_max;
+    sss_lut_axes axes;
+    float *rgba;   /* levels x size x size x 4 */
+    float *scales; /* levels */
+} gl_lut_cascade;
+/* The cascade of m under r's LUT parameters (Maisch & Ropinski 2020, section 7.1); CPU only. */
+sss_result gl_lut_cascade_build(const sss_gl_renderer *r, const sss_scene_material *m, gl_lut_cascade *out,
+                                sss_error *err);
+void gl_lut_cascade_free(gl_lut_cascade *c);
+/* tables.c: the cascade of m precomputed in t under r's LUT parameters (owned by t), or NULL when t is
+ * NULL or has none (the caller computes it). */
+const gl_lut_cascade *gl_tables_find(const sss_gl_tables *t, const sss_gl_renderer *r, const sss_scene_material *m);
 /* renderer.c: the technique a desc names (else the scene's), and r->params / r->shared from its
  * defaults, the preset and desc.params (r->tech set); no GL. */
 sss_result gl_technique_for(const sss_scene *scene, const sss_gl_renderer_desc *desc, const gl_technique **out,
                             sss_error *err);
 sss_result gl_params_from_desc(sss_gl_renderer *r, const sss_gl_renderer_desc *desc, sss_error *err);
+/* renderer.c: the technique's state, created with the scene already uploaded, and destroyed. */
+sss_result gl_runtime_technique_create(sss_gl_renderer *r, sss_error *err);
+void gl_runtime_technique_destroy(sss_gl_renderer *r);
+/* materials_changed of a technique that derives nothing from materials at creation (its shaders read
+ * the material records and LUTs at render time). */
+sss_result gl_materials_read_at_render(sss_gl_renderer *r, void *state, sss_error *err);
 sss_result gl_scene_prepare_splats(sss_gl_renderer *r, sss_error *err); /* splat meshes on demand */
 void gl_scene_free(gl_scene *gs);
 /* textures.c: albedo textures as one RGBA16F array (common size, bilinear resampling, mipmapped);

@@ -125,8 +125,12 @@ sss_result sss_gl_pass_update_materials(sss_gl_pass *pass, sss_error *err)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
                              "sss_gl_pass_update_materials: the scene has %zu objects, the pass was created with %zu",
                              pass->r->scene->object_count, pass->object_count);
-    pass->r->scene_dirty = 1; /* LUTs and records are rebuilt at the next execute */
-    return SSS_OK;
+    gl_pass_state saved;
+    gl_pass_state_save(&saved);
+    gl_pass_state_defaults();
+    sss_result res = sss_gl_renderer_update_materials(pass->r, NULL, NULL, err);
+    gl_pass_state_restore(&saved);
+    return res;
 }
 
 sss_result sss_gl_pass_update_lights(sss_gl_pass *pass, sss_error *err)

@@ -123,7 +123,7 @@ static sss_result build_scene(sss_gl_renderer *r, sss_error *err)
     return res;
 }
 
-static sss_result create_technique(sss_gl_renderer *r, sss_error *err)
+sss_result gl_runtime_technique_create(sss_gl_renderer *r, sss_error *err)
 {
     r->tech_state = calloc(1, r->tech->state_size ? r->tech->state_size : 1);
     if (!r->tech_state) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (technique state)");
@@ -132,21 +132,27 @@ static sss_result create_technique(sss_gl_renderer *r, sss_error *err)
     return res;
 }
 
-static void destroy_technique(sss_gl_renderer *r)
+void gl_runtime_technique_destroy(sss_gl_renderer *r)
 {
     if (r->tech_state && r->tech->destroy) r->tech->destroy(r, r->tech_state);
     free(r->tech_state);
     r->tech_state = NULL;
 }
 
+sss_result gl_materials_read_at_render(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    (void)r, (void)state, (void)err;
+    return SSS_OK;
+}
+
 sss_result gl_runtime_rebuild_if_dirty(sss_gl_renderer *r, sss_error *err)
 {
     if (!r->scene_dirty) return SSS_OK;
-    destroy_technique(r);
+    gl_runtime_technique_destroy(r);
     gl_scene_free(&r->gs);
     r->scene_dirty = 0;
     sss_result res = build_scene(r, err);
-    if (res == SSS_OK) res = create_technique(r, err);
+    if (res == SSS_OK) res = gl_runtime_technique_create(r, err);
     if (res != SSS_OK) r->scene_dirty = 1;
     return res;
 }
@@ -219,7 +225,7 @@ static sss_result create_gl_parts(sss_gl_renderer *r, const sss_gl_tables *table
     r->tables = NULL;
     if (res == SSS_OK) res = create_frame(r, err);
     if (res == SSS_OK) res = gl_ssaa_resize(r, err);
-    if (res == SSS_OK) res = create_technique(r, err);
+    if (res == SSS_OK) res = gl_runtime_technique_create(r, err);
     if (res == SSS_OK) res = gl_check(r->ctx, "renderer creation", err);
     return res;
 }
@@ -272,7 +278,7 @@ void sss_gl_renderer_destroy(sss_gl_renderer *r)
 {
     if (!r) return;
     sss_gl_context_make_current(r->ctx);
-    destroy_technique(r);
+    gl_runtime_technique_destroy(r);
     gl_ssaa_free(r);
     gl_frame_free(&r->frame);
     gl_scene_free(&r->gs);
@@ -484,8 +490,8 @@ void sss_gl_renderer_stats(sss_gl_renderer *r, sss_gl_stats *out)
     if (!out) return;
     memset(out, 0, sizeof *out);
     if (!r) return;
-    out->texture_bytes = r->gs.texture_bytes + r->frame.bytes + r->ssaa_bytes;
-    out->buffer_bytes = r->gs.buffer_bytes;
+    out->texture_bytes = r->gs.texture_bytes + r->gs.lut_bytes + r->frame.bytes + r->ssaa_bytes;
+    out->buffer_bytes = r->gs.buffer_bytes + r->gs.record_bytes;
     out->lut_bytes = r->gs.lut_bytes;
     out->luts_precomputed = r->gs.luts_precomputed;
     /* per render pixel here and in the technique's stats, then per output pixel (k^2 of them) */

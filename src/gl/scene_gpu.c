@@ -63,7 +63,6 @@ static void col_major_from_rows(const double m[16], float out[16])
         for (int c = 0; c < 4; c++) out[4 * c + r] = (float)m[4 * r + c];
 }
 
-/* Object-space bounds grown by what the animation can add (conservative). */
 /* The kernel LUT of a material as a cascade of `levels` tables (one array layer each): level l covers
  * r in [0, r_max / 16^l] and A in [0, pi (r_max / 16^l)^2]. One table spanning the longest channel's
  * r_max resolves areas only down to ~1e-4 A_max (sqrt axes, 512 texels): with r_max set by a weakly
@@ -84,8 +83,8 @@ static double energy_radius(const sss_scene_material *m, double fraction)
     return rm;
 }
 
-sss_result gl_build_lut(const sss_gl_renderer *r, const sss_scene_material *m, sss_lut *luts, int levels,
-                        sss_error *err)
+static sss_result build_luts(const sss_gl_renderer *r, const sss_scene_material *m, sss_lut *luts, int levels,
+                             sss_error *err)
 {
     sss_profile prof;
     sss_result res = sss_profile_init(&prof, sss_scene_material_profile_model(m), &m->optical, m->table, err);
@@ -120,162 +119,250 @@ sss_result gl_build_lut(const sss_gl_renderer *r, const sss_scene_material *m, s
     return SSS_OK;
 }
 
-sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err)
+/* One level's texels as RGBA32F holding R'_d / (the level's largest value), the scale kept apart. Not
+ * RGBA16F: a layer spans the blue peak R_d(0) and the red tail at r_max, more than the 1e8 the
+ * half-float range holds (tried: the back-lit dragon lost 20% of its red). */
+static sss_result normalise_level(const sss_lut *lut, float *rgba, float *scale, sss_error *err)
+{
+    size_t n = (size_t)lut->size * lut->size;
+    double mx = 0.0;
+    for (size_t i = 0; i < 3 * n; i++) {
+        double v = lut->texels[i];
+        if (!isfinite(v) || v < 0.0)
+            return sss_error_set(err, SSS_ERROR_NUMERIC, "kernel LUT holds a negative or non-finite value");
+        if (v > mx) mx = v;
+    }
+    *scale = mx > 0.0 ? (float)mx : 1.0f;
+    for (size_t i = 0; i < n; i++) {
+        for (int c = 0; c < 3; c++) rgba[4 * i + c] = (float)(lut->texels[3 * i + c] / *scale);
+        rgba[4 * i + 3] = 0.0f;
+    }
+    return SSS_OK;
+}
+
+sss_result gl_lut_cascade_build(const sss_gl_renderer *r, const sss_scene_material *m, gl_lut_cascade *out,
+                                sss_error *err)
+{
+    memset(out, 0, sizeof *out);
+    int levels = (int)r->shared[GL_P_LUT_LEVELS];
+    sss_lut *luts = calloc((size_t)levels, sizeof *luts);
+    if (!luts) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (kernel LUT)");
+    sss_result res = build_luts(r, m, luts, levels, err);
+    if (res != SSS_OK) {
+        free(luts);
+        return res;
+    }
+    size_t texels = (size_t)luts[0].size * luts[0].size;
+    out->size = luts[0].size;
+    out->levels = levels;
+    out->r_max = luts[0].r_max;
+    out->a_max = luts[0].a_max;
+    out->axes = luts[0].axes;
+    out->rgba = malloc(sizeof *out->rgba * 4 * texels * (size_t)levels);
+    out->scales = calloc((size_t)levels, sizeof *out->scales);
+    if (!out->rgba || !out->scales) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (kernel LUT)");
+    for (int l = 0; l < levels && res == SSS_OK; l++)
+        res = normalise_level(&luts[l], out->rgba + 4 * texels * (size_t)l, &out->scales[l], err);
+    for (int l = 0; l < levels; l++) sss_lut_free(&luts[l]);
+    free(luts);
+    if (res != SSS_OK) gl_lut_cascade_free(out);
+    return res;
+}
+
+void gl_lut_cascade_free(gl_lut_cascade *c)
+{
+    free(c->rgba);
+    free(c->scales);
+    memset(c, 0, sizeof *c);
+}
+
+/* What an upload collects on the CPU before it creates the buffers. */
+typedef struct upload_work {
+    gl_object_record *orec;
+    gl_material_record *mrec;
+    const sss_scene_material **mref;      /* per GL material of a scene object */
+    const gl_lut_cascade **cascades;      /* per subsurface material, in LUT layer order */
+    gl_lut_cascade *owned;                /* the cascades computed here (not from tables) */
+    int cascade_count, owned_count;
+} upload_work;
+
+static void work_free(upload_work *w)
+{
+    for (int i = 0; w->owned && i < w->owned_count; i++) gl_lut_cascade_free(&w->owned[i]);
+    free(w->orec);
+    free(w->mrec);
+    free(w->mref);
+    free(w->cascades);
+    free(w->owned);
+    memset(w, 0, sizeof *w);
+}
+
+/* The material's LUT cascade: from r->tables when they hold it, else computed. */
+static sss_result take_cascade(const sss_gl_renderer *r, gl_scene *gs, upload_work *w, const sss_scene_material *sm,
+                               sss_error *err)
+{
+    const gl_lut_cascade *c = gl_tables_find(r->tables, r, sm);
+    if (c) {
+        gs->luts_precomputed++;
+    } else {
+        sss_result res = gl_lut_cascade_build(r, sm, &w->owned[w->owned_count], err);
+        if (res != SSS_OK) return sss_error_prefix(err, "kernel LUT"), res;
+        c = &w->owned[w->owned_count++];
+    }
+    w->cascades[w->cascade_count++] = c;
+    return SSS_OK;
+}
+
+/* The GL material of a scene material: an identical one already recorded, or a new record. */
+static sss_result add_material(const sss_gl_renderer *r, gl_scene *gs, upload_work *w, const sss_scene_material *sm,
+                               int *index, sss_error *err)
+{
+    for (int k = 0; k < gs->material_count; k++)
+        if (w->mref[k] && same_material(w->mref[k], sm)) return *index = k, SSS_OK;
+    int mi = *index = gs->material_count++;
+    w->mref[mi] = sm;
+    gl_material *gm = &gs->materials[mi];
+    gl_material_record *rec = &w->mrec[mi];
+    gm->subsurface = sm->type == SSS_SCENE_MATERIAL_SUBSURFACE;
+    for (int c = 0; c < 3; c++) rec->albedo[c] = (float)sm->albedo[c];
+    rec->albedo[3] = gm->subsurface ? 0.0f : 1.0f;
+    rec->params[2] = -1.0f;
+    rec->params[3] = -1.0f;
+    if (!gm->subsurface) return SSS_OK;
+    rec->params[0] = (float)sm->optical.eta;
+    rec->params[1] = (float)sss_bssrdf_normalization(sm->optical.eta);
+    sss_result res = take_cascade(r, gs, w, sm, err);
+    if (res != SSS_OK) return res;
+    const gl_lut_cascade *c = w->cascades[w->cascade_count - 1];
+    gm->lut_layer = (w->cascade_count - 1) * c->levels;
+    gm->r_max = c->r_max;
+    gm->a_max = c->a_max;
+    gm->axes = c->axes;
+    rec->params[2] = (float)gm->lut_layer;
+    rec->lut[0] = (float)gm->r_max;
+    rec->lut[1] = (float)gm->a_max;
+    rec->lut[2] = gm->axes == SSS_LUT_AXES_SQRT ? 1.0f : 0.0f;
+    rec->lut[3] = (float)c->size;
+    rec->spec[0] = sm->has_specular ? 1.0f : 0.0f;
+    rec->spec[1] = (float)sm->roughness;
+    rec->spec[2] = (float)c->levels;
+    /* splat reach: r_max, or less when a smaller radius already holds splat_energy */
+    double reach = energy_radius(sm, r->shared[GL_P_SPLAT_ENERGY]);
+    rec->spec[3] = (float)(reach > 0.0 && reach < gm->r_max ? reach : gm->r_max);
+    const sss_scene *s = r->scene;
+    for (size_t t = 0; sm->texture_image && t < s->texture_count; t++)
+        if (&s->textures[t].image == sm->texture_image) rec->params[3] = (float)t; /* its layer */
+    return SSS_OK;
+}
+
+/* Object i's record, and its world bounds (animation included) grown into gs->bounds. */
+static sss_result object_record(const sss_scene *s, size_t i, gl_scene *gs, gl_object_record *rec, sss_error *err)
+{
+    const sss_scene_object *so = &s->objects[i];
+    const gl_object *o = &gs->objects[i];
+    col_major_from_rows(so->transform.matrix, rec->model);
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) rec->normal_matrix[4 * b + a] = (float)so->transform.normal_matrix[3 * a + b];
+    rec->normal_matrix[15] = 1.0f;
+    for (int k = 0; k < 3; k++) {
+        rec->bounds_min[k] = so->bounds_min[k];
+        rec->bounds_max[k] = so->bounds_max[k];
+    }
+    rec->bounds_min[3] = (float)so->animation.type;
+    rec->bounds_max[3] = (float)so->animation.amplitude;
+    rec->anim[0] = so->animation.period > 0.0 ? (float)so->animation.period : 1.0f;
+    rec->anim[1] = (float)o->material;
+    rec->anim[2] = o->subsurface ? 1.0f : 0.0f;
+    rec->anim[3] = o->has_uv ? 1.0f : 0.0f;
+    float lo[3], hi[3];
+    sss_scene_object_animated_bounds(so, lo, hi);
+    for (int c = 0; c < 8; c++) {
+        double p[3] = {(c & 1) ? hi[0] : lo[0], (c & 2) ? hi[1] : lo[1], (c & 4) ? hi[2] : lo[2]}, w[3];
+        sss_transform_point(so->transform.matrix, p, w);
+        /* GL works in float: positions beyond ~1e18 leave no room for products (areas, depth); the
+         * loader refuses such objects, scenes built in code are caught here */
+        double reach = fmax(fabs(w[0]), fmax(fabs(w[1]), fabs(w[2])));
+        if (!isfinite(w[0]) || !isfinite(w[1]) || !isfinite(w[2]) || !(reach <= SSS_SCENE_MAX_WORLD_COORD))
+            return sss_error_set(err, SSS_ERROR_LIMIT,
+                                 "%s: objects[%zu]: world-space positions reach %g, beyond %g (single precision)",
+                                 s->name ? s->name : "scene", i, reach, SSS_SCENE_MAX_WORLD_COORD);
+        for (int k = 0; k < 3; k++) {
+            if ((float)w[k] < gs->bounds_min[k]) gs->bounds_min[k] = (float)w[k];
+            if ((float)w[k] > gs->bounds_max[k]) gs->bounds_max[k] = (float)w[k];
+        }
+    }
+    return SSS_OK;
+}
+
+static sss_result scene_objects(const sss_gl_renderer *r, gl_scene *gs, upload_work *w, int with_meshes,
+                                sss_error *err)
 {
     const sss_scene *s = r->scene;
-    gl_scene *gs = &r->gs;
-    if (s->object_count == 0 || s->object_count > 65535)
-        return sss_error_set(err, SSS_ERROR_LIMIT, "%s: %zu objects (the GL renderer takes 1..65535)",
-                             s->name ? s->name : "scene", s->object_count);
-    size_t n_area = 0;
-    for (size_t i = 0; i < s->light_count; i++) n_area += s->lights[i].type == SSS_LIGHT_AREA;
-    size_t n_obj = s->object_count + n_area; /* area lights are visible rectangles (sss/reference.h) */
-    gs->object_count = (int)n_obj;
-    gs->objects = calloc(n_obj, sizeof *gs->objects);
-    gs->materials = calloc(n_obj, sizeof *gs->materials);
-    gl_object_record *orec = calloc(n_obj, sizeof *orec);
-    gl_material_record *mrec = calloc(n_obj, sizeof *mrec);
-    const sss_scene_material **mref = calloc(s->object_count, sizeof *mref);
-    int levels = (int)r->shared[GL_P_LUT_LEVELS];
-    sss_lut *luts = calloc(s->object_count * (size_t)levels, sizeof *luts);
-    if (!gs->objects || !gs->materials || !orec || !mrec || !mref || !luts) {
-        free(orec); free(mrec); free(mref); free(luts);
-        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene upload)");
-    }
     sss_result res = SSS_OK;
-    int lut_layers = 0;
-    for (int k = 0; k < 3; k++) {
-        gs->bounds_min[k] = INFINITY;
-        gs->bounds_max[k] = -INFINITY;
-    }
     for (size_t i = 0; i < s->object_count && res == SSS_OK; i++) {
         const sss_scene_object *so = &s->objects[i];
         gl_object *o = &gs->objects[i];
-        if (so->mesh.vertex_count == 0 || so->mesh.triangle_count == 0 || !so->mesh.normals) {
-            res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: objects[%zu] has no mesh loaded",
-                                s->name ? s->name : "scene", i);
-            break;
+        if (with_meshes) {
+            if (so->mesh.vertex_count == 0 || so->mesh.triangle_count == 0 || !so->mesh.normals)
+                return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: objects[%zu] has no mesh loaded",
+                                     s->name ? s->name : "scene", i);
+            upload_mesh(gs, o, &so->mesh);
+            memcpy(o->uploaded_matrix, so->transform.matrix, sizeof o->uploaded_matrix);
+            o->uploaded_animation = so->animation;
         }
-        upload_mesh(gs, o, &so->mesh);
-        /* material: reuse an identical one */
-        const sss_scene_material *sm = &so->material;
-        int mi = -1;
-        for (int k = 0; k < gs->material_count; k++)
-            if (same_material(mref[k], sm)) mi = k;
-        if (mi < 0) {
-            mi = gs->material_count++;
-            mref[mi] = sm;
-            gl_material *gm = &gs->materials[mi];
-            gl_material_record *rec = &mrec[mi];
-            gm->subsurface = sm->type == SSS_SCENE_MATERIAL_SUBSURFACE;
-            for (int c = 0; c < 3; c++) rec->albedo[c] = (float)sm->albedo[c];
-            rec->albedo[3] = gm->subsurface ? 0.0f : 1.0f;
-            rec->params[2] = -1.0f;
-            rec->params[3] = -1.0f;
-            if (gm->subsurface) {
-                rec->params[0] = (float)sm->optical.eta;
-                rec->params[1] = (float)sss_bssrdf_normalization(sm->optical.eta);
-                int taken = gl_tables_take(r->tables, r, sm, &luts[lut_layers], levels);
-                if (taken < 0) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (kernel LUT copy)");
-                else if (taken) gs->luts_precomputed++;
-                else res = gl_build_lut(r, sm, &luts[lut_layers], levels, err);
-                if (res != SSS_OK) {
-                    sss_error_prefix(err, "kernel LUT");
-                    break;
-                }
-                gm->lut_layer = lut_layers;
-                lut_layers += levels;
-                gm->r_max = luts[gm->lut_layer].r_max;
-                gm->a_max = luts[gm->lut_layer].a_max;
-                gm->axes = luts[gm->lut_layer].axes;
-                rec->params[2] = (float)gm->lut_layer;
-                rec->lut[0] = (float)gm->r_max;
-                rec->lut[1] = (float)gm->a_max;
-                rec->lut[2] = gm->axes == SSS_LUT_AXES_SQRT ? 1.0f : 0.0f;
-                rec->lut[3] = (float)luts[gm->lut_layer].size;
-                rec->spec[0] = sm->has_specular ? 1.0f : 0.0f;
-                rec->spec[1] = (float)sm->roughness;
-                rec->spec[2] = (float)levels;
-                /* splat reach: r_max, or less when a smaller radius already holds splat_energy */
-                double reach = energy_radius(sm, r->shared[GL_P_SPLAT_ENERGY]);
-                rec->spec[3] = (float)(reach > 0.0 && reach < gm->r_max ? reach : gm->r_max);
-                for (size_t t = 0; sm->texture_image && t < s->texture_count; t++)
-                    if (&s->textures[t].image == sm->texture_image) rec->params[3] = (float)t; /* its layer */
-            }
-        }
-        o->material = mi;
-        o->subsurface = gs->materials[mi].subsurface;
+        res = add_material(r, gs, w, &so->material, &o->material, err);
+        if (res != SSS_OK) break;
+        o->subsurface = gs->materials[o->material].subsurface;
         o->animated = so->animation.type != SSS_ANIMATION_NONE;
-        gl_object_record *rec = &orec[i];
-        col_major_from_rows(so->transform.matrix, rec->model);
-        for (int a = 0; a < 3; a++)
-            for (int b = 0; b < 3; b++) rec->normal_matrix[4 * b + a] = (float)so->transform.normal_matrix[3 * a + b];
-        rec->normal_matrix[15] = 1.0f;
-        for (int k = 0; k < 3; k++) {
-            rec->bounds_min[k] = so->bounds_min[k];
-            rec->bounds_max[k] = so->bounds_max[k];
-        }
-        rec->bounds_min[3] = (float)so->animation.type;
-        rec->bounds_max[3] = (float)so->animation.amplitude;
-        rec->anim[0] = so->animation.period > 0.0 ? (float)so->animation.period : 1.0f;
-        rec->anim[1] = (float)mi;
-        rec->anim[2] = o->subsurface ? 1.0f : 0.0f;
-        rec->anim[3] = o->has_uv ? 1.0f : 0.0f;
-        float lo[3], hi[3];
-        sss_scene_object_animated_bounds(so, lo, hi);
-        for (int c = 0; c < 8; c++) {
-            double p[3] = {(c & 1) ? hi[0] : lo[0], (c & 2) ? hi[1] : lo[1], (c & 4) ? hi[2] : lo[2]}, w[3];
-            sss_transform_point(so->transform.matrix, p, w);
-            /* GL works in float: positions beyond ~1e18 leave no room for products (areas, depth); the
-             * loader refuses such objects, scenes built in code are caught here */
-            double reach = fmax(fabs(w[0]), fmax(fabs(w[1]), fabs(w[2])));
-            if (!isfinite(w[0]) || !isfinite(w[1]) || !isfinite(w[2]) || !(reach <= SSS_SCENE_MAX_WORLD_COORD)) {
-                res = sss_error_set(err, SSS_ERROR_LIMIT,
-                                    "%s: objects[%zu]: world-space positions reach %g, beyond %g (single precision)",
-                                    s->name ? s->name : "scene", i, reach, SSS_SCENE_MAX_WORLD_COORD);
-                break;
-            }
-            for (int k = 0; k < 3; k++) {
-                if ((float)w[k] < gs->bounds_min[k]) gs->bounds_min[k] = (float)w[k];
-                if ((float)w[k] > gs->bounds_max[k]) gs->bounds_max[k] = (float)w[k];
-            }
-        }
+        res = object_record(s, i, gs, &w->orec[i], err);
     }
-    /* Emitters: one quad per area light, emitting its radiance towards u x v (or both sides). */
+    return res;
+}
+
+/* Emitters: one quad per area light, emitting its radiance towards u x v (or both sides). */
+static void emitter_quad(const sss_light *L, float pos[12], float nrm[12])
+{
+    double n[3] = {L->u[1] * L->v[2] - L->u[2] * L->v[1], L->u[2] * L->v[0] - L->u[0] * L->v[2],
+                   L->u[0] * L->v[1] - L->u[1] * L->v[0]};
+    double nl = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    static const double su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
+    for (int c = 0; c < 4; c++)
+        for (int k = 0; k < 3; k++) {
+            pos[3 * c + k] = (float)(L->center[k] + su[c] * L->u[k] + sv[c] * L->v[k]);
+            nrm[3 * c + k] = (float)(nl > 0.0 ? n[k] / nl : 0.0);
+        }
+}
+
+static void emitters(const sss_scene *s, gl_scene *gs, upload_work *w, int with_meshes)
+{
     size_t e = s->object_count;
-    for (size_t i = 0; i < s->light_count && res == SSS_OK; i++) {
+    for (size_t i = 0; i < s->light_count; i++) {
         const sss_light *L = &s->lights[i];
         if (L->type != SSS_LIGHT_AREA) continue;
         float pos[12], nrm[12];
         uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
-        double n[3] = {L->u[1] * L->v[2] - L->u[2] * L->v[1], L->u[2] * L->v[0] - L->u[0] * L->v[2],
-                       L->u[0] * L->v[1] - L->u[1] * L->v[0]};
-        double nl = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        static const double su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
-        for (int c = 0; c < 4; c++)
-            for (int k = 0; k < 3; k++) {
-                pos[3 * c + k] = (float)(L->center[k] + su[c] * L->u[k] + sv[c] * L->v[k]);
-                nrm[3 * c + k] = (float)(nl > 0.0 ? n[k] / nl : 0.0);
-            }
-        sss_mesh quad;
-        memset(&quad, 0, sizeof quad);
-        quad.vertex_count = 4;
-        quad.triangle_count = 2;
-        quad.positions = pos;
-        quad.normals = nrm;
-        quad.indices = idx;
+        emitter_quad(L, pos, nrm);
         gl_object *o = &gs->objects[e];
-        upload_mesh(gs, o, &quad);
-        o->emitter = 1;
+        if (with_meshes) {
+            sss_mesh quad;
+            memset(&quad, 0, sizeof quad);
+            quad.vertex_count = 4;
+            quad.triangle_count = 2;
+            quad.positions = pos;
+            quad.normals = nrm;
+            quad.indices = idx;
+            upload_mesh(gs, o, &quad);
+            o->emitter = 1;
+        }
         int mi = gs->material_count++;
         o->material = mi;
-        gl_material_record *m = &mrec[mi];
+        gl_material_record *m = &w->mrec[mi];
         for (int c = 0; c < 3; c++) m->albedo[c] = (float)L->radiance[c];
         m->albedo[3] = 2.0f;
         m->params[0] = 1.0f;
         m->params[2] = m->params[3] = -1.0f;
         m->spec[0] = L->two_sided ? 1.0f : 0.0f;
-        gl_object_record *rec = &orec[e];
+        gl_object_record *rec = &w->orec[e];
         for (int k = 0; k < 4; k++) rec->model[5 * k] = rec->normal_matrix[5 * k] = 1.0f;
         rec->anim[0] = 1.0f;
         rec->anim[1] = (float)mi;
@@ -286,70 +373,125 @@ sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err)
             }
         e++;
     }
-    if (res == SSS_OK) res = gl_albedo_upload(gs, s->textures, s->texture_count, err);
-    if (res == SSS_OK) {
-        gs->ssbo_objects = make_buffer(orec, sizeof *orec * n_obj, &gs->buffer_bytes);
-        gs->ssbo_materials = make_buffer(mrec, sizeof *mrec * (size_t)gs->material_count, &gs->buffer_bytes);
-        /* LUT array: a 1x1 zero layer when no material scatters, so the sampler is always complete.
-         * RGBA32F holding R'_d / (the layer's largest value), the scale in lut_scales[layer]. Not
-         * RGBA16F: a layer spans the blue peak R_d(0) and the red tail at r_max, more than the 1e8 the
-         * half-float range holds (tried: the back-lit dragon lost 20% of its red). The LUT's bytes
-         * matter for speed: the screen-space and splat passes read it at scattered places (llvmpipe,
-         * 960x540 dragon: 512^2 texels 5.3 s, 256^2 2.9 s for the screen-space pass). */
-        int size = lut_layers ? luts[0].size : 1;
-        gs->lut_size = size;
-        gs->lut_layers = lut_layers ? lut_layers : 1;
-        glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &gs->lut_array);
-        glTextureStorage3D(gs->lut_array, 1, GL_RGBA32F, size, size, gs->lut_layers);
-        glTextureParameteri(gs->lut_array, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTextureParameteri(gs->lut_array, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTextureParameteri(gs->lut_array, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(gs->lut_array, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        gs->lut_bytes = (size_t)size * size * 16 * (size_t)gs->lut_layers;
-        gs->texture_bytes += gs->lut_bytes;
-        float *scales = calloc((size_t)gs->lut_layers, sizeof *scales);
-        float *texels = malloc((size_t)size * size * 4 * sizeof(float));
-        if (!scales || !texels) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (LUT upload)");
-        if (res == SSS_OK && !lut_layers) {
-            float z[4] = {0, 0, 0, 0};
-            glTextureSubImage3D(gs->lut_array, 0, 0, 0, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, z);
-            scales[0] = 1.0f;
-        }
-        for (int l = 0; l < lut_layers && res == SSS_OK; l++) {
-            if (luts[l].size != size) {
-                res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "kernel LUTs of different sizes");
-                break;
-            }
-            double mx = 0.0;
-            size_t n = (size_t)size * size;
-            for (size_t i = 0; i < 3 * n; i++) {
-                double v = luts[l].texels[i];
-                if (!isfinite(v) || v < 0.0) {
-                    res = sss_error_set(err, SSS_ERROR_NUMERIC, "kernel LUT holds a negative or non-finite value");
-                    break;
-                }
-                if (v > mx) mx = v;
-            }
-            if (res != SSS_OK) break;
-            scales[l] = mx > 0.0 ? (float)mx : 1.0f;
-            for (size_t i = 0; i < n; i++) {
-                for (int c = 0; c < 3; c++) texels[4 * i + c] = (float)(luts[l].texels[3 * i + c] / scales[l]);
-                texels[4 * i + 3] = 0.0f;
-            }
-            glTextureSubImage3D(gs->lut_array, 0, 0, 0, l, size, size, 1, GL_RGBA, GL_FLOAT, texels);
-        }
-        if (res == SSS_OK)
-            gs->ssbo_lut_scales = make_buffer(scales, sizeof *scales * (size_t)gs->lut_layers, &gs->buffer_bytes);
-        free(scales);
-        free(texels);
+}
+
+/* The LUT array (a 1x1 zero layer when no material scatters, so the sampler is always complete) and
+ * its scales. The LUT's bytes matter for speed: the screen-space and splat passes read it at scattered
+ * places (llvmpipe, 960x540 dragon: 512^2 texels 5.3 s, 256^2 2.9 s for the screen-space pass). */
+static sss_result upload_luts(gl_scene *gs, const upload_work *w, sss_error *err)
+{
+    int size = w->cascade_count ? w->cascades[0]->size : 1;
+    int levels = w->cascade_count ? w->cascades[0]->levels : 1;
+    for (int i = 0; i < w->cascade_count; i++)
+        if (w->cascades[i]->size != size || w->cascades[i]->levels != levels)
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "kernel LUTs of different sizes");
+    gs->lut_size = size;
+    gs->lut_layers = w->cascade_count ? w->cascade_count * levels : 1;
+    float *scales = calloc((size_t)gs->lut_layers, sizeof *scales);
+    if (!scales) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (LUT upload)");
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &gs->lut_array);
+    glTextureStorage3D(gs->lut_array, 1, GL_RGBA32F, size, size, gs->lut_layers);
+    glTextureParameteri(gs->lut_array, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(gs->lut_array, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(gs->lut_array, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(gs->lut_array, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gs->lut_bytes = (size_t)size * size * 16 * (size_t)gs->lut_layers;
+    if (!w->cascade_count) {
+        float z[4] = {0, 0, 0, 0};
+        glTextureSubImage3D(gs->lut_array, 0, 0, 0, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, z);
+        scales[0] = 1.0f;
     }
-    for (int l = 0; l < lut_layers; l++) sss_lut_free(&luts[l]);
-    free(orec);
-    free(mrec);
-    free(mref);
-    free(luts);
+    for (int i = 0; i < w->cascade_count; i++) {
+        const gl_lut_cascade *c = w->cascades[i];
+        glTextureSubImage3D(gs->lut_array, 0, 0, 0, i * levels, size, size, levels, GL_RGBA, GL_FLOAT, c->rgba);
+        memcpy(scales + (size_t)i * levels, c->scales, sizeof *scales * (size_t)levels);
+    }
+    size_t scale_bytes = sizeof *scales * (size_t)gs->lut_layers;
+    gs->ssbo_lut_scales = make_buffer(scales, scale_bytes, NULL);
+    gs->record_bytes += scale_bytes;
+    free(scales);
+    return SSS_OK;
+}
+
+/* Records, materials and LUTs of every object and emitter (and their meshes when with_meshes), then
+ * the buffers. gs->objects exists; gs->materials and the material GL objects do not. */
+static sss_result upload_records(sss_gl_renderer *r, int with_meshes, sss_error *err)
+{
+    const sss_scene *s = r->scene;
+    gl_scene *gs = &r->gs;
+    size_t n_obj = (size_t)gs->object_count;
+    upload_work w;
+    memset(&w, 0, sizeof w);
+    gs->materials = calloc(n_obj, sizeof *gs->materials);
+    w.orec = calloc(n_obj, sizeof *w.orec);
+    w.mrec = calloc(n_obj, sizeof *w.mrec);
+    w.mref = calloc(n_obj, sizeof *w.mref);
+    w.cascades = calloc(n_obj, sizeof *w.cascades);
+    w.owned = calloc(n_obj, sizeof *w.owned);
+    if (!gs->materials || !w.orec || !w.mrec || !w.mref || !w.cascades || !w.owned) {
+        work_free(&w);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene upload)");
+    }
+    gs->material_count = 0;
+    gs->luts_precomputed = 0;
+    gs->record_bytes = 0;
+    for (int k = 0; k < 3; k++) {
+        gs->bounds_min[k] = INFINITY;
+        gs->bounds_max[k] = -INFINITY;
+    }
+    sss_result res = scene_objects(r, gs, &w, with_meshes, err);
+    if (res == SSS_OK) emitters(s, gs, &w, with_meshes);
+    if (res == SSS_OK) res = upload_luts(gs, &w, err);
+    if (res == SSS_OK) {
+        size_t ob = sizeof *w.orec * n_obj, mb = sizeof *w.mrec * (size_t)gs->material_count;
+        gs->ssbo_objects = make_buffer(w.orec, ob, NULL);
+        gs->ssbo_materials = make_buffer(w.mrec, mb, NULL);
+        gs->record_bytes += ob + mb;
+    }
+    work_free(&w);
+    return res;
+}
+
+sss_result gl_scene_upload(sss_gl_renderer *r, sss_error *err)
+{
+    const sss_scene *s = r->scene;
+    gl_scene *gs = &r->gs;
+    if (s->object_count == 0 || s->object_count > 65535)
+        return sss_error_set(err, SSS_ERROR_LIMIT, "%s: %zu objects (the GL renderer takes 1..65535)",
+                             s->name ? s->name : "scene", s->object_count);
+    size_t n_area = 0;
+    for (size_t i = 0; i < s->light_count; i++) n_area += s->lights[i].type == SSS_LIGHT_AREA;
+    gs->object_count = (int)(s->object_count + n_area); /* area lights are visible rectangles (sss/reference.h) */
+    gs->objects = calloc((size_t)gs->object_count, sizeof *gs->objects);
+    if (!gs->objects) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene upload)");
+    sss_result res = upload_records(r, 1, err);
+    if (res == SSS_OK) res = gl_albedo_upload(gs, s->textures, s->texture_count, err);
     if (res != SSS_OK) return res;
     return gl_check(r->ctx, "the scene upload", err);
+}
+
+static void delete_buffer(GLuint *b)
+{
+    if (*b) glDeleteBuffers(1, b);
+    *b = 0;
+}
+
+void gl_scene_free_materials(gl_scene *gs)
+{
+    free(gs->materials);
+    gs->materials = NULL;
+    delete_buffer(&gs->ssbo_objects);
+    delete_buffer(&gs->ssbo_materials);
+    delete_buffer(&gs->ssbo_lut_scales);
+    if (gs->lut_array) glDeleteTextures(1, &gs->lut_array);
+    gs->lut_array = 0;
+}
+
+sss_result gl_scene_update_materials(sss_gl_renderer *r, sss_error *err)
+{
+    sss_result res = upload_records(r, 0, err);
+    if (res != SSS_OK) return res;
+    return gl_check(r->ctx, "the material upload", err);
 }
 
 sss_result gl_scene_prepare_splats(sss_gl_renderer *r, sss_error *err)
@@ -389,12 +531,6 @@ sss_result gl_scene_prepare_splats(sss_gl_renderer *r, sss_error *err)
     return gl_check(r->ctx, "the splat mesh upload", err);
 }
 
-static void delete_buffer(GLuint *b)
-{
-    if (*b) glDeleteBuffers(1, b);
-    *b = 0;
-}
-
 void gl_scene_free(gl_scene *gs)
 {
     for (int i = 0; gs->objects && i < gs->object_count; i++) {
@@ -409,15 +545,12 @@ void gl_scene_free(gl_scene *gs)
         delete_buffer(&o->splat_uv);
     }
     free(gs->objects);
-    free(gs->materials);
+    gl_scene_free_materials(gs);
     free(gs->lights);
     gl_env_cache_free(gs);
-    delete_buffer(&gs->ssbo_objects);
-    delete_buffer(&gs->ssbo_materials);
     delete_buffer(&gs->ssbo_lights);
-    delete_buffer(&gs->ssbo_lut_scales);
-    GLuint t[5] = {gs->lut_array, gs->albedo_array, gs->shadow_cube, gs->shadow_2d, gs->env_tex};
-    for (int i = 0; i < 5; i++)
+    GLuint t[4] = {gs->albedo_array, gs->shadow_cube, gs->shadow_2d, gs->env_tex};
+    for (int i = 0; i < 4; i++)
         if (t[i]) glDeleteTextures(1, &t[i]);
     if (gs->shadow_fbo) glDeleteFramebuffers(1, &gs->shadow_fbo);
     memset(gs, 0, sizeof *gs);

@@ -1,12 +1,13 @@
 /* gl/tables.c — sss_gl_tables: the CPU-only tables of a renderer (the kernel LUT cascades of the
  * subsurface materials), computed without GL so that a caller can build them on another thread and
- * hand them to sss_gl_renderer_create (desc.tables), which then only uploads them. */
+ * hand them to sss_gl_renderer_create (desc.tables), which then only uploads them: the texels are kept
+ * normalised as the LUT texture holds them. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "gl/gl_internal.h"
 
-/* What a LUT cascade depends on (gl_build_lut): the material's optics, profile model and PBD table,
+/* What a LUT cascade depends on (gl_lut_cascade_build): the material's optics, profile model and PBD table,
  * and the shared LUT parameters. */
 typedef struct lut_key {
     sss_material optical;
@@ -16,9 +17,9 @@ typedef struct lut_key {
 } lut_key;
 
 struct sss_gl_tables {
-    int count, levels;
+    int count;
     lut_key *keys;
-    sss_lut *luts; /* count x levels */
+    gl_lut_cascade *cascades; /* count, ready for upload (normalised RGBA texels) */
 };
 
 static void key_of(const sss_gl_renderer *r, const sss_scene_material *m, lut_key *k)
@@ -54,7 +55,7 @@ static sss_result add_material(sss_gl_tables *t, const sss_gl_renderer *r, const
     lut_key k;
     key_of(r, m, &k);
     if (find_key(t, &k) >= 0) return SSS_OK;
-    sss_result res = gl_build_lut(r, m, &t->luts[(size_t)t->count * t->levels], t->levels, err);
+    sss_result res = gl_lut_cascade_build(r, m, &t->cascades[t->count], err);
     if (res != SSS_OK) return res;
     t->keys[t->count++] = k;
     return SSS_OK;
@@ -80,10 +81,9 @@ sss_result sss_gl_tables_build(const sss_scene *scene, const sss_gl_renderer_des
     sss_result res = gl_technique_for(scene, &d, &r->tech, err);
     if (res == SSS_OK) res = gl_params_from_desc(r, &d, err);
     size_t n = scene->object_count ? scene->object_count : 1;
-    t->levels = (int)r->shared[GL_P_LUT_LEVELS];
     t->keys = calloc(n, sizeof *t->keys);
-    t->luts = calloc(n * (size_t)(t->levels > 0 ? t->levels : 1), sizeof *t->luts);
-    if (res == SSS_OK && (!t->keys || !t->luts)) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (tables)");
+    t->cascades = calloc(n, sizeof *t->cascades);
+    if (res == SSS_OK && (!t->keys || !t->cascades)) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (tables)");
     for (size_t i = 0; i < scene->object_count && res == SSS_OK; i++)
         if (scene->objects[i].material.type == SSS_SCENE_MATERIAL_SUBSURFACE)
             res = add_material(t, r, &scene->objects[i].material, err);
@@ -100,35 +100,17 @@ sss_result sss_gl_tables_build(const sss_scene *scene, const sss_gl_renderer_des
 void sss_gl_tables_free(sss_gl_tables *t)
 {
     if (!t) return;
-    for (int i = 0; t->luts && i < t->count * t->levels; i++) sss_lut_free(&t->luts[i]);
+    for (int i = 0; t->cascades && i < t->count; i++) gl_lut_cascade_free(&t->cascades[i]);
     free(t->keys);
-    free(t->luts);
+    free(t->cascades);
     free(t);
 }
 
-static int copy_lut(const sss_lut *from, sss_lut *to)
+const gl_lut_cascade *gl_tables_find(const sss_gl_tables *t, const sss_gl_renderer *r, const sss_scene_material *m)
 {
-    size_t bytes = sizeof(float) * 3 * (size_t)from->size * (size_t)from->size;
-    *to = *from;
-    to->texels = malloc(bytes);
-    if (!to->texels) return 0;
-    memcpy(to->texels, from->texels, bytes);
-    return 1;
-}
-
-int gl_tables_take(const sss_gl_tables *t, const sss_gl_renderer *r, const sss_scene_material *m, sss_lut *luts,
-                   int levels)
-{
-    if (!t || t->levels != levels) return 0;
+    if (!t) return NULL;
     lut_key k;
     key_of(r, m, &k);
     int i = find_key(t, &k);
-    if (i < 0) return 0;
-    for (int l = 0; l < levels; l++)
-        if (!copy_lut(&t->luts[(size_t)i * levels + l], &luts[l])) {
-            for (int j = 0; j < l; j++) sss_lut_free(&luts[j]);
-            memset(luts, 0, sizeof *luts * (size_t)levels);
-            return -1;
-        }
-    return 1;
+    return i >= 0 ? &t->cascades[i] : NULL;
 }

@@ -1,7 +1,8 @@
 /* view/rebuild.c — material edits without a frozen window: the edited scene's JSON goes to a worker
  * (view/build_job.c: the loader, then the renderer's LUTs), the window keeps drawing the old scene,
- * and when the worker is done the window thread creates the renderer from the precomputed tables
- * (programs and uploads only). Edits made while a build runs wait as one request: the latest wins, the
+ * and when the worker is done the window thread hands the new scene and its precomputed tables to the
+ * renderers (sss_gl_renderer_update_materials: material records and LUT uploads; a new renderer when
+ * that is refused). Edits made while a build runs wait as one request: the latest wins, the
  * running build is dropped when it ends. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -83,6 +84,23 @@ void view_request_rebuild(viewer *v, const char *what, int line)
     else view_message(v, "%s: rebuilding (after the running build)", what);
 }
 
+/* The renderers take the new scene in place (same meshes, lights and programs: only materials differ),
+ * or, when that fails, new ones are created from it. */
+static sss_result update_renderers(viewer *v, const sss_gl_tables *tables, sss_error *err)
+{
+    sss_error why = {0};
+    sss_result res = sss_gl_renderer_update_materials(v->r, v->scene, tables, &why);
+    v->rebuild_in_place = res == SSS_OK;
+    if (res != SSS_OK) {
+        v->tables = tables;
+        res = view_make_renderer(v, v->tech, err);
+        v->tables = NULL;
+    }
+    if (res == SSS_OK && v->split_r && sss_gl_renderer_update_materials(v->split_r, v->scene, tables, &why) != SSS_OK)
+        view_split_refresh(v); /* it read the old scene */
+    return res;
+}
+
 /* The worker's scene replaces the one on screen; the camera and lights are the window's (they may
  * have moved while the worker ran: only materials differ). */
 static sss_result apply(viewer *v, view_build_result *b, sss_error *err)
@@ -97,10 +115,7 @@ static sss_result apply(viewer *v, view_build_result *b, sss_error *err)
         s->lights[i].file = file;
     }
     v->scene = s;
-    v->tables = b->tables;
-    sss_result res = view_make_renderer(v, v->tech, err);
-    if (res == SSS_OK) view_split_refresh(v); /* it read the old scene */
-    v->tables = NULL;
+    sss_result res = update_renderers(v, b->tables, err);
     if (res != SSS_OK) {
         v->scene = old; /* b still owns s */
         return res;
@@ -124,9 +139,10 @@ static void applied(viewer *v, const view_build_result *b)
     view_invalidate(v);
     view_message(v,
                  "rebuilt in %.1f ms (worker %.1f ms: scene %.1f ms, LUTs %.1f ms, while %d frames were drawn, the "
-                 "longest %.1f ms; then the renderer on the window thread %.1f ms; %d older edits dropped): %s",
+                 "longest %.1f ms; then %s on the window thread %.1f ms; %d older edits dropped): %s",
                  v->rebuild_ms, b->scene_ms + b->tables_ms, b->scene_ms, b->tables_ms, v->build_frames,
-                 v->build_longest_ms, v->rebuild_window_ms, v->build_dropped, q->what);
+                 v->build_longest_ms, v->rebuild_in_place ? "the materials updated in place" : "a new renderer",
+                 v->rebuild_window_ms, v->build_dropped, q->what);
     v->build_dropped = 0;
 }
 

@@ -116,6 +116,7 @@ struct viewer {
     sss_error build_err;
     double rebuild_ms;            /* the last applied edit: from the request to the new renderer */
     double rebuild_window_ms;     /* of which on the window thread (renderer creation, uploads) */
+    int rebuild_in_place;         /* it updated the renderer's materials (else: a new renderer) */
     double rebuild_scene_ms, rebuild_tables_ms; /* the worker's loader and LUT times */
     const char *shot_path;        /* a script's screenshot, taken after the panel is drawn */
 };

@@ -350,6 +350,7 @@ const gl_technique gl_technique_chen2012 = {
     .resize = chen_resize,
     .render = chen_render,
     .destroy = chen_destroy,
+    .materials_changed = gl_materials_read_at_render,
     .buffer = chen_buffer,
     .stats = chen_stats,
     .paper = paper,

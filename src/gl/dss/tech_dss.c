@@ -183,6 +183,7 @@ const gl_technique gl_technique_dss = {
     .resize = dss_resize,
     .render = dss_render,
     .destroy = dss_destroy,
+    .materials_changed = gl_materials_read_at_render,
     .buffer = dss_buffer,
     .stats = dss_stats,
     .paper = paper,

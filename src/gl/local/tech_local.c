@@ -47,4 +47,5 @@ const gl_technique gl_technique_local = {
     .create = local_create,
     .render = local_render,
     .destroy = local_destroy,
+    .materials_changed = gl_materials_read_at_render,
 };

@@ -441,6 +441,7 @@ const gl_technique gl_technique_maisch2020 = {
     .resize = maisch_resize,
     .render = maisch_render,
     .destroy = maisch2020_destroy,
+    .materials_changed = gl_materials_read_at_render,
     .buffer = maisch2020_buffer,
     .stats = maisch_stats,
     .paper = paper,

@@ -173,6 +173,23 @@ static sss_result mertens_create(sss_gl_renderer *r, void *state, sss_error *err
     return make_targets(r, s, err);
 }
 
+/* New materials (sss_gl_renderer_update_materials): new sampling tables, the rest stays. */
+static sss_result mertens_materials_changed(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    mertens_state *s = state;
+    GLuint old = s->tables;
+    size_t old_bytes = s->bytes; /* the tables' alone */
+    s->bytes = 0;
+    sss_result res = upload_tables(r, s, err);
+    if (res != SSS_OK) {
+        s->tables = old;
+        s->bytes = old_bytes;
+        return res;
+    }
+    if (old) glDeleteBuffers(1, &old);
+    return SSS_OK;
+}
+
 static sss_result mertens_resize(sss_gl_renderer *r, void *state, sss_error *err)
 {
     return make_targets(r, state, err);
@@ -299,6 +316,7 @@ const gl_technique gl_technique_mertens2003 = {
     .resize = mertens_resize,
     .render = mertens_render,
     .destroy = mertens_destroy,
+    .materials_changed = mertens_materials_changed,
     .buffer = mertens_buffer,
     .stats = mertens_stats,
 };

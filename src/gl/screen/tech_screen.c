@@ -142,6 +142,7 @@ const gl_technique gl_technique_screen = {
     .resize = screen_resize,
     .render = screen_render,
     .destroy = screen_destroy,
+    .materials_changed = gl_materials_read_at_render,
     .buffer = screen_buffer,
     .stats = screen_stats,
     .paper = paper,

@@ -217,6 +217,13 @@ static sss_result svd_create(sss_gl_renderer *r, void *state, sss_error *err)
 {
     return create_variant(r, state, SSSS_VARIANT_SVD, &gl_technique_ssss_svd.info, r->params, err);
 }
+/* New materials (sss_gl_renderer_update_materials): the kernels again, the targets and programs stay. */
+static sss_result ssss_materials_changed(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    ssss_state *s = state;
+    s->have_kernel = 0;
+    return make_kernel(r, s, r->params, err);
+}
 static sss_result ssss_resize(sss_gl_renderer *r, void *state, sss_error *err)
 {
     return ssss_resize_with(r, state, r->params, err);
@@ -360,6 +367,7 @@ const gl_technique gl_technique_ssss = {
     .resize = ssss_resize,
     .render = ssss_render,
     .destroy = ssss_destroy,
+    .materials_changed = ssss_materials_changed,
     .buffer = ssss_buffer,
     .stats = ssss_stats,
 };
@@ -373,6 +381,7 @@ const gl_technique gl_technique_ssss_gauss6 = {
     .resize = ssss_resize,
     .render = ssss_render,
     .destroy = ssss_destroy,
+    .materials_changed = ssss_materials_changed,
     .buffer = ssss_buffer,
     .stats = ssss_stats,
 };
@@ -386,6 +395,7 @@ const gl_technique gl_technique_ssss_svd = {
     .resize = ssss_resize,
     .render = ssss_render,
     .destroy = ssss_destroy,
+    .materials_changed = ssss_materials_changed,
     .buffer = ssss_buffer,
     .stats = ssss_stats,
 };
