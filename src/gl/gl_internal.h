@@ -285,6 +285,8 @@ typedef struct gl_inner_technique {
     void (*stats)(sss_gl_renderer *r, void *state, const double *params, sss_gl_stats *out);
     void (*destroy)(sss_gl_renderer *r, void *state);
     GLuint (*buffer)(sss_gl_renderer *r, void *state, const char *name);
+    /* as gl_technique's; NULL: it derives nothing from materials at creation */
+    sss_result (*materials_changed)(sss_gl_renderer *r, void *state, const double *params, sss_error *err);
 } gl_inner_technique;
 
 extern const gl_inner_technique gl_inner_maisch2020, gl_inner_ssss, gl_inner_screen;

@@ -1,7 +1,7 @@
 /* sss_gl_renderer_update_materials: a renderer created for one scene and given another with the same
  * geometry but other materials renders what a new renderer of that scene renders (the independent
- * computation), for techniques with no material state (maisch2020), with a materials_changed callback
- * (ssss: kernels, mertens2003: sampling tables) and without one (sam: a new technique state); with
+ * computation), for techniques with no material state (maisch2020) and with a materials_changed
+ * callback (ssss: kernels, mertens2003: sampling tables, sam: maps and its front side's kernels); with
  * the tables of sss_gl_tables_build; for a material edited in place (scene NULL); and when an object
  * stops scattering or was moved in place (everything rebuilt). Another geometry is refused, naming what differs, and the
  * renderer keeps drawing its scene. */

@@ -450,5 +450,5 @@ const gl_technique gl_technique_maisch2020 = {
 
 const gl_inner_technique gl_inner_maisch2020 = {
     &gl_technique_maisch2020, maisch2020_create, maisch2020_resize, maisch2020_render, maisch2020_stats,
-    maisch2020_destroy, maisch2020_buffer,
+    maisch2020_destroy, maisch2020_buffer, NULL,
 };

@@ -204,6 +204,19 @@ static sss_result sam_create(sss_gl_renderer *r, void *state, sss_error *err)
     return res;
 }
 
+/* New materials (sss_gl_renderer_update_materials): the maps again (their kernel), the front side's
+ * material state; programs and targets stay. */
+static sss_result sam_materials_changed(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    sam_state *s = state;
+    sss_result res = make_maps(r, s, err);
+    if (res == SSS_OK && s->surface && s->surface->materials_changed) {
+        res = s->surface->materials_changed(r, s->surface_state, s->surface_params, err);
+        if (res != SSS_OK) sss_error_prefix(err, s->surface->tech->info.name);
+    }
+    return res;
+}
+
 static sss_result sam_resize(sss_gl_renderer *r, void *state, sss_error *err)
 {
     sam_state *s = state;
@@ -443,6 +456,7 @@ const gl_technique gl_technique_sam = {
     .resize = sam_resize,
     .render = sam_render,
     .destroy = sam_destroy,
+    .materials_changed = sam_materials_changed,
     .buffer = sam_buffer,
     .stats = sam_stats,
 };

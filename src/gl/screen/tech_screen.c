@@ -151,5 +151,5 @@ const gl_technique gl_technique_screen = {
 
 const gl_inner_technique gl_inner_screen = {
     &gl_technique_screen, screen_create_with, screen_resize_with, screen_render_with, screen_stats_with,
-    screen_destroy, screen_buffer,
+    screen_destroy, screen_buffer, NULL,
 };

@@ -218,11 +218,15 @@ static sss_result svd_create(sss_gl_renderer *r, void *state, sss_error *err)
     return create_variant(r, state, SSSS_VARIANT_SVD, &gl_technique_ssss_svd.info, r->params, err);
 }
 /* New materials (sss_gl_renderer_update_materials): the kernels again, the targets and programs stay. */
-static sss_result ssss_materials_changed(sss_gl_renderer *r, void *state, sss_error *err)
+static sss_result ssss_materials_changed_with(sss_gl_renderer *r, void *state, const double *params, sss_error *err)
 {
     ssss_state *s = state;
     s->have_kernel = 0;
-    return make_kernel(r, s, r->params, err);
+    return make_kernel(r, s, params, err);
+}
+static sss_result ssss_materials_changed(sss_gl_renderer *r, void *state, sss_error *err)
+{
+    return ssss_materials_changed_with(r, state, r->params, err);
 }
 static sss_result ssss_resize(sss_gl_renderer *r, void *state, sss_error *err)
 {
@@ -403,4 +407,5 @@ const gl_technique gl_technique_ssss_svd = {
 /* The separable variant with its parameters passed explicitly (sam's front side). */
 const gl_inner_technique gl_inner_ssss = {
     &gl_technique_ssss, ssss_create_with, ssss_resize_with, ssss_render_with, ssss_stats_with, ssss_destroy, ssss_buffer,
+    ssss_materials_changed_with,
 };
