@@ -158,13 +158,16 @@ typedef struct sss_gl_renderer_desc {
 #define SSS_GL_MAX_SUPERSAMPLE 4
 
 /* The CPU-only tables sss_gl_renderer_create would compute for `scene` under `desc` (its technique and
- * parameters; sizes are ignored): today the kernel LUT cascade of every distinct subsurface material
- * (Maisch & Ropinski 2020, section 7.1), most of the cost of a renderer on software GL. Needs no GL
+ * parameters; sizes are ignored): the kernel LUT cascade of every distinct subsurface material
+ * (Maisch & Ropinski 2020, section 7.1), most of the cost of a renderer on software GL, and for sam the
+ * adjacency maps of the subsurface objects (not with desc.data_file: the file is read instead). Needs no GL
  * context and touches nothing shared, so it may run on any thread (the viewer builds the tables of an
  * edited scene on a worker while its window keeps drawing), while another thread reads the same scene.
  * A renderer created with desc.tables takes a material's LUTs from them when the material, its PBD table
- * and the LUT parameters match exactly, and computes them otherwise. Errors as sss_gl_renderer_create's
- * for the technique and parameters, and the LUT builder's, prefixed "kernel LUT". */
+ * and the LUT parameters match exactly, and sam's maps when they were built for the same scene object,
+ * parameter values and data file; it computes them otherwise. Errors as sss_gl_renderer_create's for the
+ * technique and parameters, the LUT builder's, prefixed "kernel LUT", and the map builder's, prefixed
+ * "sam". */
 sss_result sss_gl_tables_build(const struct sss_scene *scene, const sss_gl_renderer_desc *desc, sss_gl_tables **out,
                                sss_error *err);
 void sss_gl_tables_free(sss_gl_tables *tables); /* NULL is accepted */

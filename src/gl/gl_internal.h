@@ -264,6 +264,11 @@ typedef struct gl_technique {
     /* after sss_gl_renderer_update_materials re-uploaded the material records and LUTs (same meshes and
      * subsurface objects): refresh what create() derived from materials. NULL: destroy + create. */
     sss_result (*materials_changed)(sss_gl_renderer *r, void *state, sss_error *err);
+    /* optional: CPU-only data of the technique for r->scene under r's parameters, made by
+     * sss_gl_tables_build without GL (any thread; r holds the scene, data_file and parameters only).
+     * create() and materials_changed() find it with gl_tables_technique_data. */
+    sss_result (*tables_build)(const sss_gl_renderer *r, void **out, sss_error *err);
+    void (*tables_free)(void *data);
     /* optional: intermediate buffers by name (sss_gl_renderer_read_buffer), statistics */
     GLuint (*buffer)(sss_gl_renderer *r, void *state, const char *name);
     void (*stats)(sss_gl_renderer *r, void *state, sss_gl_stats *out);
@@ -389,6 +394,9 @@ void gl_lut_cascade_free(gl_lut_cascade *c);
 /* tables.c: the cascade of m precomputed in t under r's LUT parameters (owned by t), or NULL when t is
  * NULL or has none (the caller computes it). */
 const gl_lut_cascade *gl_tables_find(const sss_gl_tables *t, const sss_gl_renderer *r, const sss_scene_material *m);
+/* The technique's data in t (tables_build) when t was built for r's technique, scene object, data file
+ * and parameter values; NULL otherwise. */
+const void *gl_tables_technique_data(const sss_gl_tables *t, const sss_gl_renderer *r);
 /* renderer.c: the technique a desc names (else the scene's), and r->params / r->shared from its
  * defaults, the preset and desc.params (r->tech set); no GL. */
 sss_result gl_technique_for(const sss_scene *scene, const sss_gl_renderer_desc *desc, const gl_technique **out,

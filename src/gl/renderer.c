@@ -210,7 +210,7 @@ sss_result gl_params_from_desc(sss_gl_renderer *r, const sss_gl_renderer_desc *d
     return res;
 }
 
-/* Everything of a new renderer that needs the GL; r->tables is read here only. */
+/* Everything of a new renderer that needs the GL; r->tables is read here only (scene and technique). */
 static sss_result create_gl_parts(sss_gl_renderer *r, const sss_gl_tables *tables, sss_error *err)
 {
     while (glGetError() != GL_NO_ERROR) {}
@@ -222,10 +222,10 @@ static sss_result create_gl_parts(sss_gl_renderer *r, const sss_gl_tables *table
         glCreateVertexArrays(1, &r->vao_empty);
         res = build_scene(r, err);
     }
-    r->tables = NULL;
     if (res == SSS_OK) res = create_frame(r, err);
     if (res == SSS_OK) res = gl_ssaa_resize(r, err);
     if (res == SSS_OK) res = gl_runtime_technique_create(r, err);
+    r->tables = NULL;
     if (res == SSS_OK) res = gl_check(r->ctx, "renderer creation", err);
     return res;
 }

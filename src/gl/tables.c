@@ -20,6 +20,12 @@ struct sss_gl_tables {
     int count;
     lut_key *keys;
     gl_lut_cascade *cascades; /* count, ready for upload (normalised RGBA texels) */
+    /* the technique's own (gl_technique.tables_build), valid for what it was built with */
+    const gl_technique *tech;
+    const sss_scene *scene;
+    const char *data_file;
+    double params[GL_MAX_PARAMS];
+    void *tech_data;
 };
 
 static void key_of(const sss_gl_renderer *r, const sss_scene_material *m, lut_key *k)
@@ -79,6 +85,7 @@ sss_result sss_gl_tables_build(const sss_scene *scene, const sss_gl_renderer_des
     }
     r->scene = scene;
     sss_result res = gl_technique_for(scene, &d, &r->tech, err);
+    r->data_file = d.data_file;
     if (res == SSS_OK) res = gl_params_from_desc(r, &d, err);
     size_t n = scene->object_count ? scene->object_count : 1;
     t->keys = calloc(n, sizeof *t->keys);
@@ -88,6 +95,14 @@ sss_result sss_gl_tables_build(const sss_scene *scene, const sss_gl_renderer_des
         if (scene->objects[i].material.type == SSS_SCENE_MATERIAL_SUBSURFACE)
             res = add_material(t, r, &scene->objects[i].material, err);
     if (res != SSS_OK) sss_error_prefix(err, "kernel LUT");
+    if (res == SSS_OK && r->tech->tables_build) {
+        t->tech = r->tech;
+        t->scene = scene;
+        t->data_file = r->data_file;
+        memcpy(t->params, r->params, sizeof t->params);
+        res = r->tech->tables_build(r, &t->tech_data, err);
+        if (res != SSS_OK) sss_error_prefix(err, r->tech->info.name);
+    }
     free(r);
     if (res != SSS_OK) {
         sss_gl_tables_free(t);
@@ -101,6 +116,7 @@ void sss_gl_tables_free(sss_gl_tables *t)
 {
     if (!t) return;
     for (int i = 0; t->cascades && i < t->count; i++) gl_lut_cascade_free(&t->cascades[i]);
+    if (t->tech_data && t->tech->tables_free) t->tech->tables_free(t->tech_data);
     free(t->keys);
     free(t->cascades);
     free(t);
@@ -113,4 +129,12 @@ const gl_lut_cascade *gl_tables_find(const sss_gl_tables *t, const sss_gl_render
     key_of(r, m, &k);
     int i = find_key(t, &k);
     return i >= 0 ? &t->cascades[i] : NULL;
+}
+
+const void *gl_tables_technique_data(const sss_gl_tables *t, const sss_gl_renderer *r)
+{
+    if (!t || !t->tech_data || t->tech != r->tech || t->scene != r->scene || t->data_file != r->data_file) return NULL;
+    for (int i = 0; i < r->tech->info.param_count; i++)
+        if (t->params[i] != r->params[i]) return NULL;
+    return t->tech_data;
 }

@@ -138,7 +138,7 @@ static void applied(viewer *v, const view_build_result *b)
     v->rebuild_tables_ms = b->tables_ms;
     view_invalidate(v);
     view_message(v,
-                 "rebuilt in %.1f ms (worker %.1f ms: scene %.1f ms, LUTs %.1f ms, while %d frames were drawn, the "
+                 "rebuilt in %.1f ms (worker %.1f ms: scene %.1f ms, tables %.1f ms, while %d frames were drawn, the "
                  "longest %.1f ms; then %s on the window thread %.1f ms; %d older edits dropped): %s",
                  v->rebuild_ms, b->scene_ms + b->tables_ms, b->scene_ms, b->tables_ms, v->build_frames,
                  v->build_longest_ms, v->rebuild_in_place ? "the materials updated in place" : "a new renderer",

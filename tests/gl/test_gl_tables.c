@@ -2,10 +2,12 @@
  * same scene) and handed to sss_gl_renderer_create give the image the renderer computes by itself,
  * bit for bit, and are taken only where they match: another LUT size, another scene object (its own
  * PBD tables) or NULL make the renderer compute its own (sss_gl_stats.luts_precomputed counts what it
- * took). Errors name the technique and the parameter. */
+ * took). sam's adjacency maps are taken the same way. Errors name the technique and the parameter. */
 #include <pthread.h>
 
 #include "gl_test_util.h"
+#include "gl/gl_internal.h"
+#include "gl/sam/tech_sam.h"
 
 #define W 64
 #define H 48
@@ -87,6 +89,54 @@ static void check_same_image(void)
     sss_scene_free(&other);
 }
 
+/* sam's adjacency maps come from the tables when they were built for the same scene object and
+ * parameters (the renderer then builds none: build_seconds 0) and give the same image; tables of
+ * another seed are not taken. */
+static int render_sam(const sss_scene *scene, const sss_gl_tables *tables, const sss_gl_param_value *p, int np,
+                      sss_image *out, double *build_seconds)
+{
+    sss_gl_renderer_desc d = gt_desc("sam", p, np, 0);
+    d.width = W;
+    d.height = H;
+    d.tables = tables;
+    sss_gl_renderer *r = NULL;
+    sss_error err = {0};
+    memset(out, 0, sizeof *out);
+    int ok = sss_gl_renderer_create(gt_ctx(), scene, &d, &r, &err) == SSS_OK &&
+             sss_gl_renderer_render(r, 0.0, &err) == SSS_OK && sss_image_create(out, W, H, &err) == SSS_OK &&
+             sss_gl_renderer_read(r, out, &err) == SSS_OK;
+    if (!ok) fprintf(stderr, "render sam: %s\n", err.message);
+    *build_seconds = r ? ((sam_state *)r->tech_state)->build_seconds : -1.0;
+    sss_gl_renderer_destroy(r);
+    return ok;
+}
+
+static void check_sam_maps(void)
+{
+    sss_scene scene;
+    CHECK(gt_load("gl_area.json", &scene));
+    sss_gl_param_value seed = {"seed", 7};
+    sss_gl_renderer_desc d = gt_desc("sam", NULL, 0, 0), d7 = gt_desc("sam", &seed, 1, 0);
+    sss_gl_tables *t = NULL, *t7 = NULL;
+    sss_error err = {0};
+    CHECK_MSG(sss_gl_tables_build(&scene, &d, &t, &err) == SSS_OK && sss_gl_tables_build(&scene, &d7, &t7, &err) == SSS_OK,
+              "%s", err.message);
+    sss_image own = {0}, with = {0}, other = {0};
+    double own_s = -1, with_s = -1, other_s = -1;
+    CHECK(render_sam(&scene, NULL, NULL, 0, &own, &own_s) && render_sam(&scene, t, NULL, 0, &with, &with_s) &&
+          render_sam(&scene, t7, NULL, 0, &other, &other_s));
+    CHECK_MSG(own_s > 0.0 && with_s == 0.0 && other_s > 0.0, "map build seconds: own %g, with tables %g, other seed %g",
+              own_s, with_s, other_s);
+    CHECK(memcmp(own.pixels, with.pixels, sizeof(float) * 3 * W * H) == 0);
+    CHECK(memcmp(own.pixels, other.pixels, sizeof(float) * 3 * W * H) == 0);
+    sss_gl_tables_free(t);
+    sss_gl_tables_free(t7);
+    sss_image_free(&own);
+    sss_image_free(&with);
+    sss_image_free(&other);
+    sss_scene_free(&scene);
+}
+
 static void check_errors(void)
 {
     sss_scene scene;
@@ -109,6 +159,7 @@ static void check_errors(void)
 int main(void)
 {
     check_same_image();
+    check_sam_maps();
     check_errors();
     return CHECK_DONE();
 }

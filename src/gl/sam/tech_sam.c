@@ -139,11 +139,68 @@ static void free_maps(sam_state *s)
 /* The parameters the maps are made for (tech_sam.h: key). */
 static const int key_param[SAM_KEYS] = {P_N, P_SAMPLES, P_SEED, P_TRANSLUCENCY, P_BACK_TRIS, P_BACK_SPLAT};
 
+/* How the maps are made under r's parameters n, samples, seed, backside_* and data file. */
+static sss_result map_desc(const sss_gl_renderer *r, sam_data_desc *d, sss_error *err)
+{
+    memset(d, 0, sizeof *d);
+    d->n = (uint32_t)gl_param(r, P_N);
+    d->samples = (uint32_t)gl_param(r, P_SAMPLES);
+    d->seed = (uint64_t)gl_param(r, P_SEED);
+    d->backside_triangles = (uint32_t)gl_param(r, P_BACK_TRIS);
+    d->backside_splat = (int)gl_param(r, P_BACK_SPLAT);
+    if (d->backside_triangles > 0 && d->backside_splat)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "parameters backside_triangles and backside_splat exclude each other");
+    d->file = r->data_file;
+    return SSS_OK;
+}
+
+/* sss_gl_tables: the maps of every subsurface object built without GL (a worker of the viewer builds
+ * them with the LUTs), per scene object (vertex_count 0 for the others). Not with a .sam file, whose
+ * read is cheap, nor without translucency (no map is needed). */
+typedef struct sam_tables {
+    size_t count;
+    sss_sam *maps;
+} sam_tables;
+
+static void sam_tables_free(void *data)
+{
+    sam_tables *t = data;
+    if (!t) return;
+    for (size_t i = 0; i < t->count; i++) sss_sam_free(&t->maps[i]);
+    free(t->maps);
+    free(t);
+}
+
+static sss_result sam_tables_build(const sss_gl_renderer *r, void **out, sss_error *err)
+{
+    *out = NULL;
+    sam_data_desc d;
+    sss_result res = map_desc(r, &d, err);
+    if (res != SSS_OK || d.file || gl_param(r, P_TRANSLUCENCY) == 0.0) return res;
+    sam_tables *t = calloc(1, sizeof *t);
+    size_t n = r->scene->object_count;
+    if (t) t->maps = calloc(n ? n : 1, sizeof *t->maps);
+    if (!t || !t->maps) {
+        sam_tables_free(t);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (sam maps)");
+    }
+    t->count = n;
+    for (size_t i = 0; i < n && res == SSS_OK; i++) {
+        if (r->scene->objects[i].material.type != SSS_SCENE_MATERIAL_SUBSURFACE) continue;
+        int from_file = 0;
+        double seconds = 0.0;
+        res = sam_map_build(r->scene, (int)i, &d, &t->maps[i], &from_file, &seconds, err);
+    }
+    if (res != SSS_OK) sam_tables_free(t);
+    else *out = t;
+    return res;
+}
+
 /* The maps of every subsurface object, for the parameters n, samples, seed, backside_* (key remembered
  * so that a change of them rebuilds the maps at the next resize/render). */
 static sss_result make_maps(sss_gl_renderer *r, sam_state *s, sss_error *err)
 {
-    sss_result res = SSS_OK;
     free_maps(s);
     for (int k = 0; k < SAM_KEYS; k++) s->key[k] = gl_param(r, key_param[k]);
     int subsurface = 0;
@@ -152,16 +209,10 @@ static sss_result make_maps(sss_gl_renderer *r, sam_state *s, sss_error *err)
     s->objs = calloc(subsurface ? (size_t)subsurface : 1, sizeof *s->objs);
     if (!s->objs) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (sam objects)");
     sam_data_desc d;
-    memset(&d, 0, sizeof d);
-    d.n = (uint32_t)gl_param(r, P_N);
-    d.samples = (uint32_t)gl_param(r, P_SAMPLES);
-    d.seed = (uint64_t)gl_param(r, P_SEED);
-    d.backside_triangles = (uint32_t)gl_param(r, P_BACK_TRIS);
-    d.backside_splat = (int)gl_param(r, P_BACK_SPLAT);
-    if (d.backside_triangles > 0 && d.backside_splat)
-        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
-                             "parameters backside_triangles and backside_splat exclude each other");
-    d.file = r->data_file;
+    sss_result res = map_desc(r, &d, err);
+    if (res != SSS_OK) return res;
+    const sam_tables *pre = gl_tables_technique_data(r->tables, r);
+    if (pre && pre->count == r->scene->object_count) d.prebuilt = pre->maps;
     sss_error mismatch = {0};
     d.mismatch = &mismatch;
     int from_file = 0;
@@ -457,6 +508,8 @@ const gl_technique gl_technique_sam = {
     .render = sam_render,
     .destroy = sam_destroy,
     .materials_changed = sam_materials_changed,
+    .tables_build = sam_tables_build,
+    .tables_free = sam_tables_free,
     .buffer = sam_buffer,
     .stats = sam_stats,
 };

@@ -57,6 +57,8 @@ typedef struct sam_data_desc {
     int backside_splat;          /* maps built here: back side on the object's splat mesh / splat_triangles */
     const char *file;          /* a .sam file for the objects whose mesh it matches, or NULL */
     sss_error *mismatch;       /* receives why the file does not fit an object (first one only) */
+    const sss_sam *prebuilt;   /* per scene object: maps built beforehand (sss_gl_tables; vertex_count 0:
+                                  none), used instead of the file or a build; NULL: none */
 } sam_data_desc;
 
 /* The technique's state (tests read the per-object buffers through it). */
@@ -82,7 +84,11 @@ typedef struct sam_state {
     int surface_kind; /* the surface parameter the surface technique was made for */
 } sam_state;
 
-/* Builds (or reads) the map of scene object `index` and uploads it. */
+/* The map of scene object `index`: read from d->file when it fits the object (*from_file 1), else built
+ * (*seconds: the build's time). CPU only. */
+sss_result sam_map_build(const sss_scene *scene, int index, const sam_data_desc *d, sss_sam *sam, int *from_file,
+                         double *seconds, sss_error *err);
+/* Builds (or reads, or takes from d->prebuilt) the map of scene object `index` and uploads it. */
 sss_result sam_object_create(sss_gl_renderer *r, int index, const sam_data_desc *d, sam_object *out, sss_error *err);
 void sam_object_free(sam_object *o);
 

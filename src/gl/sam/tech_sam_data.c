@@ -125,6 +125,46 @@ static sss_result upload_back(const sss_sam *sam, sam_object *o, sss_error *err)
     return upload_topology(&view, &o->back_off, &o->back_topo, &o->bytes, err);
 }
 
+sss_result sam_map_build(const sss_scene *scene, int index, const sam_data_desc *d, sss_sam *sam, int *from_file,
+                         double *seconds, sss_error *err)
+{
+    const sss_scene_object *so = &scene->objects[index];
+    sss_result res = SSS_ERROR_INVALID_ARGUMENT;
+    *from_file = 0;
+    *seconds = 0.0;
+    if (d->file) {
+        /* Used when it belongs to this object; otherwise the map is built (the file may be another
+         * object's). A corrupted or unreadable file is an error. */
+        sss_error e2 = {0};
+        res = sss_sam_read_object(d->file, scene, (size_t)index, sam, &e2);
+        if (res != SSS_OK && res != SSS_ERROR_INVALID_ARGUMENT) {
+            if (err) *err = e2;
+            return res;
+        }
+        if (res != SSS_OK && d->mismatch && d->mismatch->code == SSS_OK) *d->mismatch = e2;
+        *from_file = res == SSS_OK;
+    }
+    if (res == SSS_OK) return res;
+    sss_sam_desc bd;
+    memset(&bd, 0, sizeof bd);
+    bd.n = d->n;
+    bd.samples = d->samples;
+    bd.seed = d->seed;
+    bd.backside_triangles = d->backside_triangles;
+    if (d->backside_splat) {
+        /* the scene's low-resolution mesh of the object (docs/scene-format.md: splat_mesh, splat_triangles) */
+        if (so->splat_mesh.vertex_count) bd.backside = &so->splat_mesh;
+        else if (so->splat_triangles) bd.backside_triangles = so->splat_triangles;
+        else
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                                 "backside_splat: the object has neither splat_mesh nor splat_triangles");
+    }
+    sss_sam_stats st;
+    res = sss_sam_build_object(scene, (size_t)index, &bd, sam, &st, err);
+    if (res == SSS_OK) *seconds = st.seconds;
+    return res;
+}
+
 sss_result sam_object_create(sss_gl_renderer *r, int index, const sam_data_desc *d, sam_object *out, sss_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -133,39 +173,11 @@ sss_result sam_object_create(sss_gl_renderer *r, int index, const sam_data_desc 
     out->index = index;
     out->deforming = so->animation.type != SSS_ANIMATION_NONE;
     sss_sam sam;
-    sss_result res = SSS_ERROR_INVALID_ARGUMENT;
-    if (d->file) {
-        /* Used when it belongs to this object; otherwise the map is built (the file may be another
-         * object's). A corrupted or unreadable file is an error. */
-        sss_error e2 = {0};
-        res = sss_sam_read_object(d->file, scene, (size_t)index, &sam, &e2);
-        if (res != SSS_OK && res != SSS_ERROR_INVALID_ARGUMENT) {
-            if (err) *err = e2;
-            return res;
-        }
-        if (res != SSS_OK && d->mismatch && d->mismatch->code == SSS_OK) *d->mismatch = e2;
-        out->from_file = res == SSS_OK;
-    }
-    if (res != SSS_OK) {
-        sss_sam_desc bd;
-        memset(&bd, 0, sizeof bd);
-        bd.n = d->n;
-        bd.samples = d->samples;
-        bd.seed = d->seed;
-        bd.backside_triangles = d->backside_triangles;
-        if (d->backside_splat) {
-            /* the scene's low-resolution mesh of the object (docs/scene-format.md: splat_mesh, splat_triangles) */
-            if (so->splat_mesh.vertex_count) bd.backside = &so->splat_mesh;
-            else if (so->splat_triangles) bd.backside_triangles = so->splat_triangles;
-            else
-                return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
-                                     "backside_splat: the object has neither splat_mesh nor splat_triangles");
-        }
-        sss_sam_stats st;
-        res = sss_sam_build_object(scene, (size_t)index, &bd, &sam, &st, err);
-        if (res != SSS_OK) return res;
-        out->build_seconds = st.seconds;
-    }
+    const sss_sam *prebuilt = d->prebuilt && d->prebuilt[index].vertex_count ? &d->prebuilt[index] : NULL;
+    sss_result res = SSS_OK;
+    if (prebuilt) sam = *prebuilt; /* borrowed: the tables own it */
+    else res = sam_map_build(scene, index, d, &sam, &out->from_file, &out->build_seconds, err);
+    if (res != SSS_OK) return res;
     sss_profile prof;
     sss_sam_profile_table table;
     memset(&table, 0, sizeof table);
@@ -209,7 +221,7 @@ sss_result sam_object_create(sss_gl_renderer *r, int index, const sam_data_desc 
         out->rd_size = table.size;
     }
     sss_sam_profile_table_free(&table);
-    sss_sam_free(&sam);
+    if (!prebuilt) sss_sam_free(&sam);
     if (res != SSS_OK) {
         sam_object_free(out);
         return res;
