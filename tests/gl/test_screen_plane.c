@@ -56,10 +56,26 @@ static int screen_buffer(const sss_scene *scene, const sss_gl_param_value *param
     return ok;
 }
 
-static int screen_sum(const sss_scene *scene, int filtered, sss_image *out)
+static int screen_sum(const sss_scene *scene, int filtered, int outer_divisor, sss_image *out)
 {
-    sss_gl_param_value p[2] = {{"filtered_layers", filtered}, {"brightening", 0}};
-    return screen_buffer(scene, p, 2, out);
+    sss_gl_param_value p[3] = {{"filtered_layers", filtered}, {"brightening", 0}, {"outer_divisor", outer_divisor}};
+    return screen_buffer(scene, p, 3, out);
+}
+
+/* Largest difference between two sums over the pixels at least `border` pixels inside the image, all
+ * channels, relative to a's mean. */
+static double worst_difference(const sss_image *a, const sss_image *b, int border)
+{
+    double mean = 0.0, worst = 0.0;
+    size_t n = 3 * (size_t)a->width * a->height;
+    for (size_t i = 0; i < n; i++) mean += a->pixels[i] / (double)n;
+    for (int y = border; y < a->height - border; y++)
+        for (int x = border; x < a->width - border; x++)
+            for (int c = 0; c < 3; c++) {
+                size_t i = 3 * ((size_t)y * a->width + x) + c;
+                if (fabs(a->pixels[i] - b->pixels[i]) / mean > worst) worst = fabs(a->pixels[i] - b->pixels[i]) / mean;
+            }
+    return worst;
 }
 
 /* Largest relative mirror difference over all pixels and channels, normalised by the image mean. */
@@ -107,13 +123,44 @@ static double worst_kink(const sss_image *im, int axis)
     return worst;
 }
 
+/* outer_divisor d: the outer layers once per d x d block, upsampled. On the head-on plane their sum
+ * is the kernel's integral over the image outside the inner square, a smooth function of the pixel
+ * (the pattern moves with it, the cells' integrals do not depend on where they are evaluated), so the
+ * blocks' sum must equal the per-pixel one up to the interpolation of a smooth function, keep the
+ * mirror symmetry and have no steps, also where the blocks do not divide the image (150 / 4). */
+static void check_blocks(const sss_scene *scene, const sss_image *exact, int width, int height)
+{
+    for (int d = 2; d <= 4; d += 2) {
+        sss_image im;
+        if (!screen_sum(scene, 1, d, &im)) {
+            CHECK(0);
+            continue;
+        }
+        CHECK(sss_image_count_nonfinite(&im) == 0);
+        double diff = worst_difference(exact, &im, BORDER), diff_all = worst_difference(exact, &im, 0);
+        double ax = asymmetry(&im, 0), ay = asymmetry(&im, 1), kx = worst_kink(&im, 0), ky = worst_kink(&im, 1);
+        printf("%dx%d outer_divisor=%d: worst difference to per-pixel %.4f (with the border %.4f), asymmetry x %.4f y %.4f, kink %.4f %.4f\n",
+               width, height, d, diff, diff_all, ax, ay, kx, ky);
+        /* measured inside the border band 0.6% (d = 2) and 2.4% (d = 4) at 150 x 90, 0.3% and 1.6% at
+         * 128 x 128; with the border, where the truncated integral falls off along a curve the bilinear
+         * blocks flatten, 2.4% and 5.7% */
+        CHECK_MSG(diff < (d == 2 ? 0.01 : 0.03), "%dx%d outer_divisor=%d: blocks differ from per-pixel by %.4f", width,
+                  height, d, diff);
+        CHECK_MSG(diff_all < (d == 2 ? 0.03 : 0.07), "%dx%d outer_divisor=%d: at the border %.4f", width, height, d,
+                  diff_all);
+        CHECK_MSG(ax < 0.06 && ay < 0.06, "%dx%d outer_divisor=%d not mirror-symmetric", width, height, d);
+        CHECK_MSG(kx < 0.02 && ky < 0.02, "%dx%d outer_divisor=%d: the sum has a step", width, height, d);
+        sss_image_free(&im);
+    }
+}
+
 static void check_size(int width, int height)
 {
     sss_scene scene;
     CHECK(plane(width, height, &scene));
     for (int filtered = 1; filtered >= 0; filtered = filtered == 1 ? 2 : filtered == 2 ? 0 : -1) {
         sss_image im;
-        if (!screen_sum(&scene, filtered, &im)) {
+        if (!screen_sum(&scene, filtered, 1, &im)) {
             CHECK(0);
             continue;
         }
@@ -133,6 +180,7 @@ static void check_size(int width, int height)
         /* Steps (filtered reads only: texelFetch is blocky by design): measured <= 0.8% inside the
          * border band; a wide sample switching off as its centre left the image gave 23% (150 x 90). */
         if (filtered) CHECK_MSG(kx < 0.02 && ky < 0.02, "%dx%d: the screen-space sum has a step", width, height);
+        if (filtered == 1) check_blocks(&scene, &im, width, height);
         sss_image_free(&im);
     }
     sss_scene_free(&scene);
@@ -152,21 +200,24 @@ static void check_energy(void)
     }
     const sss_scene_material *m = &scene.objects[0].material;
     double ft = gt_normal_transmission(m, NULL);
-    for (int mode = 1; mode <= 2; mode++)
-        for (int bright = 0; bright <= 1; bright++) {
-            sss_gl_param_value p[2] = {{"filtered_layers", mode}, {"brightening", bright}};
+    /* mode 3: filtered_layers=1 with the outer layers per 2 x 2 block (outer_divisor=2), same bound */
+    for (int mode = 1; mode <= 3; mode++)
+        for (int bright = 0; bright <= (mode == 3 ? 0 : 1); bright++) {
+            sss_gl_param_value p[3] = {{"filtered_layers", mode == 2 ? 2 : 1}, {"brightening", bright},
+                                       {"outer_divisor", mode == 3 ? 2 : 1}};
             sss_image im;
-            if (!screen_buffer(&scene, p, 2, &im)) {
+            if (!screen_buffer(&scene, p, 3, &im)) {
                 CHECK(0);
                 continue;
             }
             double mean[3];
             centre_mean(&im, mean);
-            printf("plane energy, filtered_layers=%d brightening=%d:", mode, bright);
+            printf("plane energy, filtered_layers=%d brightening=%d outer_divisor=%d:", mode == 2 ? 2 : 1, bright,
+                   mode == 3 ? 2 : 1);
             for (int c = 0; c < 3; c++) {
                 double expect = ft * 1.0 * m->albedo[c];
                 printf(" %+.2f%%", 100.0 * (mean[c] / expect - 1.0));
-                if (!bright) CHECK_REL(mean[c], expect, mode == 1 ? 0.015 : 0.025);
+                if (!bright) CHECK_REL(mean[c], expect, mode == 2 ? 0.025 : 0.015);
             }
             printf("\n");
             sss_image_free(&im);
