@@ -200,11 +200,12 @@ static void check_energy(void)
     }
     const sss_scene_material *m = &scene.objects[0].material;
     double ft = gt_normal_transmission(m, NULL);
-    /* mode 3: filtered_layers=1 with the outer layers per 2 x 2 block (outer_divisor=2), same bound */
-    for (int mode = 1; mode <= 3; mode++)
-        for (int bright = 0; bright <= (mode == 3 ? 0 : 1); bright++) {
+    /* modes 3 and 4: filtered_layers=1 with the outer layers per 2 x 2 and 4 x 4 block (outer_divisor), same bound */
+    for (int mode = 1; mode <= 4; mode++)
+        for (int bright = 0; bright <= (mode >= 3 ? 0 : 1); bright++) {
+            int outer_divisor = mode == 3 ? 2 : mode == 4 ? 4 : 1;
             sss_gl_param_value p[3] = {{"filtered_layers", mode == 2 ? 2 : 1}, {"brightening", bright},
-                                       {"outer_divisor", mode == 3 ? 2 : 1}};
+                                       {"outer_divisor", outer_divisor}};
             sss_image im;
             if (!screen_buffer(&scene, p, 3, &im)) {
                 CHECK(0);
@@ -213,7 +214,7 @@ static void check_energy(void)
             double mean[3];
             centre_mean(&im, mean);
             printf("plane energy, filtered_layers=%d brightening=%d outer_divisor=%d:", mode == 2 ? 2 : 1, bright,
-                   mode == 3 ? 2 : 1);
+                   outer_divisor);
             for (int c = 0; c < 3; c++) {
                 double expect = ft * 1.0 * m->albedo[c];
                 printf(" %+.2f%%", 100.0 * (mean[c] / expect - 1.0));

@@ -42,7 +42,7 @@ static const sss_gl_param_info params[] = {
     {"layer_split", SSS_GL_PARAM_INT, 8, 1, 64,
      "most pieces per oblique outer-layer cell (e x its face-on area), at most footprint_split: the split loop "
      "runs to the largest count among neighbouring pixels; 1: one disc per cell (the outer layers' cost halves)"},
-    {"outer_divisor", SSS_GL_PARAM_INT, 1, 1, 4,
+    {"outer_divisor", SSS_GL_PARAM_INT, 4, 1, 4,
      "outer layers evaluated once per d x d block of pixels and upsampled (object- and depth-aware; pixels no "
      "block matches evaluate them); the inner (2n+1)^2 block stays per pixel; 1: every pixel (the paper)"},
 };
