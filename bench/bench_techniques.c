@@ -5,6 +5,7 @@
  * follow the object's size.
  *
  * usage: bench_techniques [SCENE.json] [--techniques a,b,...] [--frames N] [--size WxH ...] [--zoom F ...]
+ * A technique may carry parameters as in `sss eval`: NAME:param=value[:param=value] (maisch2020:outer_divisor=2).
  * Timing method: glFinish + monotonic clock per pass on software GL (llvmpipe), GL_TIME_ELAPSED
  * queries on GPUs. Default scene: scenes/gl_dragon.json. */
 #include <stdio.h>
@@ -15,6 +16,7 @@
 #include "sss/scene.h"
 
 #define MAX_LIST 16
+#define MAX_SPEC_PARAMS 16
 
 typedef struct result {
     const char *technique;
@@ -23,12 +25,39 @@ typedef struct result {
     int ok;
 } result;
 
+/* Splits a spec NAME[:param=value...] into name and parameters; the pointers point into `copy`. */
+static int parse_spec(const char *spec, char *copy, size_t cap, sss_gl_param_value *params, int *count)
+{
+    snprintf(copy, cap, "%s", spec);
+    *count = 0;
+    char *colon = strchr(copy, ':');
+    while (colon) {
+        *colon = '\0';
+        char *item = colon + 1, *eq = strchr(item, '=');
+        colon = strchr(item, ':');
+        if (!eq || *count == MAX_SPEC_PARAMS) return 0;
+        *eq = '\0';
+        params[(*count)++] = (sss_gl_param_value){item, atof(eq + 1)};
+    }
+    return 1;
+}
+
 static int time_technique(sss_gl_context *ctx, const sss_scene *scene, int w, int h, int frames, result *out)
 {
     sss_error err = {0};
     sss_gl_renderer_desc d;
     memset(&d, 0, sizeof d);
-    d.technique = out->technique;
+    char name[256];
+    sss_gl_param_value params[MAX_SPEC_PARAMS];
+    int nparams = 0;
+    if (!parse_spec(out->technique, name, sizeof name, params, &nparams)) {
+        fprintf(stderr, "bench_techniques: %s: expected NAME:param=value[:param=value]\n", out->technique);
+        out->ok = 0;
+        return 0;
+    }
+    d.technique = name;
+    d.params = params;
+    d.param_count = nparams;
     d.width = w;
     d.height = h;
     d.timings = 1;

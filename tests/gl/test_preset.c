@@ -23,6 +23,7 @@ static const sss_gl_param_value maisch_paper[] = {
     {"layer_distance_bound", 0},
     {"offscreen_splats", 0},   /* section 5: splats for the hidden side, none off the image */
     {"layers_to_reach", 0},    /* 4.2: ten layers */
+    {"outer_divisor", 1},      /* 4.2: the whole pattern at every pixel */
     {"lut_size", 512},         /* 7.1 */
     {"lut_sqrt_axes", 0},      /* 7.1: one linear table */
     {"lut_levels", 1},

@@ -23,12 +23,20 @@
 // FILTERED_LAYERS (filtered_layers) and FOOTPRINT_SPLIT (footprint_split > 1, layer_split > 1) are compiled in
 // (tech_maisch2020.c): llvmpipe runs every side of a branch for all lanes, masked, so a branch on a
 // uniform costs the untaken side too (PER_TEXEL_READS alone once doubled the pass).
+// OUTER_PASS (outer_divisor > 1, a departure: docs/maisch2020.md): the outer layers' sum integrates the
+// kernel over cells of 2^i pixels and varies smoothly over a surface, so 1 evaluates it alone once per
+// block of u_outer_divisor^2 pixels (at the block's mean pixel and position, one object), and 2 is the
+// full-resolution pass: the inner block per pixel plus the blocks' sums, upsampled with weights that
+// keep only blocks of the pixel's object near its tangent plane (pixels with none evaluate it exactly).
 #include "common.glsl"
 #ifndef FILTERED_LAYERS // without defines: the technique's defaults
 #define FILTERED_LAYERS 1
 #endif
 #ifndef FOOTPRINT_SPLIT
 #define FOOTPRINT_SPLIT 2
+#endif
+#ifndef OUTER_PASS
+#define OUTER_PASS 0 // 0: the whole pattern per pixel
 #endif
 
 layout(binding = 0) uniform sampler2D t_pos; // mips: xyz, w area
@@ -46,8 +54,15 @@ uniform int u_layers_to_reach; // layers past u_layers until the image (or r_max
 uniform int u_supersample;
 uniform int u_split; // footprint_split: most pieces per oblique full-resolution sample (<= 1: one disc)
 uniform int u_layer_split; // min(layer_split, footprint_split): most pieces per oblique outer cell
+uniform int u_outer_divisor; // OUTER_PASS 1, 2: render pixels per side of a block
 
-layout(location = 0) out vec4 o_sum;
+layout(location = 0) out vec4 o_sum; // OUTER_PASS 1: rgb the block's outer sum, w its object id + 1
+#if OUTER_PASS == 1
+layout(location = 1) out vec4 o_block_pos; // xyz the block's mean position (where its sum was evaluated)
+#elif OUTER_PASS == 2
+layout(binding = 3) uniform sampler2D t_outer;     // OUTER_PASS 1's o_sum
+layout(binding = 4) uniform sampler2D t_outer_pos; // OUTER_PASS 1's o_block_pos
+#endif
 
 // Texel coordinate (texel centres at k + 0.5) of the level-0 position sp in a level of `size` texels
 // of `texel` pixels. A level has floor(size / 2) texels, so its last texel also covers the odd
@@ -132,21 +147,11 @@ vec3 oblique_pixel(LutInfo L, vec3 xo, vec3 p, vec3 n, float a)
     return ap * s;
 }
 
-void main()
+// The inner kernel: the (2n + 1)^2 full-resolution samples around pixel px (one per render pixel;
+// with supersampling the square of 2n + 1 output pixels).
+vec3 inner_sum(LutInfo L, vec3 xo, float id, ivec2 px, ivec2 size0, float h)
 {
-    ivec2 px = ivec2(gl_FragCoord.xy);
-    vec4 I0 = texelFetch(t_irr, px, 0);
-    o_sum = vec4(0.0);
-    if (I0.w < 0.5) return;
-    int mat = int(objects[int(I0.w - 0.5)].anim.y);
-    if (materials[mat].albedo.w > 0.5) return;
-    vec3 xo = texelFetch(t_pos, px, 0).xyz;
-    LutInfo L = lut_info(mat);
-    float id = I0.w;
-    ivec2 size0 = textureSize(t_pos, 0);
     vec3 sum = vec3(0.0);
-    // the inner square's half-width h in render pixels (k = 1: n + 1/2, the (2n + 1)^2 pixels)
-    float h = float(max(u_supersample, 1)) * (float(u_n) + 0.5);
     int reach = int(ceil(h - 0.5));
     for (int dy = -reach; dy <= reach; dy++)
         for (int dx = -reach; dx <= reach; dx++) {
@@ -164,7 +169,13 @@ void main()
             sum += I.rgb * a * lut_eval(L, r, u_preintegrated != 0 ? a : 0.0);
 #endif
         }
-    vec2 centre = vec2(px) + 0.5;
+    return sum;
+}
+
+// The outer layers around the level-0 position `centre` (pixels) for a receiver at xo.
+vec3 outer_sum(LutInfo L, vec3 xo, float id, vec2 centre, ivec2 size0, float h)
+{
+    vec3 sum = vec3(0.0);
     float d_prev = 2.0 * h;
     float grow = float(u_nl) / float(u_nl - 2);
     int max_level = u_counts.w - 1;
@@ -284,5 +295,99 @@ void main()
         sum += bright * layer_sum;
         d_prev *= grow;
     }
+    return sum;
+}
+
+#if OUTER_PASS == 1
+// One block of u_outer_divisor^2 render pixels: the outer layers at the mean pixel and mean position of
+// its pixels of one subsurface object (the first one found), clipped to the image at odd sizes.
+void main()
+{
+    int d = u_outer_divisor;
+    ivec2 base = ivec2(gl_FragCoord.xy) * d;
+    ivec2 size0 = textureSize(t_pos, 0);
+    float id = 0.0;
+    int mat = 0;
+    vec3 xo = vec3(0.0);
+    vec2 centre = vec2(0.0);
+    float count = 0.0;
+    for (int y = 0; y < d; y++)
+        for (int x = 0; x < d; x++) {
+            ivec2 q = base + ivec2(x, y);
+            if (any(greaterThanEqual(q, size0))) continue;
+            vec4 I = texelFetch(t_irr, q, 0);
+            if (I.w < 0.5 || (id > 0.0 && I.w != id)) continue;
+            int m = int(objects[int(I.w - 0.5)].anim.y);
+            if (materials[m].albedo.w > 0.5) continue;
+            id = I.w;
+            mat = m;
+            xo += texelFetch(t_pos, q, 0).xyz;
+            centre += vec2(q) + 0.5;
+            count += 1.0;
+        }
+    o_sum = vec4(0.0);
+    o_block_pos = vec4(0.0);
+    if (count == 0.0) return;
+    xo /= count;
+    float h = float(max(u_supersample, 1)) * (float(u_n) + 0.5);
+    o_sum = vec4(outer_sum(lut_info(mat), xo, id, centre / count, size0, h), id);
+    o_block_pos = vec4(xo, 1.0);
+}
+#else
+#if OUTER_PASS == 2
+// The outer sum at pixel px from the blocks' (OUTER_PASS 1): bilinear weights on the four nearest
+// blocks, kept only for blocks of the pixel's object and falling off with their distance from its
+// tangent plane in block widths at its depth (across a depth gap of one object, a chin over a neck,
+// the sum belongs to another surface). Where no block is kept the pixel evaluates the layers itself.
+vec3 outer_upsampled(LutInfo L, vec3 xo, float id, ivec2 px, ivec2 size0, float h)
+{
+    float d = float(u_outer_divisor);
+    ivec2 low = textureSize(t_outer, 0);
+    vec2 t = (vec2(px) + 0.5) / d - 0.5;
+    ivec2 t0 = ivec2(floor(t));
+    vec2 f = t - vec2(t0);
+    vec3 no = texelFetch(t_nrm, px, 0).xyz;
+    float z_o = max(dot(xo - u_camera_pos.xyz, u_camera_fwd.xyz), u_misc.w);
+    float block = d * z_o * u_camera_fwd.w; // a block's width at x_o's depth
+    vec3 s = vec3(0.0);
+    float wsum = 0.0;
+    for (int c = 0; c < 4; c++) {
+        ivec2 o = ivec2(c & 1, c >> 1);
+        ivec2 q = clamp(t0 + o, ivec2(0), low - 1);
+        vec4 O = texelFetch(t_outer, q, 0);
+        float off_plane = abs(dot(texelFetch(t_outer_pos, q, 0).xyz - xo, no)) / block;
+        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        w *= O.w == id ? exp(-2.0 * off_plane * off_plane) : 0.0;
+        s += w * O.rgb;
+        wsum += w;
+    }
+    vec3 sum = s / max(wsum, 1e-30);
+    // a loop of one or no pass: llvmpipe skips it for SIMD groups where no pixel needs it
+    for (int once = int(wsum < 0.05); once > 0; once--) sum = outer_sum(L, xo, id, vec2(px) + 0.5, size0, h);
+    return sum;
+}
+#endif
+
+void main()
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    vec4 I0 = texelFetch(t_irr, px, 0);
+    o_sum = vec4(0.0);
+    if (I0.w < 0.5) return;
+    int mat = int(objects[int(I0.w - 0.5)].anim.y);
+    if (materials[mat].albedo.w > 0.5) return;
+    vec3 xo = texelFetch(t_pos, px, 0).xyz;
+    LutInfo L = lut_info(mat);
+    float id = I0.w;
+    ivec2 size0 = textureSize(t_pos, 0);
+    // the inner square's half-width h in render pixels (k = 1: n + 1/2, the (2n + 1)^2 pixels)
+    float h = float(max(u_supersample, 1)) * (float(u_n) + 0.5);
+    vec3 sum = inner_sum(L, xo, id, px, size0, h);
+#if OUTER_PASS == 2
+    sum += outer_upsampled(L, xo, id, px, size0, h);
+#else
+    sum += outer_sum(L, xo, id, vec2(px) + 0.5, size0, h);
+#endif
     o_sum = vec4(sum, 1.0);
 }
+#endif

@@ -36,6 +36,7 @@ enum {
     P_OFFSCREEN,
     P_LAYERS_TO_REACH,
     P_LAYER_SPLIT,
+    P_OUTER_DIVISOR,
     P_COUNT
 };
 
@@ -92,6 +93,9 @@ static const sss_gl_param_info params[P_COUNT] = {
     [P_LAYER_SPLIT] = {"layer_split", SSS_GL_PARAM_INT, 8, 1, 64,
      "most pieces per oblique outer-layer cell (e x its face-on area), at most footprint_split: the split loop "
      "runs to the largest count among neighbouring pixels; 1: one disc per cell (the outer layers' cost halves)"},
+    [P_OUTER_DIVISOR] = {"outer_divisor", SSS_GL_PARAM_INT, 4, 1, 4,
+     "outer layers evaluated once per d x d block of pixels and upsampled (object- and depth-aware; pixels no "
+     "block matches evaluate them); the inner (2n+1)^2 block stays per pixel; 1: every pixel (the paper)"},
 };
 
 /* preset=paper: Maisch & Ropinski 2020 as published (docs/maisch2020.md lists each departure). */
@@ -109,6 +113,7 @@ static const sss_gl_param_value paper[] = {
     {"splat_energy", 1},         /* splats reach r_max */
     {"offscreen_splats", 0},     /* splats: surface hidden on screen, not off it */
     {"layers_to_reach", 0},      /* 4.2: ten layers */
+    {"outer_divisor", 1},        /* the whole pattern at every pixel */
 };
 
 #define SPLAT_BYTES 48 /* three vec4: centre + area, normal + object, F_t E + disc radius */
@@ -118,26 +123,27 @@ typedef struct maisch_state {
     /* the screen-space pass per filtered_layers and split (0: none; 1: footprint_split > 1, inner pixels;
      * 2: and layer_split > 1, outer cells), built when first used: the choices are compiled in because
      * llvmpipe runs every side of a branch on a uniform */
-    GLuint prog_ss[3][3];
+    GLuint prog_ss[3][3][3]; /* [filtered_layers][split][OUTER_PASS] */
     GLuint prog_grazing;  /* grazing_sources: areas of the grazing pixels (built when first used) */
     GLuint splats, cmd;
     unsigned capacity;
     int low_w, low_h;
-    GLuint tex_recv, tex_accum, tex_trans, tex_screen;
-    GLuint fbo_recv, fbo_accum, fbo_trans, fbo_screen;
+    int outer_w, outer_h; /* outer_divisor > 1: the blocks' targets (0 x 0 without) */
+    GLuint tex_recv, tex_accum, tex_trans, tex_screen, tex_outer, tex_outer_pos;
+    GLuint fbo_recv, fbo_accum, fbo_trans, fbo_screen, fbo_outer;
     size_t bytes;
 } maisch_state;
 
 static void free_targets(maisch_state *s)
 {
-    GLuint f[4] = {s->fbo_recv, s->fbo_accum, s->fbo_trans, s->fbo_screen};
-    GLuint t[4] = {s->tex_recv, s->tex_accum, s->tex_trans, s->tex_screen};
-    for (int i = 0; i < 4; i++) {
-        if (f[i]) glDeleteFramebuffers(1, &f[i]);
+    GLuint f[5] = {s->fbo_recv, s->fbo_accum, s->fbo_trans, s->fbo_screen, s->fbo_outer};
+    GLuint t[6] = {s->tex_recv, s->tex_accum, s->tex_trans, s->tex_screen, s->tex_outer, s->tex_outer_pos};
+    for (int i = 0; i < 6; i++) {
+        if (i < 5 && f[i]) glDeleteFramebuffers(1, &f[i]);
         if (t[i]) glDeleteTextures(1, &t[i]);
     }
-    s->fbo_recv = s->fbo_accum = s->fbo_trans = s->fbo_screen = 0;
-    s->tex_recv = s->tex_accum = s->tex_trans = s->tex_screen = 0;
+    s->fbo_recv = s->fbo_accum = s->fbo_trans = s->fbo_screen = s->fbo_outer = 0;
+    s->tex_recv = s->tex_accum = s->tex_trans = s->tex_screen = s->tex_outer = s->tex_outer_pos = 0;
     s->bytes = 0;
 }
 
@@ -156,6 +162,15 @@ static GLuint fbo_for(const GLuint *tex, int count)
  * image and the splatting cost stay those of k = 1 (docs/supersampling.md). */
 static int divisor(const sss_gl_renderer *r, const double *p) { return (int)p[P_DIVISOR] * gl_supersample(r); }
 
+/* The outer layers' block side in render pixels (outer_divisor counts output pixels, as above); 0 at
+ * outer_divisor 1, where every pixel evaluates them. */
+static int outer_block(const sss_gl_renderer *r, const double *p)
+{
+    return (int)p[P_OUTER_DIVISOR] > 1 ? (int)p[P_OUTER_DIVISOR] * gl_supersample(r) : 0;
+}
+
+static int blocks(int size, int block) { return block ? (size + block - 1) / block : 0; }
+
 static sss_result make_targets(sss_gl_renderer *r, maisch_state *s, const double *p, sss_error *err)
 {
     free_targets(s);
@@ -173,9 +188,18 @@ static sss_result make_targets(sss_gl_renderer *r, maisch_state *s, const double
     s->fbo_accum = fbo_for(&s->tex_accum, 1);
     s->fbo_trans = fbo_for(&s->tex_trans, 1);
     s->fbo_screen = fbo_for(&s->tex_screen, 1);
-    GLuint f[4] = {s->fbo_recv, s->fbo_accum, s->fbo_trans, s->fbo_screen};
-    for (int i = 0; i < 4; i++)
-        if (glCheckNamedFramebufferStatus(f[i], GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    int b = outer_block(r, p);
+    s->outer_w = blocks(r->width, b);
+    s->outer_h = blocks(r->height, b);
+    if (b) {
+        s->tex_outer = gl_texture_2d(GL_RGBA32F, s->outer_w, s->outer_h, 1, &s->bytes);
+        s->tex_outer_pos = gl_texture_2d(GL_RGBA32F, s->outer_w, s->outer_h, 1, &s->bytes);
+        GLuint o[2] = {s->tex_outer, s->tex_outer_pos};
+        s->fbo_outer = fbo_for(o, 2);
+    }
+    GLuint f[5] = {s->fbo_recv, s->fbo_accum, s->fbo_trans, s->fbo_screen, s->fbo_outer};
+    for (int i = 0; i < 5; i++)
+        if (f[i] && glCheckNamedFramebufferStatus(f[i], GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
             return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "maisch2020: incomplete render target");
     return gl_check(r->ctx, "maisch2020: targets", err);
 }
@@ -201,7 +225,9 @@ static sss_result maisch2020_resize(sss_gl_renderer *r, void *state, const doubl
 {
     maisch_state *s = state;
     int d = divisor(r, p);
-    if (s->tex_screen && s->low_w == (r->width + d - 1) / d && s->low_h == (r->height + d - 1) / d) {
+    int b = outer_block(r, p);
+    if (s->tex_screen && s->low_w == (r->width + d - 1) / d && s->low_h == (r->height + d - 1) / d &&
+        s->outer_w == blocks(r->width, b) && s->outer_h == blocks(r->height, b)) {
         GLint w = 0;
         glGetTextureLevelParameteriv(s->tex_screen, 0, GL_TEXTURE_WIDTH, &w);
         if (w == r->width) return SSS_OK;
@@ -294,19 +320,74 @@ static sss_result pass_grazing(sss_gl_renderer *r, maisch_state *s, const double
     return res;
 }
 
-/* The screen-space program for filtered_layers (0-2) and split (0-2, FOOTPRINT_SPLIT). */
-static sss_result screen_program(maisch_state *s, int filtered, int split, GLuint *out, sss_error *err)
+/* The screen-space program for filtered_layers (0-2), split (0-2, FOOTPRINT_SPLIT) and OUTER_PASS (0: the
+ * whole pattern; 1: the outer layers per block; 2: the inner block + the blocks upsampled). */
+static sss_result screen_program(maisch_state *s, int filtered, int split, int outer, GLuint *out, sss_error *err)
 {
-    GLuint *prog = &s->prog_ss[filtered][split];
+    GLuint *prog = &s->prog_ss[filtered][split][outer];
     if (!*prog) {
-        char defines[96];
-        snprintf(defines, sizeof defines, "#define FILTERED_LAYERS %d\n#define FOOTPRINT_SPLIT %d\n", filtered,
-                 split);
+        char defines[128];
+        snprintf(defines, sizeof defines, "#define FILTERED_LAYERS %d\n#define FOOTPRINT_SPLIT %d\n#define OUTER_PASS %d\n",
+                 filtered, split, outer);
         sss_result res = gl_program_vf("fullscreen.vert.glsl", "maisch2020_screen.frag.glsl", defines, prog, err);
         if (res != SSS_OK) return res;
     }
     *out = *prog;
     return SSS_OK;
+}
+
+/* Binds the G-buffer chains and sets the pattern's uniforms of a screen-space program. */
+static void use_screen_program(sss_gl_renderer *r, GLuint prog, const double *p, int layer_split)
+{
+    glUseProgram(prog);
+    glBindTextureUnit(0, r->frame.pos);
+    glBindTextureUnit(1, r->frame.irr);
+    glBindTextureUnit(2, r->frame.nrm);
+    set_i(prog, "u_split", (int)p[P_SPLIT]);
+    set_i(prog, "u_layer_split", layer_split);
+    set_i(prog, "u_n", (int)p[P_N]);
+    set_i(prog, "u_nl", (int)p[P_NL]);
+    set_i(prog, "u_layers", (int)p[P_LAYERS]);
+    set_i(prog, "u_brightening", (int)p[P_BRIGHTENING]);
+    set_i(prog, "u_preintegrated", (int)p[P_PREINTEGRATED]);
+    set_i(prog, "u_screen_bound", (int)p[P_SCREEN_BOUND]);
+    set_i(prog, "u_support_cutoff", (int)p[P_SUPPORT_CUTOFF]);
+    set_i(prog, "u_layers_to_reach", (int)p[P_LAYERS_TO_REACH]);
+    set_i(prog, "u_outer_divisor", outer_block(r, p));
+    /* the pattern's sizes count output pixels (docs/supersampling.md) */
+    set_i(prog, "u_supersample", gl_supersample(r));
+}
+
+/* Pass 6, the screen-space pattern; with outer_divisor > 1 first its outer layers once per block. */
+static sss_result pass_screen(sss_gl_renderer *r, maisch_state *s, const double *p, sss_error *err)
+{
+    gl_timer_begin(&r->timer, "screen_space");
+    glDisable(GL_BLEND);
+    int filtered = (int)p[P_FILTERED];
+    int layer_split = (int)(p[P_LAYER_SPLIT] < p[P_SPLIT] ? p[P_LAYER_SPLIT] : p[P_SPLIT]);
+    int split = (int)p[P_SPLIT] > 1 ? 1 + (layer_split > 1) : 0;
+    int outer = outer_block(r, p) ? 2 : 0;
+    GLuint prog = 0;
+    sss_result res = SSS_OK;
+    if (outer) {
+        res = screen_program(s, filtered, split, 1, &prog, err);
+        if (res != SSS_OK) return res;
+        glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_outer);
+        glViewport(0, 0, s->outer_w, s->outer_h);
+        use_screen_program(r, prog, p, layer_split);
+        gl_draw_fullscreen(r);
+        res = gl_check(r->ctx, "maisch2020: screen-space outer layers", err);
+        if (res != SSS_OK) return res;
+    }
+    res = screen_program(s, filtered, split, outer, &prog, err);
+    if (res != SSS_OK) return res;
+    glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_screen);
+    glViewport(0, 0, r->width, r->height);
+    use_screen_program(r, prog, p, layer_split);
+    glBindTextureUnit(3, s->tex_outer);
+    glBindTextureUnit(4, s->tex_outer_pos);
+    gl_draw_fullscreen(r);
+    return gl_check(r->ctx, "maisch2020: screen-space pass", err);
 }
 
 static sss_result maisch2020_render(sss_gl_renderer *r, void *state, const double *p, sss_error *err)
@@ -325,34 +406,7 @@ static sss_result maisch2020_render(sss_gl_renderer *r, void *state, const doubl
         if (res != SSS_OK) return res;
     }
     if (use_screen) {
-        gl_timer_begin(&r->timer, "screen_space");
-        glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_screen);
-        glViewport(0, 0, r->width, r->height);
-        glDisable(GL_BLEND);
-        int filtered = (int)p[P_FILTERED];
-        GLuint prog = 0;
-        int layer_split = (int)(p[P_LAYER_SPLIT] < p[P_SPLIT] ? p[P_LAYER_SPLIT] : p[P_SPLIT]);
-        int split = (int)p[P_SPLIT] > 1 ? 1 + (layer_split > 1) : 0;
-        res = screen_program(s, filtered, split, &prog, err);
-        if (res != SSS_OK) return res;
-        glUseProgram(prog);
-        glBindTextureUnit(0, r->frame.pos);
-        glBindTextureUnit(1, r->frame.irr);
-        glBindTextureUnit(2, r->frame.nrm);
-        set_i(prog, "u_split", (int)p[P_SPLIT]);
-        set_i(prog, "u_layer_split", layer_split);
-        set_i(prog, "u_n", (int)p[P_N]);
-        set_i(prog, "u_nl", (int)p[P_NL]);
-        set_i(prog, "u_layers", (int)p[P_LAYERS]);
-        set_i(prog, "u_brightening", (int)p[P_BRIGHTENING]);
-        set_i(prog, "u_preintegrated", (int)p[P_PREINTEGRATED]);
-        set_i(prog, "u_screen_bound", (int)p[P_SCREEN_BOUND]);
-        set_i(prog, "u_support_cutoff", (int)p[P_SUPPORT_CUTOFF]);
-        set_i(prog, "u_layers_to_reach", (int)p[P_LAYERS_TO_REACH]);
-        /* the pattern's sizes count output pixels (docs/supersampling.md) */
-        set_i(prog, "u_supersample", gl_supersample(r));
-        gl_draw_fullscreen(r);
-        res = gl_check(r->ctx, "maisch2020: screen-space pass", err);
+        res = pass_screen(r, s, p, err);
         if (res != SSS_OK) return res;
     }
     gl_timer_begin(&r->timer, "combine");
@@ -382,7 +436,8 @@ static void maisch2020_destroy(sss_gl_renderer *r, void *state)
         if (p[i]) glDeleteProgram(p[i]);
     for (int f = 0; f < 3; f++)
         for (int k = 0; k < 3; k++)
-            if (s->prog_ss[f][k]) glDeleteProgram(s->prog_ss[f][k]);
+            for (int o = 0; o < 3; o++)
+                if (s->prog_ss[f][k][o]) glDeleteProgram(s->prog_ss[f][k][o]);
     if (s->splats) glDeleteBuffers(1, &s->splats);
     if (s->cmd) glDeleteBuffers(1, &s->cmd);
 }

@@ -42,6 +42,9 @@ static const sss_gl_param_info params[] = {
     {"layer_split", SSS_GL_PARAM_INT, 8, 1, 64,
      "most pieces per oblique outer-layer cell (e x its face-on area), at most footprint_split: the split loop "
      "runs to the largest count among neighbouring pixels; 1: one disc per cell (the outer layers' cost halves)"},
+    {"outer_divisor", SSS_GL_PARAM_INT, 4, 1, 4,
+     "outer layers evaluated once per d x d block of pixels and upsampled (object- and depth-aware; pixels no "
+     "block matches evaluate them); the inner (2n+1)^2 block stays per pixel; 1: every pixel (the paper)"},
 };
 #define PARAM_COUNT ((int)(sizeof params / sizeof params[0]))
 
@@ -49,7 +52,7 @@ static const sss_gl_param_info params[] = {
 static const sss_gl_param_value paper[] = {
     {"brightening", 1},  {"layer_distance_bound", 0}, {"footprint_split", 1}, {"grazing_sources", 0},
     {"support_cutoff", 0}, {"lut_sqrt_axes", 0},      {"lut_levels", 1},      {"lut_energy", 0},
-    {"layers_to_reach", 0},
+    {"layers_to_reach", 0}, {"outer_divisor", 1},
 };
 
 typedef struct screen_state {
