@@ -27,10 +27,12 @@ static void *build_thread(void *arg)
     return NULL;
 }
 
-/* Renders scene at W x H with tables (may be NULL); *taken receives luts_precomputed. */
-static int render(const sss_scene *scene, const sss_gl_tables *tables, sss_image *out, int *taken)
+/* Renders scene with technique at W x H with tables (may be NULL) into out; the renderer, for the
+ * caller to read and destroy (NULL when creation failed). */
+static sss_gl_renderer *render_with(const char *technique, const sss_scene *scene, const sss_gl_tables *tables,
+                                    sss_image *out)
 {
-    sss_gl_renderer_desc d = gt_desc("maisch2020", NULL, 0, 0);
+    sss_gl_renderer_desc d = gt_desc(technique, NULL, 0, 0);
     d.width = W;
     d.height = H;
     d.tables = tables;
@@ -40,12 +42,20 @@ static int render(const sss_scene *scene, const sss_gl_tables *tables, sss_image
     int ok = sss_gl_renderer_create(gt_ctx(), scene, &d, &r, &err) == SSS_OK &&
              sss_gl_renderer_render(r, 0.0, &err) == SSS_OK && sss_image_create(out, W, H, &err) == SSS_OK &&
              sss_gl_renderer_read(r, out, &err) == SSS_OK;
-    if (!ok) fprintf(stderr, "render: %s\n", err.message);
+    if (!ok) fprintf(stderr, "render %s: %s\n", technique, err.message);
+    if (!ok) sss_image_free(out);
+    return r;
+}
+
+/* maisch2020; *taken receives luts_precomputed. */
+static int render(const sss_scene *scene, const sss_gl_tables *tables, sss_image *out, int *taken)
+{
+    sss_gl_renderer *r = render_with("maisch2020", scene, tables, out);
     sss_gl_stats st;
     sss_gl_renderer_stats(r, &st);
     *taken = st.luts_precomputed;
     sss_gl_renderer_destroy(r);
-    return ok;
+    return out->pixels != NULL;
 }
 
 static int subsurface_materials(const sss_scene *s)
@@ -92,23 +102,12 @@ static void check_same_image(void)
 /* sam's adjacency maps come from the tables when they were built for the same scene object and
  * parameters (the renderer then builds none: build_seconds 0) and give the same image; tables of
  * another seed are not taken. */
-static int render_sam(const sss_scene *scene, const sss_gl_tables *tables, const sss_gl_param_value *p, int np,
-                      sss_image *out, double *build_seconds)
+static int render_sam(const sss_scene *scene, const sss_gl_tables *tables, sss_image *out, double *build_seconds)
 {
-    sss_gl_renderer_desc d = gt_desc("sam", p, np, 0);
-    d.width = W;
-    d.height = H;
-    d.tables = tables;
-    sss_gl_renderer *r = NULL;
-    sss_error err = {0};
-    memset(out, 0, sizeof *out);
-    int ok = sss_gl_renderer_create(gt_ctx(), scene, &d, &r, &err) == SSS_OK &&
-             sss_gl_renderer_render(r, 0.0, &err) == SSS_OK && sss_image_create(out, W, H, &err) == SSS_OK &&
-             sss_gl_renderer_read(r, out, &err) == SSS_OK;
-    if (!ok) fprintf(stderr, "render sam: %s\n", err.message);
+    sss_gl_renderer *r = render_with("sam", scene, tables, out);
     *build_seconds = r ? ((sam_state *)r->tech_state)->build_seconds : -1.0;
     sss_gl_renderer_destroy(r);
-    return ok;
+    return out->pixels != NULL;
 }
 
 static void check_sam_maps(void)
@@ -123,8 +122,8 @@ static void check_sam_maps(void)
               "%s", err.message);
     sss_image own = {0}, with = {0}, other = {0};
     double own_s = -1, with_s = -1, other_s = -1;
-    CHECK(render_sam(&scene, NULL, NULL, 0, &own, &own_s) && render_sam(&scene, t, NULL, 0, &with, &with_s) &&
-          render_sam(&scene, t7, NULL, 0, &other, &other_s));
+    CHECK(render_sam(&scene, NULL, &own, &own_s) && render_sam(&scene, t, &with, &with_s) &&
+          render_sam(&scene, t7, &other, &other_s));
     CHECK_MSG(own_s > 0.0 && with_s == 0.0 && other_s > 0.0, "map build seconds: own %g, with tables %g, other seed %g",
               own_s, with_s, other_s);
     CHECK(memcmp(own.pixels, with.pixels, sizeof(float) * 3 * W * H) == 0);
