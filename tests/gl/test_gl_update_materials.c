@@ -72,7 +72,7 @@ static int fresh_image(const sss_scene *scene, const char *technique, sss_image 
     return ok;
 }
 
-/* Equal up to maisch2020's additive splat blending, whose order varies between runs (a few ulps). */
+/* The largest per-pixel difference relative to b's brightest value. */
 static double max_difference(const sss_image *a, const sss_image *b)
 {
     double worst = 0.0, peak = 0.0;
@@ -83,9 +83,15 @@ static double max_difference(const sss_image *a, const sss_image *b)
     return peak > 0.0 ? worst / peak : worst;
 }
 
+/* Two renders of the same scene agree to float rounding, except for maisch2020's additive splat
+ * blending, whose order varies between runs (measured up to 1.6e-5 of the peak under AddressSanitizer);
+ * a stale material is off by 0.05 or more (the materials here), a stale kernel by 6.5. */
+static double tolerance(const char *technique) { return strcmp(technique, "maisch2020") == 0 ? 2e-4 : 1e-5; }
+
 static void check_technique(const char *technique, const sss_scene *marble, const sss_scene *ketchup,
                             const sss_scene *diffuse)
 {
+    double tol = tolerance(technique);
     sss_image want_ketchup = {0}, want_diffuse = {0}, got = {0}, before = {0};
     CHECK(fresh_image(ketchup, technique, &want_ketchup) && fresh_image(diffuse, technique, &want_diffuse));
     sss_gl_renderer *r = create(marble, technique);
@@ -94,7 +100,7 @@ static void check_technique(const char *technique, const sss_scene *marble, cons
     sss_error err = {0};
     CHECK_MSG(sss_gl_renderer_update_materials(r, ketchup, NULL, &err) == SSS_OK, "%s: %s", technique, err.message);
     CHECK(render_into(r, &got));
-    CHECK_MSG(max_difference(&got, &want_ketchup) < 1e-5, "%s: in place %g from a new renderer", technique,
+    CHECK_MSG(max_difference(&got, &want_ketchup) < tol, "%s: in place %g from a new renderer", technique,
               max_difference(&got, &want_ketchup));
     sss_image_free(&got);
     /* with the tables of the other scene */
@@ -104,13 +110,13 @@ static void check_technique(const char *technique, const sss_scene *marble, cons
     CHECK(sss_gl_renderer_update_materials(r, marble, tables, &err) == SSS_OK && render_into(r, &got));
     sss_gl_stats st;
     sss_gl_renderer_stats(r, &st);
-    CHECK_MSG(st.luts_precomputed == 1 && max_difference(&got, &before) < 1e-5, "%s: with tables: took %d, %g off",
+    CHECK_MSG(st.luts_precomputed == 1 && max_difference(&got, &before) < tol, "%s: with tables: took %d, %g off",
               technique, st.luts_precomputed, max_difference(&got, &before));
     sss_gl_tables_free(tables);
     sss_image_free(&got);
     /* the torus stops scattering: everything again */
     CHECK(sss_gl_renderer_update_materials(r, diffuse, NULL, &err) == SSS_OK && render_into(r, &got));
-    CHECK_MSG(max_difference(&got, &want_diffuse) < 1e-5, "%s: diffuse %g off", technique,
+    CHECK_MSG(max_difference(&got, &want_diffuse) < tol, "%s: diffuse %g off", technique,
               max_difference(&got, &want_diffuse));
     sss_gl_renderer_destroy(r);
     sss_image_free(&got);
@@ -130,7 +136,7 @@ static void check_in_place(sss_scene *marble, const sss_scene *ketchup)
     marble->objects[0].material = ketchup->objects[0].material;
     sss_error err = {0};
     CHECK(sss_gl_renderer_update_materials(r, NULL, NULL, &err) == SSS_OK && render_into(r, &got));
-    CHECK_MSG(max_difference(&got, &want) < 1e-5, "edited in place: %g off", max_difference(&got, &want));
+    CHECK_MSG(max_difference(&got, &want) < tolerance("ssss"), "edited in place: %g off", max_difference(&got, &want));
     marble->objects[0].material = saved;
     sss_gl_renderer_destroy(r);
     sss_image_free(&got);
@@ -153,7 +159,7 @@ static void check_moved_in_place(sss_scene *marble)
     marble->objects[0].transform = moved.objects[0].transform;
     sss_error err = {0};
     CHECK(sss_gl_renderer_update_materials(r, NULL, NULL, &err) == SSS_OK && render_into(r, &got));
-    CHECK_MSG(max_difference(&got, &want) < 1e-5, "moved in place: %g off", max_difference(&got, &want));
+    CHECK_MSG(max_difference(&got, &want) < tolerance("mertens2003"), "moved in place: %g off", max_difference(&got, &want));
     marble->objects[0].transform = saved;
     sss_gl_renderer_destroy(r);
     sss_scene_free(&moved);
@@ -180,7 +186,8 @@ static void check_refused(const sss_scene *marble)
     sss_scene_free(&moved); /* the renderer must hold no pointer into them */
     sss_scene_free(&more);
     CHECK(render_into(r, &after));
-    CHECK_MSG(max_difference(&after, &before) < 1e-5, "after a refused update: %g off", max_difference(&after, &before));
+    CHECK_MSG(max_difference(&after, &before) < tolerance("maisch2020"), "after a refused update: %g off",
+              max_difference(&after, &before));
     sss_gl_renderer_destroy(r);
     sss_image_free(&before);
     sss_image_free(&after);
