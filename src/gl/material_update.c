@@ -25,13 +25,17 @@ static int same_mesh(const sss_mesh *a, const sss_mesh *b)
            same_floats(a->uvs, b->uvs, 2 * v);
 }
 
+static int same_animation(const sss_animation *a, const sss_animation *b)
+{
+    return a->type == b->type && a->amplitude == b->amplitude && a->period == b->period;
+}
+
 static int same_object(const sss_scene_object *a, const sss_scene_object *b)
 {
     return same_mesh(&a->mesh, &b->mesh) && same_mesh(&a->splat_mesh, &b->splat_mesh) &&
            a->splat_triangles == b->splat_triangles &&
            memcmp(a->transform.matrix, b->transform.matrix, sizeof a->transform.matrix) == 0 &&
-           a->animation.type == b->animation.type && a->animation.amplitude == b->animation.amplitude &&
-           a->animation.period == b->animation.period;
+           same_animation(&a->animation, &b->animation);
 }
 
 static int same_texture(const sss_scene_texture *a, const sss_scene_texture *b)
@@ -70,9 +74,7 @@ static int needs_new_scene(const sss_gl_renderer *r, const sss_scene *next)
         const gl_object *o = &r->gs.objects[i];
         if ((so->material.type == SSS_SCENE_MATERIAL_SUBSURFACE) != o->subsurface ||
             memcmp(so->transform.matrix, o->uploaded_matrix, sizeof o->uploaded_matrix) != 0 ||
-            so->animation.type != o->uploaded_animation.type ||
-            so->animation.amplitude != o->uploaded_animation.amplitude ||
-            so->animation.period != o->uploaded_animation.period)
+            !same_animation(&so->animation, &o->uploaded_animation))
             return 1;
     }
     return 0;
@@ -81,7 +83,8 @@ static int needs_new_scene(const sss_gl_renderer *r, const sss_scene *next)
 /* The materials part of the upload again; on failure the previous one is kept whole. */
 static sss_result reupload_materials(sss_gl_renderer *r, sss_error *err)
 {
-    gl_scene saved = r->gs;
+    gl_scene old = r->gs;
+    /* the upload rewrites the objects' material fields in place: their old values, for a failure */
     size_t bytes = sizeof *r->gs.objects * (size_t)r->gs.object_count;
     gl_object *objects = malloc(bytes);
     if (!objects) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (material update)");
@@ -89,14 +92,13 @@ static sss_result reupload_materials(sss_gl_renderer *r, sss_error *err)
     r->gs.materials = NULL;
     r->gs.ssbo_objects = r->gs.ssbo_materials = r->gs.ssbo_lut_scales = r->gs.lut_array = 0;
     sss_result res = gl_scene_update_materials(r, err);
-    gl_scene *drop = &saved;
-    if (res != SSS_OK) { /* keep the old part, drop what was made of the new one */
-        gl_scene made = r->gs;
-        memcpy(saved.objects, objects, bytes);
-        r->gs = saved;
-        saved = made;
+    if (res == SSS_OK) {
+        gl_scene_free_materials(&old);
+    } else {
+        gl_scene_free_materials(&r->gs); /* what was made of the new materials */
+        memcpy(old.objects, objects, bytes);
+        r->gs = old;
     }
-    gl_scene_free_materials(drop);
     free(objects);
     return res;
 }
@@ -125,8 +127,8 @@ sss_result sss_gl_renderer_update_materials(sss_gl_renderer *r, const sss_scene 
 {
     if (!r) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "update_materials: no renderer");
     const sss_scene *next = scene ? scene : r->scene;
-    char what[160];
-    geometry_difference(r->scene, next, what, sizeof what);
+    char what[160] = "";
+    if (next != r->scene) geometry_difference(r->scene, next, what, sizeof what);
     if (what[0])
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "update_materials: %s: %s (a new renderer is needed)",
                              next->name ? next->name : "scene", what);

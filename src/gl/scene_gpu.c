@@ -63,26 +63,32 @@ static void col_major_from_rows(const double m[16], float out[16])
         for (int c = 0; c < 4; c++) out[4 * c + r] = (float)m[4 * r + c];
 }
 
+/* Radius within which `fraction` of every channel's plane integral of R_d lies (0 when none is finite). */
+static double profile_energy_radius(const sss_profile *prof, double fraction)
+{
+    double rm = 0.0;
+    for (int c = 0; c < 3; c++) {
+        double x = sss_profile_radius_for_fraction(prof, c, fraction);
+        if (isfinite(x) && x > rm) rm = x;
+    }
+    return rm;
+}
+
+/* The splats' reach of a material: the radius holding `fraction` of its R_d. */
+static double energy_radius(const sss_scene_material *m, double fraction)
+{
+    sss_profile prof;
+    if (sss_profile_init(&prof, sss_scene_material_profile_model(m), &m->optical, m->table, NULL) != SSS_OK)
+        return 0.0;
+    return profile_energy_radius(&prof, fraction);
+}
+
 /* The kernel LUT of a material as a cascade of `levels` tables (one array layer each): level l covers
  * r in [0, r_max / 16^l] and A in [0, pi (r_max / 16^l)^2]. One table spanning the longest channel's
  * r_max resolves areas only down to ~1e-4 A_max (sqrt axes, 512 texels): with r_max set by a weakly
  * absorbing red channel, pixel-sized areas of the short green and blue kernels fell into its first
  * rows and a flat, uniformly lit plane came out up to 4x too bright. The finer levels fix that; the
  * lookup (common.glsl lut_rd) takes the finest level that contains both r and A. */
-/* Radius within which `fraction` of every channel's plane integral of R_d lies (the splats' reach). */
-static double energy_radius(const sss_scene_material *m, double fraction)
-{
-    sss_profile prof;
-    if (sss_profile_init(&prof, sss_scene_material_profile_model(m), &m->optical, m->table, NULL) != SSS_OK)
-        return 0.0;
-    double rm = 0.0;
-    for (int c = 0; c < 3; c++) {
-        double x = sss_profile_radius_for_fraction(&prof, c, fraction);
-        if (isfinite(x) && x > rm) rm = x;
-    }
-    return rm;
-}
-
 static sss_result build_luts(const sss_gl_renderer *r, const sss_scene_material *m, sss_lut *luts, int levels,
                              sss_error *err)
 {
@@ -101,10 +107,8 @@ static sss_result build_luts(const sss_gl_renderer *r, const sss_scene_material 
          * absorbing channels far inside their diffusion tail (Skimmilk red: r_max = 32 mm against an
          * e-folding length of 18 mm; the back-lit dragon lost 25% of its red). r_max is therefore the
          * larger of that rule and the radius holding `energy` of every channel's plane integral. */
-        for (int c = 0; c < 3; c++) {
-            double x = sss_profile_radius_for_fraction(&prof, c, energy);
-            if (isfinite(x) && x > rm) rm = x;
-        }
+        double e = profile_energy_radius(&prof, energy);
+        if (e > rm) rm = e;
     }
     if (!(rm > 0.0) || !isfinite(rm))
         return sss_error_set(err, SSS_ERROR_NUMERIC, "no finite kernel radius for the material");
@@ -206,7 +210,10 @@ static sss_result take_cascade(const sss_gl_renderer *r, gl_scene *gs, upload_wo
         gs->luts_precomputed++;
     } else {
         sss_result res = gl_lut_cascade_build(r, sm, &w->owned[w->owned_count], err);
-        if (res != SSS_OK) return sss_error_prefix(err, "kernel LUT"), res;
+        if (res != SSS_OK) {
+            sss_error_prefix(err, "kernel LUT");
+            return res;
+        }
         c = &w->owned[w->owned_count++];
     }
     w->cascades[w->cascade_count++] = c;

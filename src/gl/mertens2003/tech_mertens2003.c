@@ -83,7 +83,7 @@ static sss_result upload_tables(sss_gl_renderer *r, mertens_state *s, sss_error 
     if (res == SSS_OK) {
         glCreateBuffers(1, &s->tables);
         glNamedBufferStorage(s->tables, (GLsizeiptr)(sizeof *data * (size_t)nm * MERTENS_TABLE_FLOATS), data, 0);
-        s->bytes += sizeof *data * (size_t)nm * MERTENS_TABLE_FLOATS;
+        s->bytes = sizeof *data * (size_t)nm * MERTENS_TABLE_FLOATS;
     }
     free(data);
     return res;
@@ -178,16 +178,9 @@ static sss_result mertens_materials_changed(sss_gl_renderer *r, void *state, sss
 {
     mertens_state *s = state;
     GLuint old = s->tables;
-    size_t old_bytes = s->bytes; /* the tables' alone */
-    s->bytes = 0;
-    sss_result res = upload_tables(r, s, err);
-    if (res != SSS_OK) {
-        s->tables = old;
-        s->bytes = old_bytes;
-        return res;
-    }
-    if (old) glDeleteBuffers(1, &old);
-    return SSS_OK;
+    sss_result res = upload_tables(r, s, err); /* sets s->tables and s->bytes only when it succeeds */
+    if (res == SSS_OK && old) glDeleteBuffers(1, &old);
+    return res;
 }
 
 static sss_result mertens_resize(sss_gl_renderer *r, void *state, sss_error *err)
