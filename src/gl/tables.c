@@ -92,9 +92,10 @@ sss_result sss_gl_tables_build(const sss_scene *scene, const sss_gl_renderer_des
     t->cascades = calloc(n, sizeof *t->cascades);
     if (res == SSS_OK && (!t->keys || !t->cascades)) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (tables)");
     for (size_t i = 0; i < scene->object_count && res == SSS_OK; i++)
-        if (scene->objects[i].material.type == SSS_SCENE_MATERIAL_SUBSURFACE)
+        if (scene->objects[i].material.type == SSS_SCENE_MATERIAL_SUBSURFACE) {
             res = add_material(t, r, &scene->objects[i].material, err);
-    if (res != SSS_OK) sss_error_prefix(err, "kernel LUT");
+            if (res != SSS_OK) sss_error_prefix(err, "kernel LUT");
+        }
     if (res == SSS_OK && r->tech->tables_build) {
         t->tech = r->tech;
         t->scene = scene;
