@@ -19,6 +19,7 @@ from pyutil import FAST, SCENES, SMALL_SCENE, tempdir
 CALLS = 1000
 RSS_BOUND = 3 << 20        # bytes over CALLS calls
 TRACED_BOUND = 256 << 10   # bytes over CALLS calls
+SAMPLED = 3                # calls whose least RSS is the baseline, and the end point
 
 
 def rss():
@@ -28,15 +29,25 @@ def rss():
 
 class NoLeaks(unittest.TestCase):
     def assertFlat(self, name, fn, calls=CALLS, warmup=20):
-        for _ in range(warmup):  # caches, first GL frames, allocator pools
+        def low_rss_over(k):
+            # Mesa now and then holds ~33 MB for one call after a context is freed (seen on CI, gone by
+            # the next call): the least RSS over the last k calls sees a leak, not that transient.
+            low = None
+            for _ in range(k):
+                fn()
+                gc.collect()
+                low = rss() if low is None else min(low, rss())
+            return low
+        for _ in range(warmup - SAMPLED):  # caches, first GL frames, allocator pools
             fn()
-        gc.collect()
+        rss0 = low_rss_over(SAMPLED)
         tracemalloc.start()
-        traced0, rss0 = tracemalloc.get_traced_memory()[0], rss()
-        for _ in range(calls):
+        traced0 = tracemalloc.get_traced_memory()[0]
+        for _ in range(calls - SAMPLED):
             fn()
+        grown = low_rss_over(SAMPLED) - rss0
         gc.collect()
-        traced, grown = tracemalloc.get_traced_memory()[0] - traced0, rss() - rss0
+        traced = tracemalloc.get_traced_memory()[0] - traced0
         tracemalloc.stop()
         print("%s: %d calls, RSS %+.2f MB, traced %+.1f kB" % (name, calls, grown / 2**20, traced / 1024))
         self.assertLess(grown, RSS_BOUND, name)
@@ -51,7 +62,7 @@ class NoLeaks(unittest.TestCase):
         """sss.render: a GL context and renderer made and freed per call (0.5 s each: 20 calls)."""
         scene = sss.Scene.load(os.path.join(SCENES, "gl_area.json"))
         self.assertFlat("sss.render", lambda: sss.render(scene, technique="local", params=FAST, width=16,
-                                                         height=16), calls=20, warmup=3)
+                                                         height=16), calls=20, warmup=6)
 
     def test_reference(self):
         scene = sss.Scene.load(SMALL_SCENE)
