@@ -8,7 +8,9 @@
 # For every scene (default: the eval scenes without an environment map) it writes a copy with the
 # camera size times F (default 0.375: 512x288 -> 192x108, 384x384 -> 144x144), then for every depth D:
 #   sss export pbrt --maxdepth D, PBRT renders it (nice -n 10) to a PFM;
-#   sss reference --bounces D (D = 16: the default, bounces until converged) to a PFM;
+#   sss reference --bounces D (D = 16: the default, bounces until converged) to a PFM, with --specular
+#   from D = 2 on (PBRT's path tracer always follows the camera ray's mirror reflection off a
+#   subsurface interface; the reflected ray sees a lit surface from depth 2 on);
 # and prints one row: mean linear R/G/B of the reference as a fraction of PBRT's, and the DSSIM of
 # `sss compare`. --noise adds PBRT's own noise floor at the largest depth: the DSSIM between its
 # halton image and a second render with the independent "random" sampler at the same spp.
@@ -100,7 +102,7 @@ ratio() { # "a b c" "x y z" -> "a/x/b/y/c/z" as 0.00/0.00/0.00
     echo "$1 $2" | awk '{ printf "%.2f/%.2f/%.2f", ($4 > 0 ? $1 / $4 : 0), ($5 > 0 ? $2 / $5 : 0), ($6 > 0 ? $3 / $6 : 0) }'
 }
 
-printf "%-22s %5s %8s %-16s %8s\n" scene depth bounces "mean R/G/B" dssim
+printf "%-22s %5s %12s %-16s %8s\n" scene depth bounces "mean R/G/B" dssim
 for spec in $SCENES; do
     scene=${spec%@*}
     time_opt=""
@@ -115,15 +117,16 @@ for spec in $SCENES; do
             "$SSS" export pbrt "$small" -o "$base.pbrt" --maxdepth "$d" --spp "$SPP" $time_opt
             nice -n 10 "$PBRT" --quiet --outfile "$base.pbrt.pfm" "$base.pbrt"
         fi
-        bounces_opt="--bounces $d" bounces=$d
+        bounces_opt="--bounces $d" bounces=$d mine=$base.sss
         if [ "$d" = "$MAXDEPTH" ] && [ "$d" -ge 16 ]; then bounces_opt="" bounces=default; fi
-        if [ ! -s "$base.sss.pfm" ]; then
+        if [ "$d" -ge 2 ]; then bounces_opt="$bounces_opt --specular" bounces="$bounces+spec" mine=$base.sss_spec; fi
+        if [ ! -s "$mine.pfm" ]; then
             # shellcheck disable=SC2086
-            "$SSS" reference "$small" -o "$base.sss.png" --pfm "$base.sss.pfm" --quiet $bounces_opt $time_opt
+            "$SSS" reference "$small" -o "$mine.png" --pfm "$mine.pfm" --quiet $bounces_opt $time_opt
         fi
-        dssim=$("$SSS" compare "$base.sss.pfm" "$base.pbrt.pfm" | sed 's/.*dssim=\([^ ]*\).*/\1/')
-        printf "%-22s %5s %8s %-16s %8s\n" "$tag" "$d" "$bounces" \
-            "$(ratio "$(pfm_mean "$base.sss.pfm")" "$(pfm_mean "$base.pbrt.pfm")")" "$dssim"
+        dssim=$("$SSS" compare "$mine.pfm" "$base.pbrt.pfm" | sed 's/.*dssim=\([^ ]*\).*/\1/')
+        printf "%-22s %5s %12s %-16s %8s\n" "$tag" "$d" "$bounces" \
+            "$(ratio "$(pfm_mean "$mine.pfm")" "$(pfm_mean "$base.pbrt.pfm")")" "$dssim"
     done
     if [ "$NOISE" = 1 ]; then
         base=$OUT/${tag}_d$MAXDEPTH
@@ -132,7 +135,7 @@ for spec in $SCENES; do
             nice -n 10 "$PBRT" --quiet --outfile "$base.random.pfm" "$base.random.pbrt"
         fi
         dssim=$("$SSS" compare "$base.random.pfm" "$base.pbrt.pfm" | sed 's/.*dssim=\([^ ]*\).*/\1/')
-        printf "%-22s %5s %8s %-16s %8s\n" "$tag" "$MAXDEPTH" "noise" \
+        printf "%-22s %5s %12s %-16s %8s\n" "$tag" "$MAXDEPTH" "noise" \
             "$(ratio "$(pfm_mean "$base.random.pfm")" "$(pfm_mean "$base.pbrt.pfm")")" "$dssim"
     fi
 done

@@ -26,9 +26,11 @@
  *    the light enters a subsurface sample with the factor 1 - F_r(cos theta) as direct light does.
  *    The image then shows T = T_1 + T_2 + ... in the sums above (linear in T, so the pixel pass runs
  *    once); diffuse objects show reflectance / pi * (E_1 + a final gather of bounces 1..N-1).
- *  - no specular interface reflection unless desc.specular (then a smooth dielectric mirror
- *    F_r(cos theta_o) * L of the environment and area lights is added; it does not take part in the
- *    bounces).
+ *  - no specular interface reflection of the camera ray unless desc.specular (then a smooth
+ *    dielectric mirror F_r(cos theta_o) * L is added, L shaded along the reflected ray as along a
+ *    camera ray: environment, area lights and the lit surfaces, up to 4 reflections deep; PBRT-v3's
+ *    path tracer always includes it). Between bounces the interface's reflection always takes part
+ *    (the gathers' mirror chain).
  *
  * How (the density rule and the tree criterion are documented at sss_reference_desc):
  *  - surface samples: every triangle of a visible subsurface object is cut into m^2 congruent
@@ -170,7 +172,7 @@ typedef struct sss_reference_desc {
     double time;           /* animation time (seconds) for sss_reference_render */
     uint64_t seed;
     int exact;             /* brute-force sample sums instead of the tree (slow; for validation) */
-    int specular;          /* add the smooth dielectric reflection of environment and area lights */
+    int specular;          /* add the camera ray's smooth dielectric reflection (of everything it sees) */
     int spp;               /* base samples per pixel (rounded up to a square); 0 = the quality's */
     int no_adaptive;       /* no extra samples at edges */
     double density;        /* multiplies the surface-sample density (samples per area); 0 = 1 */

@@ -41,8 +41,8 @@ static const cli_option options[] = {
     {OPT_EXACT, "--exact", NULL, CLI_ARG_NONE, NULL, "sum over every surface sample instead of the tree (slow; for validation)",
      NULL},
     {OPT_SPECULAR, "--specular", NULL, CLI_ARG_NONE, NULL,
-     "add the smooth dielectric reflection F_r of environment maps and area lights\n"
-     "on subsurface objects (PBRT comparisons leave it out)",
+     "add the camera ray's smooth dielectric reflection F_r off subsurface objects\n"
+     "(environment, area lights and lit surfaces; PBRT's path tracer includes it)",
      NULL},
     {OPT_SPP, "--spp", NULL, CLI_ARG_NUMBER, "N", "base samples per pixel (rounded up to a square)", NULL},
     {OPT_DENSITY, "--density", NULL, CLI_ARG_NUMBER, "D", "multiply the surface-sample density by D (> 0; 4 = half the spacing)",

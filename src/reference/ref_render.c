@@ -32,19 +32,6 @@ int ref_intersect(const ref_ctx *ctx, const double org[3], const double dir[3], 
     return rh->hit.geomID != RTC_INVALID_GEOMETRY_ID;
 }
 
-/* What a mirror ray sees: the environment, or an area light; objects are black (no interreflection). */
-static void mirror_radiance(const ref_ctx *ctx, const double org[3], const double dir[3], double out[3])
-{
-    struct RTCRayHit rh;
-    out[0] = out[1] = out[2] = 0.0;
-    if (!ref_intersect(ctx, org, dir, &rh)) {
-        ref_env_radiance(ctx, dir, out);
-        return;
-    }
-    if (rh.hit.geomID >= ctx->light_geom_base)
-        ref_area_radiance(ctx, ctx->light_of_geom[rh.hit.geomID - ctx->light_geom_base], dir, out);
-}
-
 /* A camera ray's hit on an object: position, geometric and shading normals facing the camera. */
 typedef struct surface_hit {
     unsigned geom, prim;
@@ -88,11 +75,12 @@ static void decode_hit(const ref_ctx *ctx, unsigned g, const struct RTCRayHit *r
     }
 }
 
-/* Traces a camera ray: 0 miss, 1 object (hit filled), 2 area light (hit->geom set). */
-static int trace_camera(const ref_ctx *ctx, const double dir[3], surface_hit *hit)
+/* Traces a camera ray (or its mirror image): 0 miss, 1 object (hit filled), 2 area light (hit->geom
+ * set). */
+static int trace_camera(const ref_ctx *ctx, const double org[3], const double dir[3], surface_hit *hit)
 {
     struct RTCRayHit rh;
-    if (!ref_intersect(ctx, ctx->cam.origin, dir, &rh)) return 0;
+    if (!ref_intersect(ctx, org, dir, &rh)) return 0;
     unsigned g = rh.hit.geomID;
     hit->geom = g;
     if (g >= ctx->light_geom_base) return 2;
@@ -240,14 +228,73 @@ static void far_sum(const ref_ctx *ctx, const ref_object *obj, const double p[3]
     cnt->lookups++;
 }
 
-/* Radiance along one camera ray. */
-static void shade(const ref_ctx *ctx, const double dir[3], int stratum, int strata, ref_rng *rng, double L[3],
-                  sample_info *info, shade_counters *cnt, far_cache *fc)
+/* Camera rays follow the smooth interface's mirror reflection (desc.specular) this many times: F_r^4
+ * is below 1e-4 except at grazing angles. */
+#define MIRROR_DEPTH 4
+
+static void shade(const ref_ctx *ctx, const double org[3], const double dir[3], int depth, int stratum, int strata,
+                  ref_rng *rng, double L[3], sample_info *info, shade_counters *cnt, far_cache *fc);
+
+/* Adds F_r times the radiance along the reflection of dir at a subsurface hit, shaded as a camera ray
+ * (the environment, an area light, or another surface: PBRT's path tracer follows the same
+ * reflection). */
+static void add_mirror(const ref_ctx *ctx, const surface_hit *hit, const double dir[3], double fr, int depth,
+                       int stratum, int strata, ref_rng *rng, shade_counters *cnt, double L[3])
+{
+    const double *ng = hit->ng, *ns = hit->ns;
+    double r[3], dd = v3_dot(dir, ns);
+    for (int c = 0; c < 3; c++) r[c] = dir[c] - 2.0 * dd * ns[c];
+    if (!(v3_dot(r, ng) > 0.0)) { /* about the shading normal it would enter the surface */
+        dd = v3_dot(dir, ng);
+        for (int c = 0; c < 3; c++) r[c] = dir[c] - 2.0 * dd * ng[c];
+    }
+    v3_normalize(r);
+    double po[3], Lr[3];
+    ref_offset(ctx, hit->p, ng, po);
+    sample_info si;
+    far_cache none;
+    none.valid = none.computed = 0;
+    shade(ctx, po, r, depth + 1, stratum, strata, rng, Lr, &si, cnt, &none);
+    for (int c = 0; c < 3; c++) L[c] += fr * Lr[c];
+}
+
+/* The subsurface radiance at a hit towards -dir, docs/physics.md §1:
+ * L = F_t(x_o) / (pi c) * [near part + sum_i T_i A_i S_far(|x_i - x_o|)]; returns F_r(x_o). */
+static double shade_subsurface(const ref_ctx *ctx, const surface_hit *hit, const double dir[3], ref_rng *rng,
+                               shade_counters *cnt, far_cache *fc, double L[3])
+{
+    const ref_object *obj = &ctx->objects[hit->geom];
+    const double *p = hit->p;
+    double near[3], far[3] = {0, 0, 0};
+    near_part(ctx, obj, hit, rng, near);
+    if (obj->tree.point_count > 0) {
+        double d[3] = {p[0] - fc->center.p[0], p[1] - fc->center.p[1], p[2] - fc->center.p[2]};
+        if (fc->valid && fc->center.geom == hit->geom && v3_len(d) <= obj->prof.r0 &&
+            v3_dot(hit->ng, fc->center.ng) > 0.9) {
+            if (!fc->computed) {
+                far_sum(ctx, obj, fc->center.p, fc->far, cnt);
+                fc->computed = 1;
+            }
+            memcpy(far, fc->far, sizeof far);
+        } else {
+            far_sum(ctx, obj, p, far, cnt);
+        }
+    }
+    double cos_o = fabs(v3_dot(hit->ns, dir));
+    double fr = sss_fresnel_dielectric(cos_o, 1.0, obj->eta);
+    double k = (1.0 - fr) / (REF_PI * obj->c_norm);
+    for (int c = 0; c < 3; c++) L[c] = k * (near[c] + far[c]);
+    return fr;
+}
+
+/* Radiance along one camera ray from org (depth: mirror reflections so far). */
+static void shade(const ref_ctx *ctx, const double org[3], const double dir[3], int depth, int stratum, int strata,
+                  ref_rng *rng, double L[3], sample_info *info, shade_counters *cnt, far_cache *fc)
 {
     surface_hit hit;
     L[0] = L[1] = L[2] = 0.0;
     info->geom = -1;
-    int kind = trace_camera(ctx, dir, &hit);
+    int kind = trace_camera(ctx, org, dir, &hit);
     if (kind == 0) {
         if (ctx->has_env) ref_env_radiance(ctx, dir, L);
         return;
@@ -258,57 +305,22 @@ static void shade(const ref_ctx *ctx, const double dir[3], int stratum, int stra
         memset(info->n, 0, sizeof info->n);
         return;
     }
-    const double *p = hit.p, *ng = hit.ng, *ns = hit.ns;
-    double wo[3] = {-dir[0], -dir[1], -dir[2]};
-    memcpy(info->n, ng, sizeof info->n);
+    memcpy(info->n, hit.ng, sizeof info->n);
     const ref_object *obj = &ctx->objects[hit.geom];
-    const sss_reference_object *src = obj->src;
     if (!obj->subsurface) {
         double E[3];
-        ref_irradiance(ctx, p, ng, ns, 0.0, ctx->area_samples_camera, ctx->env_samples_camera, stratum, strata, rng,
-                       E);
+        ref_irradiance(ctx, hit.p, hit.ng, hit.ns, 0.0, ctx->area_samples_camera, ctx->env_samples_camera, stratum,
+                       strata, rng, E);
         if (ctx->transport) {
             double Ei[3];
-            ref_indirect_at(ctx, hit.geom, hit.prim, hit.u, hit.v, ng, Ei);
+            ref_indirect_at(ctx, hit.geom, hit.prim, hit.u, hit.v, hit.ng, Ei);
             for (int c = 0; c < 3; c++) E[c] += Ei[c];
         }
-        for (int c = 0; c < 3; c++) L[c] = src->reflectance[c] / REF_PI * E[c];
+        for (int c = 0; c < 3; c++) L[c] = obj->src->reflectance[c] / REF_PI * E[c];
         return;
     }
-    /* docs/physics.md §1: L = F_t(x_o) / (pi c) * [near part + sum_i T_i A_i S_far(|x_i - x_o|)]. */
-    double near[3], far[3] = {0, 0, 0};
-    near_part(ctx, obj, &hit, rng, near);
-    if (obj->tree.point_count > 0) {
-        double d[3] = {p[0] - fc->center.p[0], p[1] - fc->center.p[1], p[2] - fc->center.p[2]};
-        if (fc->valid && fc->center.geom == hit.geom && v3_len(d) <= obj->prof.r0 &&
-            v3_dot(ng, fc->center.ng) > 0.9) {
-            if (!fc->computed) {
-                far_sum(ctx, obj, fc->center.p, fc->far, cnt);
-                fc->computed = 1;
-            }
-            memcpy(far, fc->far, sizeof far);
-        } else {
-            far_sum(ctx, obj, p, far, cnt);
-        }
-    }
-    double cos_o = fabs(v3_dot(ns, wo));
-    double fr = sss_fresnel_dielectric(cos_o, 1.0, obj->eta);
-    double k = (1.0 - fr) / (REF_PI * obj->c_norm);
-    for (int c = 0; c < 3; c++) L[c] = k * (near[c] + far[c]);
-    if (ctx->desc.specular) {
-        /* Smooth dielectric interface: F_r times what the mirror direction sees. */
-        double r[3], dd = v3_dot(dir, ns);
-        for (int c = 0; c < 3; c++) r[c] = dir[c] - 2.0 * dd * ns[c];
-        if (!(v3_dot(r, ng) > 0.0)) {
-            dd = v3_dot(dir, ng);
-            for (int c = 0; c < 3; c++) r[c] = dir[c] - 2.0 * dd * ng[c];
-        }
-        v3_normalize(r);
-        double po[3], Lr[3];
-        ref_offset(ctx, p, ng, po);
-        mirror_radiance(ctx, po, r, Lr);
-        for (int c = 0; c < 3; c++) L[c] += fr * Lr[c];
-    }
+    double fr = shade_subsurface(ctx, &hit, dir, rng, cnt, fc, L);
+    if (ctx->desc.specular && depth < MIRROR_DEPTH) add_mirror(ctx, &hit, dir, fr, depth, stratum, strata, rng, cnt, L);
 }
 
 static int tone8(double x, double scale)
@@ -406,7 +418,7 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
                 if (!ctx.desc.no_far_reuse) {
                     double dir[3];
                     ref_camera_ray(&ctx.cam, x + 0.5, y + 0.5, dir);
-                    fc.valid = trace_camera(&ctx, dir, &fc.center) == 1 &&
+                    fc.valid = trace_camera(&ctx, ctx.cam.origin, dir, &fc.center) == 1 &&
                                ctx.objects[fc.center.geom].tree.point_count > 0;
                 }
                 double sum[3] = {0, 0, 0};
@@ -415,7 +427,7 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
                     double dir[3];
                     ref_camera_ray(&ctx.cam, x + (s % kb + ref_rng_uniform(&rng)) / kb,
                                    y + (s / kb + ref_rng_uniform(&rng)) / kb, dir);
-                    shade(&ctx, dir, s, n, &rng, L[s], &info[s], &cnt, &fc);
+                    shade(&ctx, ctx.cam.origin, dir, 0, s, n, &rng, L[s], &info[s], &cnt, &fc);
                     for (int c = 0; c < 3; c++) {
                         if (!isfinite(L[s][c])) {
                             nonfinite++;
@@ -432,7 +444,7 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
                         sample_info si;
                         ref_camera_ray(&ctx.cam, x + (s % ka + ref_rng_uniform(&rng)) / ka,
                                        y + (s / ka + ref_rng_uniform(&rng)) / ka, dir);
-                        shade(&ctx, dir, s, ka * ka, &rng, Ls, &si, &cnt, &fc);
+                        shade(&ctx, ctx.cam.origin, dir, 0, s, ka * ka, &rng, Ls, &si, &cnt, &fc);
                         for (int c = 0; c < 3; c++) {
                             if (!isfinite(Ls[c])) {
                                 nonfinite++;

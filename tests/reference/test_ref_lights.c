@@ -1,7 +1,8 @@
 /* Reference renderer, lights: a Lambertian plane (radiance reflectance / pi * E) under each light type
  * against closed forms: point (I cos / d^2), spot (PBRT-v3 falloff), directional (E cos), a rectangle
  * parallel to the plane (the corner form factor), a constant environment (E = pi L) and a non-uniform
- * one (quadrature over its pixels); the environment seen by rays that miss; the --specular mirror term. */
+ * one (quadrature over its pixels); the environment seen by rays that miss; the --specular mirror term of an environment and of a lit
+ * ceiling. */
 #include "ref_test_util.h"
 
 #define W 32
@@ -148,6 +149,45 @@ static double irr_const(const void *ctx, double x, double z)
     return *(const double *)ctx;
 }
 
+/* --specular reflects the lit scene too: a camera straight above a black subsurface floor (albedo
+ * ~1e-4) sees in its mirror a Lambertian ceiling lit by a point light halfway up, so the centre pixel
+ * is F_r(1) times the ceiling's radiance reflectance / pi * I / d^2 (d = 5); without it, ~0. */
+static void check_mirror_of_scene(void)
+{
+    tmesh floor = {0}, ceiling = {0};
+    tmesh_plane(&floor, 60.0, 0, 0, 0, 4, 0);
+    tmesh_plane(&ceiling, 60.0, 0, 10.0, 0, 4, 1);
+    sss_material m = material_coeffs(100.0, 100.0, 100.0, 0.01, 0.01, 0.01, 1.5);
+    sss_pbd_table *table;
+    sss_reference_object o[2] = {object_subsurface(&floor.m, &m, &table), object_diffuse(&ceiling.m, RHO)};
+    sss_light l = light_point(0.0, 5.0, 0.0, 2.0);
+    sss_reference_world w;
+    memset(&w, 0, sizeof w);
+    camera_set(&w.camera, 0, 1.0, 0, 0, 0, 0, 40, 17, 17);
+    w.objects = o, w.object_count = 2, w.lights = &l, w.light_count = 1;
+    sss_reference_desc d;
+    memset(&d, 0, sizeof d);
+    d.bounces = 1; /* no interreflection: the ceiling's radiance is its direct light */
+    d.quality = SSS_REFERENCE_DRAFT;
+    d.no_adaptive = 1;
+    sss_image a, b;
+    if (render_or_die(&w, &d, &a, NULL)) {
+        d.specular = 1;
+        if (render_or_die(&w, &d, &b, NULL)) {
+            double fr = pow((1.5 - 1.0) / (1.5 + 1.0), 2.0), ceiling_l = RHO / T_PI * 2.0 / 25.0;
+            CHECK_MSG(img_at(&a, 8, 8, 1) < 1e-3 * fr * ceiling_l, "black floor without --specular: %g",
+                      img_at(&a, 8, 8, 1));
+            CHECK_NEAR(img_at(&b, 8, 8, 1), fr * ceiling_l, 0.01 * fr * ceiling_l);
+            printf("mirror of the scene: %.5g (closed form %.5g)\n", img_at(&b, 8, 8, 1), fr * ceiling_l);
+            sss_image_free(&b);
+        }
+        sss_image_free(&a);
+    }
+    free(table);
+    tmesh_free(&floor);
+    tmesh_free(&ceiling);
+}
+
 int main(void)
 {
     double dev;
@@ -272,5 +312,6 @@ int main(void)
         tmesh_free(&sphere);
     }
     sss_image_free(&env);
+    check_mirror_of_scene();
     return CHECK_DONE();
 }
