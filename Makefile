@@ -6,7 +6,8 @@
 # Also: make build, make sanitize (ASan + UBSan build and unit tests), make bench, make clean,
 #   make fuzz [FUZZ_SECONDS=N]  libFuzzer (clang) on every parser, N seconds each (default 60); the
 #                               corpus grows in $(FUZZ_BUILD)/fuzz-corpus from run to run
-#   make fuzz-ci                each target 60 s from the committed seeds; fails on any finding
+#   make fuzz-ci                each target 60 s from the committed seeds, one per processor at a
+#                               time; fails on any finding
 BUILD ?= build
 SAN_BUILD ?= build-asan
 JOBS ?= $(shell nproc)
