@@ -419,6 +419,31 @@ static PyObject *renderer_update_lights(renderer_object *self, PyObject *pairs)
     Py_RETURN_NONE;
 }
 
+/* New materials for the same geometry (sss_gl_renderer_update_materials): `scene` is the renderer's
+ * own scene (re-read) or another one with equal geometry, which the renderer then draws and keeps. */
+static PyObject *renderer_update_materials(renderer_object *self, PyObject *arg)
+{
+    if (!renderer_usable(self)) return NULL;
+    if (!PyObject_TypeCheck(arg, &sss_py_scene_type))
+        return PyErr_Format(PyExc_TypeError, "update_materials: expected an sss.Scene, got %s", Py_TYPE(arg)->tp_name);
+    scene_object *next = (scene_object *)arg;
+    sss_error err = {0};
+    sss_result res;
+    self->scene->busy++, next->busy++;
+    Py_BEGIN_ALLOW_THREADS
+    res = sss_gl_renderer_update_materials(self->r, next == self->scene ? NULL : &next->scene, NULL, &err);
+    Py_END_ALLOW_THREADS
+    self->scene->busy--, next->busy--;
+    if (res != SSS_OK) return sss_py_raise(&err);
+    if (next != self->scene) {
+        scene_object *old = self->scene;
+        Py_INCREF(next);
+        self->scene = next;
+        Py_DECREF(old);
+    }
+    Py_RETURN_NONE;
+}
+
 static PyObject *renderer_close(renderer_object *self, PyObject *unused)
 {
     if (self->r && !renderer_usable(self)) return NULL;
@@ -455,6 +480,10 @@ static PyMethodDef renderer_methods[] = {
     {"get_param", (PyCFunction)renderer_get_param, METH_VARARGS, "get_param(name) -> float"},
     {"_update_lights", (PyCFunction)renderer_update_lights, METH_O,
      "_update_lights([(index, json_text), ...]): sss_scene_set_light each, then sss_gl_renderer_update_lights"},
+    {"update_materials", (PyCFunction)renderer_update_materials, METH_O,
+     "update_materials(scene): new materials for the same geometry without a new renderer; scene is the\n"
+     "renderer's own (re-read) or another with the same meshes, transforms, lights and textures, which it\n"
+     "then draws. Different geometry raises sss.Error and the renderer keeps its scene."},
     {"close", (PyCFunction)renderer_close, METH_NOARGS, "close(): frees the GL context now (idempotent)"},
     {NULL, NULL, 0, NULL}};
 

@@ -1,6 +1,6 @@
 """Errors raise sss.Error (a RuntimeError) with the library's message naming the input and its result
 code; bad input leaves no partial output; a Renderer refuses other threads and use after close; the
-lights of a scene change all or not at all."""
+lights of a scene change all or not at all; a renderer takes new materials only for the same geometry."""
 import json
 import os
 import threading
@@ -161,6 +161,34 @@ class Lights(unittest.TestCase):
         self.assertGreater(float(np.abs(after - before).max()), 0.01)  # the light did move
         # sss_gl_renderer_update_lights: "the next render equals a new renderer's"
         np.testing.assert_array_equal(after, fresh)
+
+    def test_update_materials_equals_a_new_renderer(self):
+        with open(AREA) as f:
+            data = json.load(f)
+        self.assertEqual(data["objects"][0]["material"]["medium"], "Marble")
+        ketchup = json.loads(json.dumps(data))
+        ketchup["objects"][0]["material"]["medium"] = "Ketchup"
+        moved = json.loads(json.dumps(data))
+        moved["objects"][0]["transform"]["rotate"] = [1, 0, 0, 30]
+        scene = sss.Scene.load(AREA)
+        other = sss.Scene.load(ketchup, base_dir=SCENES)
+        for technique, params in (("maisch2020", STABLE), ("ssss", FAST)):
+            with sss.Renderer(scene, technique=technique, params=params, width=32, height=32) as r:
+                before = r.render()
+                with self.assertRaisesRegex(sss.Error, r"objects\[0\]") as caught:
+                    r.update_materials(sss.Scene.load(moved, base_dir=SCENES))
+                self.assertEqual(caught.exception.code, INVALID_ARGUMENT)
+                self.assertIs(r.scene, scene)  # refused: it keeps its scene
+                np.testing.assert_array_equal(r.render(), before)
+                r.update_materials(other)
+                self.assertIs(r.scene, other)
+                after = r.render()
+            fresh = sss.render(other, technique=technique, params=params, width=32, height=32)
+            self.assertGreater(float(np.abs(after - before).max()), 0.01, technique)  # Ketchup is not Marble
+            # sss_gl_renderer_update_materials: "the next render equals a new renderer's"
+            self.assertLess(float(np.abs(after - fresh).max()), 1e-5 * float(fresh.max()), technique)
+        with sss.Renderer(scene, params=STABLE, width=16, height=16) as r:
+            self.assertRaises(TypeError, r.update_materials, data)
 
     def test_lights_change_all_or_none(self):
         scene = sss.Scene.load(SMALL_SCENE)
