@@ -149,6 +149,22 @@ static double irr_const(const void *ctx, double x, double z)
     return *(const double *)ctx;
 }
 
+/* Renders w as the single-event integral the closed forms describe (draft, no adaptive sampling),
+ * without (a) and with (b) the camera ray's mirror reflection; 1 when both rendered. */
+static int render_specular_pair(const sss_reference_world *w, sss_image *a, sss_image *b)
+{
+    sss_reference_desc d;
+    memset(&d, 0, sizeof d);
+    d.bounces = 1;
+    d.quality = SSS_REFERENCE_DRAFT;
+    d.no_adaptive = 1;
+    if (!render_or_die(w, &d, a, NULL)) return 0;
+    d.specular = 1;
+    if (render_or_die(w, &d, b, NULL)) return 1;
+    sss_image_free(a);
+    return 0;
+}
+
 /* --specular reflects the lit scene too: a camera straight above a black subsurface floor (albedo
  * ~1e-4) sees in its mirror a Lambertian ceiling lit by a point light halfway up, so the centre pixel
  * is F_r(1) times the ceiling's radiance reflectance / pi * I / d^2 (d = 5); without it, ~0. */
@@ -165,23 +181,15 @@ static void check_mirror_of_scene(void)
     memset(&w, 0, sizeof w);
     camera_set(&w.camera, 0, 1.0, 0, 0, 0, 0, 40, 17, 17);
     w.objects = o, w.object_count = 2, w.lights = &l, w.light_count = 1;
-    sss_reference_desc d;
-    memset(&d, 0, sizeof d);
-    d.bounces = 1; /* no interreflection: the ceiling's radiance is its direct light */
-    d.quality = SSS_REFERENCE_DRAFT;
-    d.no_adaptive = 1;
-    sss_image a, b;
-    if (render_or_die(&w, &d, &a, NULL)) {
-        d.specular = 1;
-        if (render_or_die(&w, &d, &b, NULL)) {
-            double fr = pow((1.5 - 1.0) / (1.5 + 1.0), 2.0), ceiling_l = RHO / T_PI * 2.0 / 25.0;
-            CHECK_MSG(img_at(&a, 8, 8, 1) < 1e-3 * fr * ceiling_l, "black floor without --specular: %g",
-                      img_at(&a, 8, 8, 1));
-            CHECK_NEAR(img_at(&b, 8, 8, 1), fr * ceiling_l, 0.01 * fr * ceiling_l);
-            printf("mirror of the scene: %.5g (closed form %.5g)\n", img_at(&b, 8, 8, 1), fr * ceiling_l);
-            sss_image_free(&b);
-        }
+    sss_image a, b; /* the ceiling's radiance is its direct light: no interreflection */
+    if (render_specular_pair(&w, &a, &b)) {
+        double fr = pow((1.5 - 1.0) / (1.5 + 1.0), 2.0), ceiling_l = RHO / T_PI * 2.0 / 25.0;
+        CHECK_MSG(img_at(&a, 8, 8, 1) < 1e-3 * fr * ceiling_l, "black floor without --specular: %g",
+                  img_at(&a, 8, 8, 1));
+        CHECK_NEAR(img_at(&b, 8, 8, 1), fr * ceiling_l, 0.01 * fr * ceiling_l);
+        printf("mirror of the scene: %.5g (closed form %.5g)\n", img_at(&b, 8, 8, 1), fr * ceiling_l);
         sss_image_free(&a);
+        sss_image_free(&b);
     }
     free(table);
     tmesh_free(&floor);
@@ -292,21 +300,13 @@ int main(void)
         memset(&w, 0, sizeof w);
         camera_set(&w.camera, 0, 0, 5, 0, 0, 0, 40, 17, 17);
         w.objects = &o, w.object_count = 1, w.lights = &l, w.light_count = 1, w.environment_maps = maps;
-        sss_reference_desc d;
-        memset(&d, 0, sizeof d);
-        d.bounces = 1; /* the single-event integral the closed forms describe */
-        d.quality = SSS_REFERENCE_DRAFT;
-        d.no_adaptive = 1;
         sss_image a, b;
-        if (render_or_die(&w, &d, &a, NULL)) {
-            d.specular = 1;
-            if (render_or_die(&w, &d, &b, NULL)) {
-                double fr = pow((1.5 - 1.0) / (1.5 + 1.0), 2.0);
-                CHECK_NEAR(img_at(&b, 8, 8, 1) - img_at(&a, 8, 8, 1), fr * 0.5, 0.02 * fr * 0.5);
-                CHECK_NEAR(img_at(&a, 0, 0, 0), 0.5, 1e-6); /* a corner misses the sphere */
-                sss_image_free(&b);
-            }
+        if (render_specular_pair(&w, &a, &b)) {
+            double fr = pow((1.5 - 1.0) / (1.5 + 1.0), 2.0);
+            CHECK_NEAR(img_at(&b, 8, 8, 1) - img_at(&a, 8, 8, 1), fr * 0.5, 0.02 * fr * 0.5);
+            CHECK_NEAR(img_at(&a, 0, 0, 0), 0.5, 1e-6); /* a corner misses the sphere */
             sss_image_free(&a);
+            sss_image_free(&b);
         }
         free(table);
         tmesh_free(&sphere);
