@@ -253,7 +253,7 @@ static void add_mirror(const ref_ctx *ctx, const surface_hit *hit, const double 
     ref_offset(ctx, hit->p, ng, po);
     sample_info si;
     far_cache none;
-    none.valid = none.computed = 0;
+    memset(&none, 0, sizeof none);
     shade(ctx, po, r, depth + 1, stratum, strata, rng, Lr, &si, cnt, &none);
     for (int c = 0; c < 3; c++) L[c] += fr * Lr[c];
 }
