@@ -102,7 +102,9 @@ ratio() { # "a b c" "x y z" -> "a/x/b/y/c/z" as 0.00/0.00/0.00
     echo "$1 $2" | awk '{ printf "%.2f/%.2f/%.2f", ($4 > 0 ? $1 / $4 : 0), ($5 > 0 ? $2 / $5 : 0), ($6 > 0 ? $3 / $6 : 0) }'
 }
 
-printf "%-22s %5s %12s %-16s %8s\n" scene depth bounces "mean R/G/B" dssim
+ROW="%-22s %5s %12s %-16s %8s\n" # scene, depth, bounces, mean R/G/B ratio, DSSIM
+# shellcheck disable=SC2059
+printf "$ROW" scene depth bounces "mean R/G/B" dssim
 for spec in $SCENES; do
     scene=${spec%@*}
     time_opt=""
@@ -125,7 +127,8 @@ for spec in $SCENES; do
             "$SSS" reference "$small" -o "$mine.png" --pfm "$mine.pfm" --quiet $bounces_opt $time_opt
         fi
         dssim=$("$SSS" compare "$mine.pfm" "$base.pbrt.pfm" | sed 's/.*dssim=\([^ ]*\).*/\1/')
-        printf "%-22s %5s %12s %-16s %8s\n" "$tag" "$d" "$bounces" \
+        # shellcheck disable=SC2059
+        printf "$ROW" "$tag" "$d" "$bounces" \
             "$(ratio "$(pfm_mean "$mine.pfm")" "$(pfm_mean "$base.pbrt.pfm")")" "$dssim"
     done
     if [ "$NOISE" = 1 ]; then
@@ -135,7 +138,8 @@ for spec in $SCENES; do
             nice -n 10 "$PBRT" --quiet --outfile "$base.random.pfm" "$base.random.pbrt"
         fi
         dssim=$("$SSS" compare "$base.random.pfm" "$base.pbrt.pfm" | sed 's/.*dssim=\([^ ]*\).*/\1/')
-        printf "%-22s %5s %12s %-16s %8s\n" "$tag" "$MAXDEPTH" "noise" \
+        # shellcheck disable=SC2059
+        printf "$ROW" "$tag" "$MAXDEPTH" "noise" \
             "$(ratio "$(pfm_mean "$base.random.pfm")" "$(pfm_mean "$base.pbrt.pfm")")" "$dssim"
     fi
 done
