@@ -240,6 +240,38 @@ typedef struct ref_light {
     ref_env env;
 } ref_light;
 
+/* ---- many point lights (ref_light_tree.c) ------------------------------------------------------
+ * Up to REF_EXACT_POINT_LIGHTS point and spot lights, every one gets a shadow ray at every surface point.
+ * Beyond that (a scene may hold thousands), a bounding-volume hierarchy over their positions chooses
+ * REF_TREE_LIGHT_SAMPLES of them per point: each node's children are weighted by power over squared
+ * distance (zero where the whole box lies below the surface), after Conty Estevez & Kulla 2018
+ * ("Importance Sampling of Many Lights with Adaptive Tree Splitting"), and the samples descend together,
+ * stratified (one offset per point), so the cost grows with log(lights), not with lights. */
+#define REF_EXACT_POINT_LIGHTS 64
+#define REF_TREE_LIGHT_SAMPLES 64
+
+typedef struct ref_light_node {
+    float lo[3], hi[3];
+    double power;     /* sum of the intensities' channels below this node */
+    uint32_t child;   /* internal: first child (the second is child + 1); leaf: the light's index */
+    uint32_t is_leaf;
+} ref_light_node;
+
+typedef struct ref_light_tree {
+    ref_light_node *nodes; /* NULL: no tree (few point lights) */
+    size_t node_count;
+} ref_light_tree;
+
+struct ref_ctx;
+sss_result ref_light_tree_build(struct ref_ctx *ctx, sss_error *err);
+void ref_light_tree_free(ref_light_tree *t);
+/* Calls add(light, weight) for the lights drawn at po (geometric normal ng) with offset u in [0, 1):
+ * the sum of weight times each light's contribution is an unbiased estimate of all point and spot
+ * lights' contribution. */
+typedef void (*ref_light_visit)(void *user, const struct ref_light *light, double weight);
+void ref_light_tree_sample(const struct ref_ctx *ctx, const double po[3], const double ng[3], double u,
+                           ref_light_visit add, void *user);
+
 /* ---- the render context ---------------------------------------------------------------------- */
 
 typedef struct ref_object {
@@ -296,6 +328,7 @@ typedef struct ref_ctx {
     size_t object_count;
     ref_light *lights;
     size_t light_count;
+    ref_light_tree light_tree; /* over the point and spot lights when there are many (ref_light_tree.c) */
     int has_env;
     unsigned light_geom_base; /* geomID of the first area light rectangle; lights get one each */
     unsigned *light_of_geom;  /* geomID - light_geom_base -> light index */
@@ -333,7 +366,8 @@ void ref_lights_free(ref_ctx *ctx);
 /* T(x) (or E(x) when eta <= 0: diffuse, no Fresnel) at a surface point p with unit geometric normal
  * ng (the side the light must be on) and unit shading normal ns, with (about) the given numbers of
  * stratified samples of each area and environment light; stratum/strata (a square) interleave the
- * light samples of a pixel's camera samples (0, 1: on its own). */
+ * light samples of a pixel's camera samples (0, 1: on its own). Point and spot lights get a shadow ray
+ * each up to REF_EXACT_POINT_LIGHTS of them; more are drawn from the light tree. */
 void ref_irradiance(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3],
                     double eta, int area_samples, int env_samples, int stratum, int strata, ref_rng *rng,
                     double out[3]);
