@@ -83,7 +83,9 @@ sss_result sss_gl_pass_set_param(sss_gl_pass *pass, const char *name, double val
  * objects must not change): LUTs and records are rebuilt now, meshes and programs stay (as
  * sss_gl_renderer_update_materials with scene NULL). */
 sss_result sss_gl_pass_update_materials(sss_gl_pass *pass, sss_error *err);
-/* Re-reads the lights (same rules as sss_gl_renderer_update_lights). */
+/* Re-reads the lights (same rules as sss_gl_renderer_update_lights, for every technique, also those
+ * that light nothing themselves): a light added, removed or of another type is
+ * SSS_ERROR_INVALID_ARGUMENT naming it, and a new pass is needed. */
 sss_result sss_gl_pass_update_lights(sss_gl_pass *pass, sss_error *err);
 
 typedef struct sss_gl_pass_info {

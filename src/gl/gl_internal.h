@@ -172,6 +172,9 @@ typedef struct gl_scene {
     gl_object *objects;
     gl_material *materials;
     gl_light_record *lights;      /* light_count records (VPLs included) */
+    sss_light_type *light_kinds;  /* the scene's lights' types at the upload, recorded for every
+                                     technique (lights built or not): update_lights keeps them */
+    size_t light_kind_count;
     int shadow_cube_count, shadow_2d_count;
     GLuint ssbo_objects, ssbo_materials, ssbo_lights, ssbo_lut_scales;
     GLuint lut_array;             /* 2D array, RGBA32F, R'_d / lut_scales[layer]; `levels` layers per
@@ -418,6 +421,10 @@ void gl_bind_scene(const sss_gl_renderer *r); /* SSBOs, LUT, shadow and albedo s
 sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err);
 /* Rewrites the light records from the scene's lights (same count, kinds and shadow slots). */
 sss_result gl_lights_update(sss_gl_renderer *r, sss_error *err);
+sss_result gl_lights_record_kinds(sss_gl_renderer *r, sss_error *err);
+/* The scene's lights against gs.light_kinds: the same number and types, else INVALID_ARGUMENT naming
+ * what changed (every technique: a pass that lights nothing itself builds no light records). */
+sss_result gl_lights_check_kinds(const sss_gl_renderer *r, sss_error *err);
 void gl_env_cache_free(gl_scene *gs); /* the environment maps read by gl_lights_build */
 sss_result gl_shadows_render(sss_gl_renderer *r, sss_error *err);
 /* frame.c */

@@ -136,12 +136,17 @@ sss_result sss_gl_pass_update_materials(sss_gl_pass *pass, sss_error *err)
 sss_result sss_gl_pass_update_lights(sss_gl_pass *pass, sss_error *err)
 {
     if (!pass) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_update_lights: pass is NULL");
-    if (!(pass->r->tech->needs & GL_NEED_LIGHTS)) return SSS_OK; /* the technique reads no lights */
-    gl_pass_state saved;
-    gl_pass_state_save(&saved);
-    gl_pass_state_defaults();
-    sss_result res = sss_gl_renderer_update_lights(pass->r, err);
-    gl_pass_state_restore(&saved);
+    /* the number and kinds are checked for every technique, also those that read no lights (and so
+     * build no light records that gl_lights_update could compare) */
+    sss_result res = gl_lights_check_kinds(pass->r, err);
+    if (res == SSS_OK && (pass->r->tech->needs & GL_NEED_LIGHTS)) {
+        gl_pass_state saved;
+        gl_pass_state_save(&saved);
+        gl_pass_state_defaults();
+        res = sss_gl_renderer_update_lights(pass->r, err);
+        gl_pass_state_restore(&saved);
+    }
+    if (res != SSS_OK) sss_error_prefix(err, "sss_gl_pass_update_lights");
     return res;
 }
 
