@@ -2,8 +2,8 @@
  * G-buffer and lighting into its own textures, the pass reads them and writes the subsurface radiance
  * into a texture the caller owns (docs/integration.md).
  *
- * Does: runs any registered technique (sss/gl.h) on caller-owned GL textures with the caller's camera
- * matrices; registers the caller's surfaces through an sss_scene (material per id; meshes, transforms,
+ * Does: runs any registered technique (sss/gl.h) but chen2012 on caller-owned GL textures with the
+ * caller's camera matrices; registers the caller's surfaces through an sss_scene (material per id; meshes, transforms,
  * animations and lights only for the techniques that splat or rasterise geometry, which then render
  * their own light-space shadow maps of those meshes); allocates nothing per frame; restores every GL
  * state it changes (SSS_GL_PASS_STATE below); resize, parameter, material and light updates.
@@ -65,7 +65,9 @@ typedef struct sss_gl_pass_frame {
 typedef struct sss_gl_pass sss_gl_pass;
 
 /* Creates the technique's resources (LUTs, splat meshes, shadow maps, its own targets) on the current
- * context. Errors as sss_gl_renderer_create, plus a missing scene or size. */
+ * context. Errors as sss_gl_renderer_create, plus a missing scene or size, and SSS_ERROR_UNSUPPORTED
+ * for chen2012, which never reads the frame's irradiance (it lights its sources in light space, one
+ * buffer per light; docs/integration.md). */
 sss_result sss_gl_pass_create(sss_gl_context *ctx, const sss_gl_pass_desc *desc, sss_gl_pass **out,
                               sss_error *err);
 void sss_gl_pass_destroy(sss_gl_pass *pass);

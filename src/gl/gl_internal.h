@@ -279,6 +279,9 @@ typedef struct gl_technique {
      * defaults depart from them; the others are the paper's already */
     const sss_gl_param_value *paper;
     int paper_count;
+    /* NULL, or why the technique cannot run as a pass over a caller's frame (sss_gl_pass_create refuses
+     * it with this reason): a technique that does not read the frame's inputs would ignore them */
+    const char *not_a_pass;
 } gl_technique;
 
 /* A technique that another one runs in place (screen runs maisch2020; sam runs ssss or screen for the
