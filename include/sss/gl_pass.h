@@ -2,11 +2,12 @@
  * G-buffer and lighting into its own textures, the pass reads them and writes the subsurface radiance
  * into a texture the caller owns (docs/integration.md).
  *
- * Does: runs any registered technique (sss/gl.h) on caller-owned GL textures with the caller's camera
- * matrices; registers the caller's surfaces through an sss_scene (material per id; meshes, transforms,
+ * Does: runs any registered technique (sss/gl.h) but chen2012 on caller-owned GL textures with the
+ * caller's camera matrices; registers the caller's surfaces through an sss_scene (material per id; meshes, transforms,
  * animations and lights only for the techniques that splat or rasterise geometry, which then render
- * their own light-space shadow maps of those meshes); allocates nothing per frame; restores every GL
- * state it changes (SSS_GL_PASS_STATE below); resize, parameter, material and light updates.
+ * their own light-space shadow maps of those meshes); allocates nothing per frame; sets the GL state
+ * its draws depend on and restores the caller's (the list below); resize, parameter, material and
+ * light updates.
  * Does not: render the caller's G-buffer, lighting or shadow maps, read the caller's shadow maps, tone
  * map, print, or create a context (the caller's context must be current, OpenGL 4.5 core:
  * sss_gl_context_adopt_current wraps it).
@@ -65,7 +66,9 @@ typedef struct sss_gl_pass_frame {
 typedef struct sss_gl_pass sss_gl_pass;
 
 /* Creates the technique's resources (LUTs, splat meshes, shadow maps, its own targets) on the current
- * context. Errors as sss_gl_renderer_create, plus a missing scene or size. */
+ * context. Errors as sss_gl_renderer_create, plus a missing scene or size, and SSS_ERROR_UNSUPPORTED
+ * for chen2012, which never reads the frame's irradiance (it lights its sources in light space, one
+ * buffer per light; docs/integration.md). */
 sss_result sss_gl_pass_create(sss_gl_context *ctx, const sss_gl_pass_desc *desc, sss_gl_pass **out,
                               sss_error *err);
 void sss_gl_pass_destroy(sss_gl_pass *pass);
@@ -83,7 +86,9 @@ sss_result sss_gl_pass_set_param(sss_gl_pass *pass, const char *name, double val
  * objects must not change): LUTs and records are rebuilt now, meshes and programs stay (as
  * sss_gl_renderer_update_materials with scene NULL). */
 sss_result sss_gl_pass_update_materials(sss_gl_pass *pass, sss_error *err);
-/* Re-reads the lights (same rules as sss_gl_renderer_update_lights). */
+/* Re-reads the lights (same rules as sss_gl_renderer_update_lights, for every technique, also those
+ * that light nothing themselves): a light added, removed or of another type is
+ * SSS_ERROR_INVALID_ARGUMENT naming it, and a new pass is needed. */
 sss_result sss_gl_pass_update_lights(sss_gl_pass *pass, sss_error *err);
 
 typedef struct sss_gl_pass_info {
@@ -96,16 +101,33 @@ void sss_gl_pass_timings(const sss_gl_pass *pass, sss_gl_timings *out);
 /* Memory the pass owns (per_pixel_bytes: its own screen-sized targets only, the inputs excluded). */
 void sss_gl_pass_stats(sss_gl_pass *pass, sss_gl_stats *out);
 
-/* GL state a pass changes and restores (queried before, set back after execute):
- * bindings: GL_DRAW_FRAMEBUFFER, GL_READ_FRAMEBUFFER, the current program, the vertex array, the
- *   active texture unit, the textures of units 0..15 (2D, 2D array, cube map, cube map array, 3D) and
- *   their samplers, image units 0..7, the indexed uniform buffers 0..23 and shader storage buffers
- *   0..23 (name, offset, size), the generic GL_UNIFORM_BUFFER, GL_SHADER_STORAGE_BUFFER,
- *   GL_ARRAY_BUFFER, GL_DRAW_INDIRECT_BUFFER, GL_DISPATCH_INDIRECT_BUFFER, GL_PIXEL_PACK_BUFFER and
- *   GL_PIXEL_UNPACK_BUFFER bindings;
- * fixed function: the viewport, GL_DEPTH_TEST, GL_BLEND, GL_CULL_FACE, GL_POLYGON_OFFSET_FILL,
- *   GL_SCISSOR_TEST, glDepthFunc, glDepthMask, glColorMask, glBlendFuncSeparate, glBlendEquationSeparate,
- *   glPolygonOffset, glClipControl, GL_PACK_ALIGNMENT, GL_UNPACK_ALIGNMENT. */
+/* GL state (docs/integration.md, "What the pass sets and restores"). Every call above but get_info,
+ * timings and stats queries this state first, sets the values shown (the GL defaults, which the
+ * passes' draws, clears, uploads and readbacks assume) and restores the caller's before it returns:
+ * rasterisation: glPolygonMode GL_FILL; GL_RASTERIZER_DISCARD, GL_CULL_FACE, GL_POLYGON_OFFSET_FILL/
+ *   LINE/POINT, GL_POLYGON_SMOOTH, GL_LINE_SMOOTH, GL_PROGRAM_POINT_SIZE, GL_DEPTH_CLAMP and every
+ *   GL_CLIP_DISTANCEi off; glCullFace GL_BACK, glFrontFace GL_CCW, glPolygonOffset(0, 0),
+ *   glProvokingVertex GL_LAST_VERTEX_CONVENTION, glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE),
+ *   GL_FRAGMENT_SHADER_DERIVATIVE_HINT GL_DONT_CARE; every viewport and its depth range (0, 1);
+ *   GL_MULTISAMPLE on, GL_SAMPLE_ALPHA_TO_COVERAGE, GL_SAMPLE_ALPHA_TO_ONE, GL_SAMPLE_COVERAGE,
+ *   GL_SAMPLE_MASK, GL_SAMPLE_SHADING off;
+ * vertex fetch: GL_PRIMITIVE_RESTART and GL_PRIMITIVE_RESTART_FIXED_INDEX off; the vertex array,
+ *   GL_ARRAY_BUFFER, GL_DRAW_INDIRECT_BUFFER, GL_DISPATCH_INDIRECT_BUFFER;
+ * fragment operations: GL_SCISSOR_TEST (per viewport), GL_STENCIL_TEST, GL_DEPTH_TEST,
+ *   GL_COLOR_LOGIC_OP, GL_FRAMEBUFFER_SRGB off, GL_DITHER on; glDepthFunc GL_LESS, glDepthMask GL_TRUE;
+ *   per draw buffer GL_BLEND off, glBlendFunc(GL_ONE, GL_ZERO), glBlendEquation GL_FUNC_ADD and
+ *   glColorMask all true;
+ * textures: GL_TEXTURE_CUBE_MAP_SEAMLESS off; the active unit, the textures of units 0..15 (2D,
+ *   2D array, cube map, cube map array, 3D), their sampler objects (none), image units 0..7;
+ * pixel transfer: every GL_PACK_* and GL_UNPACK_* pixel-store value (alignment 4, the others 0);
+ *   no GL_PIXEL_PACK_BUFFER, GL_PIXEL_UNPACK_BUFFER or GL_QUERY_BUFFER;
+ * bindings: GL_DRAW_FRAMEBUFFER, GL_READ_FRAMEBUFFER, the current program, the indexed uniform and
+ *   shader storage buffers 0..23 (name, offset, size) and the generic GL_UNIFORM_BUFFER and
+ *   GL_SHADER_STORAGE_BUFFER.
+ * Per draw buffer, viewport and clip distance: the first 16 (GL_MAX_DRAW_BUFFERS, GL_MAX_VIEWPORTS,
+ * GL_MAX_CLIP_DISTANCES are 8, 16 and 8 on current GLs). The caller must not be inside
+ * glBeginTransformFeedback or glBeginConditionalRender, nor have a GL_TIME_ELAPSED query (desc.timings)
+ * or GL_FRAGMENT_SHADER_INVOCATIONS query (dss's statistics) active. */
 #define SSS_GL_PASS_TEXTURE_UNITS 16
 #define SSS_GL_PASS_IMAGE_UNITS 8
 #define SSS_GL_PASS_BUFFER_BINDINGS 24

@@ -172,6 +172,9 @@ typedef struct gl_scene {
     gl_object *objects;
     gl_material *materials;
     gl_light_record *lights;      /* light_count records (VPLs included) */
+    sss_light_type *light_kinds;  /* the scene's lights' types at the upload, recorded for every
+                                     technique (lights built or not): update_lights keeps them */
+    size_t light_kind_count;
     int shadow_cube_count, shadow_2d_count;
     GLuint ssbo_objects, ssbo_materials, ssbo_lights, ssbo_lut_scales;
     GLuint lut_array;             /* 2D array, RGBA32F, R'_d / lut_scales[layer]; `levels` layers per
@@ -276,6 +279,9 @@ typedef struct gl_technique {
      * defaults depart from them; the others are the paper's already */
     const sss_gl_param_value *paper;
     int paper_count;
+    /* NULL, or why the technique cannot run as a pass over a caller's frame (sss_gl_pass_create refuses
+     * it with this reason): a technique that does not read the frame's inputs would ignore them */
+    const char *not_a_pass;
 } gl_technique;
 
 /* A technique that another one runs in place (screen runs maisch2020; sam runs ssss or screen for the
@@ -418,6 +424,10 @@ void gl_bind_scene(const sss_gl_renderer *r); /* SSBOs, LUT, shadow and albedo s
 sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err);
 /* Rewrites the light records from the scene's lights (same count, kinds and shadow slots). */
 sss_result gl_lights_update(sss_gl_renderer *r, sss_error *err);
+sss_result gl_lights_record_kinds(sss_gl_renderer *r, sss_error *err);
+/* The scene's lights against gs.light_kinds: the same number and types, else INVALID_ARGUMENT naming
+ * what changed (every technique: a pass that lights nothing itself builds no light records). */
+sss_result gl_lights_check_kinds(const sss_gl_renderer *r, sss_error *err);
 void gl_env_cache_free(gl_scene *gs); /* the environment maps read by gl_lights_build */
 sss_result gl_shadows_render(sss_gl_renderer *r, sss_error *err);
 /* frame.c */
@@ -473,13 +483,23 @@ sss_result gl_runtime_rebuild_if_dirty(sss_gl_renderer *r, sss_error *err);
 sss_result gl_frame_run(sss_gl_renderer *r, const gl_camera *cam, double time, sss_error *err);
 
 #define GL_PASS_TEXTURE_TARGETS 5
-#define GL_PASS_GENERIC_BUFFERS 7
-#define GL_PASS_CAPABILITIES 5
+#define GL_PASS_GENERIC_BUFFERS 8
+#define GL_PASS_CAPABILITIES 23
+#define GL_PASS_PIXEL_STORE 24
+#define GL_PASS_INDEXED 16 /* draw buffers, viewports and clip distances saved (at most) */
 typedef struct gl_pass_state {
-    GLint draw_fbo, read_fbo, program, vertex_array, viewport[4];
-    GLboolean enabled[GL_PASS_CAPABILITIES], depth_mask, color_mask[4];
-    GLint depth_func, blend[6], clip[2], alignment[2];
+    GLint draw_fbo, read_fbo, program, vertex_array;
+    GLboolean enabled[GL_PASS_CAPABILITIES], depth_mask;
+    GLint depth_func, clip_control[2], polygon_mode[2], cull_face, front_face, provoking_vertex, derivative_hint;
+    GLint pixel_store[GL_PASS_PIXEL_STORE];
     GLfloat polygon_offset[2];
+    /* indexed state: per draw buffer, per viewport, per clip distance (counts: this GL's, capped) */
+    int draw_buffers, viewports, clip_distances;
+    GLboolean blend[GL_PASS_INDEXED], color_mask[GL_PASS_INDEXED][4];
+    GLint blend_func[GL_PASS_INDEXED][6]; /* src rgb, dst rgb, src alpha, dst alpha, equation rgb, alpha */
+    GLboolean scissor[GL_PASS_INDEXED], clip_distance[GL_PASS_INDEXED];
+    GLfloat viewport[GL_PASS_INDEXED][4];
+    GLdouble depth_range[GL_PASS_INDEXED][2];
     GLint active_texture;
     GLint texture[SSS_GL_PASS_TEXTURE_UNITS][GL_PASS_TEXTURE_TARGETS], sampler[SSS_GL_PASS_TEXTURE_UNITS];
     GLint image[SSS_GL_PASS_IMAGE_UNITS][6]; /* name, level, layered, layer, access, format */
@@ -489,8 +509,8 @@ typedef struct gl_pass_state {
 } gl_pass_state;
 void gl_pass_state_save(gl_pass_state *s);
 void gl_pass_state_restore(const gl_pass_state *s);
-/* The GL defaults the passes assume (no scissor, cull, blend or depth test, full write masks, OpenGL
- * clip control, no sampler objects or pixel buffers, alignment 4), set after saving the caller's. */
+/* The GL state the passes assume (the list in sss/gl_pass.h and docs/integration.md: the GL defaults,
+ * no sampler objects, pixel or query buffers), set after saving the caller's. */
 void gl_pass_state_defaults(void);
 
 #endif

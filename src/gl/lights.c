@@ -448,11 +448,43 @@ sss_result gl_lights_build(sss_gl_renderer *r, sss_error *err)
     return gl_check(r->ctx, "the light setup", err);
 }
 
+sss_result gl_lights_record_kinds(sss_gl_renderer *r, sss_error *err)
+{
+    gl_scene *gs = &r->gs;
+    size_t n = r->scene->light_count;
+    free(gs->light_kinds);
+    gs->light_kinds = n ? malloc(sizeof *gs->light_kinds * n) : NULL;
+    gs->light_kind_count = gs->light_kinds ? n : 0;
+    if (n && !gs->light_kinds) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (light kinds)");
+    for (size_t i = 0; i < n; i++) gs->light_kinds[i] = r->scene->lights[i].type;
+    return SSS_OK;
+}
+
+sss_result gl_lights_check_kinds(const sss_gl_renderer *r, sss_error *err)
+{
+    const gl_scene *gs = &r->gs;
+    const sss_scene *s = r->scene;
+    if (s->light_count != gs->light_kind_count)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "the scene has %zu light%s, it had %zu when it was uploaded (lights keep their number "
+                             "and kinds: a new renderer or pass is needed)",
+                             s->light_count, s->light_count == 1 ? "" : "s", gs->light_kind_count);
+    for (size_t i = 0; i < s->light_count; i++)
+        if (s->lights[i].type != gs->light_kinds[i])
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                                 "lights[%zu] is a %s light, it was a %s light when the scene was uploaded (lights "
+                                 "keep their number and kinds: a new renderer or pass is needed)",
+                                 i, sss_light_type_name(s->lights[i].type), sss_light_type_name(gs->light_kinds[i]));
+    return SSS_OK;
+}
+
 sss_result gl_lights_update(sss_gl_renderer *r, sss_error *err)
 {
     gl_scene *gs = &r->gs;
+    sss_result res = gl_lights_check_kinds(r, err);
+    if (res != SSS_OK) return res;
     light_set ls;
-    sss_result res = light_records(r, &ls, err);
+    res = light_records(r, &ls, err);
     if (res == SSS_OK && (ls.light_count != gs->light_count || ls.cube_count != gs->shadow_cube_count ||
                           ls.map_count != gs->shadow_2d_count || ls.cube_size != gs->shadow_cube_size ||
                           ls.map_size != gs->shadow_2d_size))

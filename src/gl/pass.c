@@ -63,8 +63,6 @@ sss_result sss_gl_pass_create(sss_gl_context *ctx, const sss_gl_pass_desc *desc,
     if (desc->width < 1 || desc->height < 1)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_create: desc.width x desc.height is %dx%d",
                              desc->width, desc->height);
-    sss_gl_pass *pass = calloc(1, sizeof *pass);
-    if (!pass) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (pass)");
     sss_gl_renderer_desc rd;
     memset(&rd, 0, sizeof rd);
     rd.technique = desc->technique;
@@ -74,10 +72,18 @@ sss_result sss_gl_pass_create(sss_gl_context *ctx, const sss_gl_pass_desc *desc,
     rd.param_count = desc->param_count;
     rd.timings = desc->timings;
     rd.data_file = desc->data_file;
+    const gl_technique *tech = NULL;
+    sss_result res = gl_technique_for(desc->scene, &rd, &tech, err);
+    if (res == SSS_OK && tech->not_a_pass)
+        res = sss_error_set(err, SSS_ERROR_UNSUPPORTED, "sss_gl_pass_create: technique %s cannot run as a pass: %s",
+                            tech->info.name, tech->not_a_pass);
+    if (res != SSS_OK) return res;
+    sss_gl_pass *pass = calloc(1, sizeof *pass);
+    if (!pass) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (pass)");
     gl_pass_state saved;
     gl_pass_state_save(&saved);
     gl_pass_state_defaults();
-    sss_result res = gl_runtime_create(ctx, desc->scene, &rd, 1, &pass->r, err);
+    res = gl_runtime_create(ctx, desc->scene, &rd, 1, &pass->r, err);
     gl_pass_state_restore(&saved);
     if (res != SSS_OK) {
         free(pass);
@@ -136,12 +142,17 @@ sss_result sss_gl_pass_update_materials(sss_gl_pass *pass, sss_error *err)
 sss_result sss_gl_pass_update_lights(sss_gl_pass *pass, sss_error *err)
 {
     if (!pass) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_update_lights: pass is NULL");
-    if (!(pass->r->tech->needs & GL_NEED_LIGHTS)) return SSS_OK; /* the technique reads no lights */
-    gl_pass_state saved;
-    gl_pass_state_save(&saved);
-    gl_pass_state_defaults();
-    sss_result res = sss_gl_renderer_update_lights(pass->r, err);
-    gl_pass_state_restore(&saved);
+    /* the number and kinds are checked for every technique, also those that read no lights (and so
+     * build no light records that gl_lights_update could compare) */
+    sss_result res = gl_lights_check_kinds(pass->r, err);
+    if (res == SSS_OK && (pass->r->tech->needs & GL_NEED_LIGHTS)) {
+        gl_pass_state saved;
+        gl_pass_state_save(&saved);
+        gl_pass_state_defaults();
+        res = sss_gl_renderer_update_lights(pass->r, err);
+        gl_pass_state_restore(&saved);
+    }
+    if (res != SSS_OK) sss_error_prefix(err, "sss_gl_pass_update_lights");
     return res;
 }
 

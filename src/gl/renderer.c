@@ -117,6 +117,7 @@ static sss_result build_programs(sss_gl_renderer *r, sss_error *err)
 static sss_result build_scene(sss_gl_renderer *r, sss_error *err)
 {
     sss_result res = gl_scene_upload(r, err);
+    if (res == SSS_OK) res = gl_lights_record_kinds(r, err);
     /* as a pass, only techniques that light the registered meshes themselves need lights and shadow maps */
     if (res == SSS_OK && (!r->frame.external || (r->tech->needs & GL_NEED_LIGHTS))) res = gl_lights_build(r, err);
     if (res == SSS_OK && (r->tech->needs & GL_NEED_SPLAT_MESHES)) res = gl_scene_prepare_splats(r, err);

@@ -554,6 +554,7 @@ void gl_scene_free(gl_scene *gs)
     free(gs->objects);
     gl_scene_free_materials(gs);
     free(gs->lights);
+    free(gs->light_kinds);
     gl_env_cache_free(gs);
     delete_buffer(&gs->ssbo_lights);
     GLuint t[4] = {gs->albedo_array, gs->shadow_cube, gs->shadow_2d, gs->env_tex};

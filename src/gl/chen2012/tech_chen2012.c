@@ -355,4 +355,11 @@ const gl_technique gl_technique_chen2012 = {
     .stats = chen_stats,
     .paper = paper,
     .paper_count = (int)(sizeof paper / sizeof paper[0]),
+    /* Its sources are the texels of one light-view irradiance buffer per light (Chen et al. 2012, the
+     * translucent shadow map of Dachsbacher & Stamminger 2003), back sides included; the camera's
+     * irradiance (frame.irr, a sum over the lights of the surfaces the camera sees) has no place in
+     * that, so the renderer never reads it either, and a pass would ignore the caller's. */
+    .not_a_pass = "it lights its sources itself, in one light-view irradiance buffer per light (Chen et al. "
+                  "2012), and never reads the frame's irradiance (a sum over the lights, seen from the camera); "
+                  "dss and maisch2020 splat with the frame's irradiance",
 };
