@@ -334,7 +334,8 @@ sss_result sss_io_check(const sss_io_set *io, sss_error *err)
 {
     if (io->out_of_memory) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory listing the files");
     for (size_t i = 0; i < io->output_count; i++) {
-        sss_result r = sss_check_output_not_input(io->outputs[i], (const char *const *)io->inputs, io->input_count, err);
+        const char *const *inputs = (const char *const *)io->inputs;
+        sss_result r = sss_check_output_not_input(io->outputs[i], inputs, io->input_count, err);
         if (r != SSS_OK) return r;
         for (size_t j = 0; j < i; j++)
             if (same_output(io->outputs[j], io->outputs[i]))

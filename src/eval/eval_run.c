@@ -131,7 +131,8 @@ static sss_result distinct_names(sss_eval_scene *sc, int n, sss_error *err)
 {
     for (int i = 0; i < n; i++) {
         int clash = 0;
-        for (int j = 0; j < n && !clash; j++) clash = j != i && same_key(&sc[i], sc[i].file_stem, &sc[j], sc[j].file_stem);
+        for (int j = 0; j < n && !clash; j++)
+            clash = j != i && same_key(&sc[i], sc[i].file_stem, &sc[j], sc[j].file_stem);
         char mine[128], other[128];
         for (int depth = 1; clash && suffixed_stem(&sc[i], depth, mine, sizeof mine); depth++) {
             int unique = 1;
