@@ -134,8 +134,12 @@ typedef struct sss_eval_reference {
 
 typedef struct sss_eval_scene {
     char *path;                       /* as given, without the @T suffix */
-    char name[128];                   /* file stem, plus "@T" when a time was given */
-    char stem[128];                   /* file stem */
+    char name[128];                   /* stem, plus "@T" when a time was given */
+    char stem[128];                   /* the scene's name in the outputs (sheet_<stem>.png, ...): its
+                                         file stem, or, when another scene of the run has the same
+                                         file stem and time, the file stem with its folders' names
+                                         ("s-d1" for d1/s.json, "s-a-x" for a/x/s.json) */
+    char file_stem[128];              /* the scene file's name without its extension */
     double time;
     int has_time;
     int width, height;                /* camera size */

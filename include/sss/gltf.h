@@ -77,6 +77,10 @@ typedef struct sss_gltf_scene {
     size_t light_count;
     sss_image *images;       /* the asset's images[k], decoded when a material uses it embedded; else empty */
     size_t image_count;
+    char **files;            /* the files the asset is made of: its external buffers and images (their
+                              * uri resolved, used or not) and, from sss_gltf_load, the asset itself;
+                              * the inputs that sss_gltf_write_scene must not overwrite */
+    size_t file_count;
 } sss_gltf_scene;
 
 /* Imports a .gltf or .glb (by content: a .glb starts with "glTF"). desc may be NULL. On failure *out
@@ -96,8 +100,9 @@ sss_result sss_gltf_scene_json(const sss_gltf_scene *scene, const char *const *m
 
 /* Writes the scene as scene_path (JSON, written atomically) plus one binary PLY per object beside it
  * (<stem>_objN.ply, world space, referenced by file name) and one PNG per embedded image that a
- * material uses (<stem>_imgK.png: 8-bit sRGB, the decoded pixels exactly). On failure nothing is left
- * behind. */
+ * material uses (<stem>_imgK.png: 8-bit sRGB, the decoded pixels exactly). Before writing anything it
+ * refuses (SSS_ERROR_INVALID_ARGUMENT) an output that is the same file as one of scene->files or as
+ * another output. All the files are written or none (one output transaction, core/file_util.h). */
 sss_result sss_gltf_write_scene(const sss_gltf_scene *scene, const char *scene_path, sss_error *err);
 
 #ifdef __cplusplus

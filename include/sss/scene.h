@@ -356,6 +356,10 @@ typedef struct sss_scene {
     size_t table_count;
     sss_scene_texture *textures; /* one per distinct texture file (empty with SSS_SCENE_SKIP_MESHES) */
     size_t texture_count;
+    char **files;    /* a glTF asset loaded as a scene: the files it is made of (sss_gltf_scene.files:
+                      * the asset, its external buffers and images); empty for a scene file, whose
+                      * files are name and the paths of its objects and lights */
+    size_t file_count;
 } sss_scene;
 
 /* Flags of sss_scene_load_desc. */

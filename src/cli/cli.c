@@ -11,6 +11,7 @@
 
 #include "core/file_util.h"
 #include "core/text.h"
+#include "scene/scene_files.h"
 #include "sss/gl.h"
 #include "sss/scene.h"
 
@@ -71,39 +72,16 @@ int cli_failf(const char *cmd, const char *fmt, ...)
     return CLI_EXIT_ERROR;
 }
 
-/* The files a scene reads, after the given inputs: a new array (free it), NULL when out of memory. */
-static const char **input_list(const char *const *inputs, size_t input_count, const sss_scene *scene, size_t *count)
-{
-    size_t n = input_count;
-    if (scene) n += 1 + 3 * scene->object_count + scene->light_count;
-    const char **list = malloc((n ? n : 1) * sizeof *list);
-    if (!list) return NULL;
-    size_t k = 0;
-    for (size_t i = 0; i < input_count; i++) list[k++] = inputs[i];
-    if (scene) {
-        list[k++] = scene->name;
-        for (size_t i = 0; i < scene->object_count; i++) {
-            list[k++] = scene->objects[i].mesh_path;
-            list[k++] = scene->objects[i].splat_mesh_path;
-            list[k++] = scene->objects[i].material.texture;
-        }
-        for (size_t i = 0; i < scene->light_count; i++) list[k++] = scene->lights[i].file;
-    }
-    *count = k;
-    return list;
-}
-
 int cli_check_outputs(const char *cmd, const char *const *outputs, size_t output_count, const char *const *inputs,
                       size_t input_count, const sss_scene *scene)
 {
-    size_t n = 0;
-    const char **list = input_list(inputs, input_count, scene, &n);
-    if (!list) return cli_failf(cmd, "out of memory");
+    sss_io_set io = {0};
+    for (size_t i = 0; i < input_count; i++) sss_io_add_input(&io, inputs[i]);
+    if (scene) scene_add_inputs(&io, scene);
+    for (size_t i = 0; i < output_count; i++) sss_io_add_output(&io, outputs[i]);
     sss_error err = {0};
-    sss_result r = SSS_OK;
-    for (size_t i = 0; i < output_count && r == SSS_OK; i++)
-        r = sss_check_output_not_input(outputs[i], list, n, &err);
-    free(list);
+    sss_result r = sss_io_check(&io, &err);
+    sss_io_free(&io);
     return r == SSS_OK ? CLI_EXIT_OK : cli_fail(cmd, &err);
 }
 

@@ -156,10 +156,12 @@ int cli_failf(const char *cmd, const char *fmt, ...)
 #endif
     ;
 
-/* Refuses an output that is the same file as an input (device and inode: other spellings and hard
- * links too) before any work: the inputs given (NULL entries skipped) and, when scene is not NULL,
- * every file the scene reads (itself, meshes, textures, environment maps). Outputs that are NULL are
- * skipped. Prints the error as cmd's and returns CLI_EXIT_ERROR, else CLI_EXIT_OK. */
+/* A command's file set checked before any work (core/file_util.h sss_io_check): refuses an output
+ * that is the same file as an input (device and inode: other spellings and hard links too) or as
+ * another output. Inputs: those given (NULL entries skipped) and, when scene is not NULL, every file
+ * the scene reads (scene/scene_files.h: itself, meshes, textures, environment maps, a glTF asset's
+ * buffers and images). Outputs that are NULL are skipped. Prints the error as cmd's and returns
+ * CLI_EXIT_ERROR, else CLI_EXIT_OK. */
 struct sss_scene;
 int cli_check_outputs(const char *cmd, const char *const *outputs, size_t output_count, const char *const *inputs,
                       size_t input_count, const struct sss_scene *scene);

@@ -186,8 +186,18 @@ static int split_list(char *text, char **items, int max)
     return n;
 }
 
+/* s with its control characters escaped (core/text.h) into buf, the input cut to fit cap: scene
+ * names come from file names, errors and labels from data, and none may reach a terminal raw. */
+#define ESC_CAP (SSS_TEXT_ESCAPE_MAX * 256 + 1)
+static const char *esc(const char *s, char buf[ESC_CAP])
+{
+    sss_text_escape(s, strnlen(s, 256), buf);
+    return buf;
+}
+
 static void print_summary(const sss_eval_results *res, const char *out_dir)
 {
+    char b1[ESC_CAP], b2[ESC_CAP], b3[ESC_CAP];
     printf("%-22s %-26s %-7s %9s %8s %8s %8s %11s\n", "scene", "technique", "status", "DSSIM", "FLIP", "PSNR", "RMSE",
            "ms/frame");
     for (int i = 0; i < res->entry_count; i++) {
@@ -204,8 +214,8 @@ static void print_summary(const sss_eval_results *res, const char *out_dir)
             snprintf(r, sizeof r, "%.3f", e->metrics.rmse);
         }
         if (e->ok) snprintf(ms, sizeof ms, "%.1f", e->total_ms);
-        printf("%-22.22s %-26.26s %-7s %9s %8s %8s %8s %11s\n", res->scenes[e->scene].name, e->label,
-               e->ok ? "ok" : "FAILED", d, fl, p, r, ms);
+        printf("%-22.22s %-26.26s %-7s %9s %8s %8s %8s %11s\n", esc(res->scenes[e->scene].name, b1),
+               esc(e->label, b2), e->ok ? "ok" : "FAILED", d, fl, p, r, ms);
     }
     int failed = 0;
     for (int i = 0; i < res->entry_count; i++) failed += !res->entries[i].ok;
@@ -213,19 +223,22 @@ static void print_summary(const sss_eval_results *res, const char *out_dir)
         printf("\n%d failed run%s:\n", failed, failed == 1 ? "" : "s");
         for (int i = 0; i < res->entry_count; i++) {
             const sss_eval_entry *e = &res->entries[i];
-            if (!e->ok) printf("  %s / %s (%dx%d): %.200s\n", res->scenes[e->scene].name, e->label, e->width, e->height, e->error);
+            if (!e->ok)
+                printf("  %s / %s (%dx%d): %.200s\n", esc(res->scenes[e->scene].name, b1), esc(e->label, b2), e->width,
+                       e->height, esc(e->error, b3));
         }
     }
     for (int s = 0; s < res->scene_count; s++)
         for (int k = 0; k < res->scenes[s].reference_count; k++) {
             const sss_eval_reference *r = &res->scenes[s].references[k];
             if (r->source == SSS_EVAL_REF_NONE)
-                printf("reference %s %dx%d unavailable: %s\n", res->scenes[s].name, r->width, r->height, r->error);
+                printf("reference %s %dx%d unavailable: %s\n", esc(res->scenes[s].name, b1), r->width, r->height,
+                       esc(r->error, b2));
         }
     printf("\n%d scene%s, %d technique%s, %.1f s; timings: %s\n", res->scene_count, res->scene_count == 1 ? "" : "s",
            res->label_count, res->label_count == 1 ? "" : "s", res->seconds,
-           res->timing_method[0] ? res->timing_method : (res->gl_ok ? "-" : res->gl_error));
-    printf("wrote %s/report.html (and results.json, results.csv, sheets, plots)\n", out_dir);
+           esc(res->timing_method[0] ? res->timing_method : (res->gl_ok ? "-" : res->gl_error), b1));
+    printf("wrote %s/report.html (and results.json, results.csv, sheets, plots)\n", esc(out_dir, b2));
 }
 
 int sss_cmd_eval(int argc, char **argv)

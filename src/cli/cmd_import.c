@@ -67,10 +67,10 @@ int sss_cmd_import(int argc, char **argv)
     if (!asset) return cli_usage_error(cmd, "missing the glTF asset");
     if (!out) return cli_usage_error(cmd, "missing -o SCENE.json");
 
-    if (cli_check_outputs(cmd, &out, 1, &asset, 1, NULL) != CLI_EXIT_OK) return CLI_EXIT_ERROR;
     sss_gltf_scene scene;
     sss_error err = {0};
     if (sss_gltf_load(asset, &desc, &scene, &err) != SSS_OK) return cli_fail(cmd, &err);
+    /* it refuses an output that is one of the asset's files (or another output) before writing */
     sss_result res = sss_gltf_write_scene(&scene, out, &err);
     size_t objects = scene.object_count, lights = scene.light_count;
     int own_camera = scene.camera_from_asset;

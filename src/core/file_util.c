@@ -274,6 +274,88 @@ sss_result sss_check_output_not_input(const char *output, const char *const *inp
     return SSS_OK;
 }
 
+/* ---- A command's inputs and outputs ------------------------------------------------------------- */
+
+static void io_add(char ***list, size_t *count, size_t *cap, int *oom, const char *path)
+{
+    if (!path) return;
+    if (*count == *cap) {
+        size_t n = *cap ? 2 * *cap : 16;
+        char **grown = realloc(*list, n * sizeof *grown);
+        if (!grown) {
+            *oom = 1;
+            return;
+        }
+        *list = grown;
+        *cap = n;
+    }
+    char *copy = dup_string(path);
+    if (!copy) *oom = 1;
+    else (*list)[(*count)++] = copy;
+}
+
+void sss_io_add_input(sss_io_set *io, const char *path)
+{
+    io_add(&io->inputs, &io->input_count, &io->input_cap, &io->out_of_memory, path);
+}
+
+void sss_io_add_output(sss_io_set *io, const char *path)
+{
+    io_add(&io->outputs, &io->output_count, &io->output_cap, &io->out_of_memory, path);
+}
+
+/* The folder part of path ("." when it has none) into dir (cap bytes); returns its file name, or NULL
+ * when the folder does not fit. */
+static const char *split_path(const char *path, char *dir, size_t cap)
+{
+    const char *slash = strrchr(path, '/');
+    size_t n = slash ? (size_t)(slash - path) + 1 : 0; /* "/" stays "/": the root keeps its slash */
+    if (n == 0) n = (size_t)snprintf(dir, cap, ".");
+    else if (n < cap) snprintf(dir, cap, "%.*s", (int)n, path);
+    else return NULL;
+    return slash ? slash + 1 : path;
+}
+
+/* Two outputs are one file when both exist as one inode, or when they name the same entry: equal
+ * file names in one folder (the folders compared by device and inode when both exist). */
+static int same_output(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    if (stat(a, &sa) == 0 && stat(b, &sb) == 0) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    char da[4096], db[4096];
+    const char *na = split_path(a, da, sizeof da), *nb = split_path(b, db, sizeof db);
+    if (!na || !nb) return strcmp(a, b) == 0;
+    if (strcmp(na, nb) != 0) return 0;
+    if (stat(da, &sa) == 0 && stat(db, &sb) == 0) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    return strcmp(da, db) == 0;
+}
+
+sss_result sss_io_check(const sss_io_set *io, sss_error *err)
+{
+    if (io->out_of_memory) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory listing the files");
+    for (size_t i = 0; i < io->output_count; i++) {
+        const char *const *inputs = (const char *const *)io->inputs;
+        sss_result r = sss_check_output_not_input(io->outputs[i], inputs, io->input_count, err);
+        if (r != SSS_OK) return r;
+        for (size_t j = 0; j < i; j++)
+            if (same_output(io->outputs[j], io->outputs[i]))
+                return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                                     "%s: is the same file as the output %s; refusing to write one output over "
+                                     "another",
+                                     io->outputs[i], io->outputs[j]);
+    }
+    return SSS_OK;
+}
+
+void sss_io_free(sss_io_set *io)
+{
+    for (size_t i = 0; i < io->input_count; i++) free(io->inputs[i]);
+    for (size_t i = 0; i < io->output_count; i++) free(io->outputs[i]);
+    free(io->inputs);
+    free(io->outputs);
+    memset(io, 0, sizeof *io);
+}
+
 void sss_path_extension(const char *path, char *out, size_t cap)
 {
     if (cap == 0) return;

@@ -69,6 +69,23 @@ const char *sss_outputs_current_path(const char *path);
 sss_result sss_check_output_not_input(const char *output, const char *const *inputs, size_t input_count,
                                       sss_error *err);
 
+/* A command's files: every file it reads (inputs) and every file it writes (outputs), collected
+ * before it writes anything and checked against each other by sss_io_check. Zero-initialise it; the
+ * paths are copied, NULL ones skipped; release with sss_io_free. */
+typedef struct sss_io_set {
+    char **inputs, **outputs;
+    size_t input_count, output_count, input_cap, output_cap;
+    int out_of_memory; /* an add failed: sss_io_check reports it */
+} sss_io_set;
+void sss_io_add_input(sss_io_set *io, const char *path);
+void sss_io_add_output(sss_io_set *io, const char *path);
+/* Refuses (SSS_ERROR_INVALID_ARGUMENT, naming both files) an output that is the same file as an input
+ * (sss_check_output_not_input) or as another output: the same existing file (device and inode), or
+ * the same name in the same folder however spelled ("a.png", "./a.png", "d/../a.png"), which an
+ * output transaction would rename twice, keeping only the last. */
+sss_result sss_io_check(const sss_io_set *io, sss_error *err);
+void sss_io_free(sss_io_set *io);
+
 /* The extension of path in lower case without the dot ("" when there is none); out has cap bytes. */
 void sss_path_extension(const char *path, char *out, size_t cap);
 

@@ -345,3 +345,38 @@ sss_result gltf_buffer_data(gltf_ctx *c, long index, const char *path, const uns
     *size = b->size;
     return SSS_OK;
 }
+
+/* ---- The files an asset reads --------------------------------------------------------------------- */
+
+sss_result gltf_add_file(sss_gltf_scene *out, const char *path)
+{
+    char **grown = realloc(out->files, (out->file_count + 1) * sizeof *grown);
+    char *copy = grown ? malloc(strlen(path) + 1) : NULL;
+    if (grown) out->files = grown;
+    if (!copy) return SSS_ERROR_OUT_OF_MEMORY;
+    strcpy(copy, path);
+    out->files[out->file_count++] = copy;
+    return SSS_OK;
+}
+
+/* The external files of the root array key ("buffers", "images"): every string uri that is not a data:
+ * URI and resolves to a relative file (the others are refused where they are used). */
+static sss_result list_uris(gltf_ctx *c, const char *key, sss_gltf_scene *out)
+{
+    const cJSON *arr = gltf_get(c->root, key);
+    for (const cJSON *e = cJSON_IsArray(arr) ? arr->child : NULL; e; e = e->next) {
+        const cJSON *uri = gltf_get(e, "uri");
+        if (!cJSON_IsString(uri) || strncmp(uri->valuestring, "data:", 5) == 0) continue;
+        char *file = gltf_resolve_uri(c->base_dir, uri->valuestring);
+        sss_result res = file ? gltf_add_file(out, file) : SSS_OK;
+        free(file);
+        if (res != SSS_OK) return gltf_fail(c, res, "%s: out of memory", key);
+    }
+    return SSS_OK;
+}
+
+sss_result gltf_list_files(gltf_ctx *c, sss_gltf_scene *out)
+{
+    sss_result res = list_uris(c, "buffers", out);
+    return res == SSS_OK ? list_uris(c, "images", out) : res;
+}

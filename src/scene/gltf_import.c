@@ -417,6 +417,7 @@ sss_result sss_gltf_parse(const void *data, size_t size, const char *base_dir, c
         return gltf_fail(&c, SSS_ERROR_INVALID_ARGUMENT, "invalid import options");
     if (!data) return gltf_fail(&c, SSS_ERROR_INVALID_ARGUMENT, "no data");
     sss_result res = gltf_open(&c, data, size);
+    if (res == SSS_OK) res = gltf_list_files(&c, out);
     if (res == SSS_OK) res = walk_scene(&c, out);
     gltf_close(&c);
     if (res != SSS_OK) sss_gltf_scene_free(out);
@@ -436,6 +437,10 @@ sss_result sss_gltf_load(const char *path, const sss_gltf_desc *desc, sss_gltf_s
         return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     }
     res = sss_gltf_parse(data, size, dir, path, desc, out, err);
+    if (res == SSS_OK && gltf_add_file(out, path) != SSS_OK) {
+        sss_gltf_scene_free(out);
+        res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    }
     free(dir);
     free(data);
     return res;
@@ -452,5 +457,7 @@ void sss_gltf_scene_free(sss_gltf_scene *scene)
     free(scene->images);
     free(scene->objects);
     free(scene->lights);
+    for (size_t i = 0; i < scene->file_count; i++) free(scene->files[i]);
+    free(scene->files);
     memset(scene, 0, sizeof *scene);
 }

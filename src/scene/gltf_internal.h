@@ -69,6 +69,12 @@ char *gltf_resolve_uri(const char *base_dir, const char *uri);
 sss_result gltf_buffer_data(gltf_ctx *c, long index, const char *path, const unsigned char **data,
                             size_t *size);
 
+/* Appends a copy of path to out->files (SSS_ERROR_OUT_OF_MEMORY without a message). */
+sss_result gltf_add_file(sss_gltf_scene *out, const char *path);
+/* The asset's external files into out->files: buffers[].uri and images[].uri that are files (used or
+ * not: they belong to the asset), resolved against c->base_dir. */
+sss_result gltf_list_files(gltf_ctx *c, sss_gltf_scene *out);
+
 /* The bytes of a data: URI with base64 content (malloc'd into *owned); path names the URI's JSON member. */
 sss_result gltf_data_uri(gltf_ctx *c, const char *uri, const char *path, unsigned char **owned, size_t *size);
 

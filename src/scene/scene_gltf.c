@@ -90,6 +90,12 @@ sss_result scene_load_gltf(const char *path, const sss_scene_load_desc *desc, ss
     if (res == SSS_OK)
         res = sss_gltf_scene_json(&g, (const char *const *)meshes, (const char *const *)images, &json, err);
     if (res == SSS_OK) res = load_given(path, &g, json, images, desc, scene, err);
+    if (res == SSS_OK) { /* the asset's files are the scene's inputs (an output must not replace them) */
+        scene->files = g.files;
+        scene->file_count = g.file_count;
+        g.files = NULL;
+        g.file_count = 0;
+    }
     free(json);
     free_names(meshes, g.object_count);
     free_names(images, g.image_count);

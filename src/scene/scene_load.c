@@ -505,6 +505,8 @@ void sss_scene_free(sss_scene *scene)
         sss_image_free(&scene->textures[i].image);
     }
     free(scene->textures);
+    for (size_t i = 0; i < scene->file_count; i++) free(scene->files[i]);
+    free(scene->files);
     free(scene->objects);
     free(scene->lights);
     free(scene->tables);

@@ -384,6 +384,22 @@ int view_next_screenshot_name(char *buf, size_t cap)
     return 0;
 }
 
+sss_result view_check_outputs(const viewer *v, const char *const *paths, size_t count, sss_error *err)
+{
+    sss_io_set io = {0};
+    for (size_t i = 0; i < v->files.input_count; i++) sss_io_add_input(&io, v->files.inputs[i]);
+    for (size_t i = 0; i < count; i++) sss_io_add_output(&io, paths[i]);
+    sss_result res = sss_io_check(&io, err);
+    sss_io_free(&io);
+    return res;
+}
+
+sss_result view_save_screenshot(const viewer *v, const char *path, sss_error *err)
+{
+    sss_result res = view_check_outputs(v, &path, 1, err);
+    return res == SSS_OK ? view_gl_screenshot(v->width, v->height, path, err) : res;
+}
+
 /* ---- The pending actions of the keys -------------------------------------------------------- */
 
 void view_run_actions(viewer *v)

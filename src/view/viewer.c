@@ -11,6 +11,7 @@
 #include <epoxy/gl.h>
 
 #include "core/file_util.h"
+#include "scene/scene_files.h"
 #include "view/panel.h"
 #include "view/script.h"
 #include "view/viewer.h"
@@ -178,13 +179,13 @@ static sss_result frame(viewer *v, int fixed, const char *screenshot, sss_error 
         view_message(v, "%s", err->message);
     }
     /* Screenshots: the back buffer before the overlay is drawn and before the swap. */
-    if (screenshot && (res = view_gl_screenshot(v->width, v->height, screenshot, err)) != SSS_OK) return res;
+    if (screenshot && (res = view_save_screenshot(v, screenshot, err)) != SSS_OK) return res;
     if (v->act_screenshot) {
         v->act_screenshot = 0;
         char name[64];
         sss_error serr = {0};
         if (!view_next_screenshot_name(name, sizeof name)) view_message(v, "screenshot: sss-view-0000..9999.png all exist");
-        else if (view_gl_screenshot(v->width, v->height, name, &serr) != SSS_OK) view_message(v, "%s", serr.message);
+        else if (view_save_screenshot(v, name, &serr) != SSS_OK) view_message(v, "%s", serr.message);
         else view_message(v, "saved %s", name);
     }
     if (fixed) glFinish(); /* scripts time the panel alone: the frame's own work done first */
@@ -199,7 +200,7 @@ static sss_result frame(viewer *v, int fixed, const char *screenshot, sss_error 
         v->overlay = 0;
     }
     if (v->shot_path) { /* a script's screenshot: the window as shown, the panel included */
-        res = view_gl_screenshot(v->width, v->height, v->shot_path, err);
+        res = view_save_screenshot(v, v->shot_path, err);
         v->shot_path = NULL;
         if (res != SSS_OK) return res;
     }
@@ -379,6 +380,34 @@ static void run_interactive(viewer *v)
     }
 }
 
+/* The viewer's inputs, and its planned outputs (--screenshot, the script's screenshot lines, in
+ * order) checked against them and each other before the window opens: a refused script writes
+ * nothing. */
+static sss_result check_files(viewer *v, const view_script *script, sss_error *err)
+{
+    const sss_view_desc *d = v->desc;
+    scene_add_inputs(&v->files, v->scene);
+    sss_io_add_input(&v->files, d->script);
+    const char **planned = calloc((size_t)script->count + 1, sizeof *planned);
+    if (!planned) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (screenshots)");
+    size_t n = 0;
+    sss_result res = SSS_OK;
+    if (d->screenshot) {
+        planned[n++] = d->screenshot;
+        res = view_check_outputs(v, planned, n, err);
+    }
+    for (int i = 0; res == SSS_OK && i < script->count; i++) {
+        const view_command *c = &script->commands[i];
+        if (c->kind != VIEW_CMD_SCREENSHOT) continue;
+        planned[n++] = c->text;
+        sss_error cerr = {0};
+        if ((res = view_check_outputs(v, planned, n, &cerr)) != SSS_OK)
+            sss_error_set(err, res, "%s:%d: screenshot: %s", d->script, c->line, cerr.message);
+    }
+    free(planned);
+    return res;
+}
+
 static int technique_index(const char *name)
 {
     for (int i = 0; i < sss_gl_technique_count(); i++)
@@ -422,6 +451,7 @@ sss_result sss_view_run(const sss_view_desc *desc, sss_error *err)
         if (script.commands[i].kind == VIEW_CMD_KEY && !view_input_event(&v, script.commands[i].name, 0))
             res = sss_error_set(err, SSS_ERROR_PARSE, "%s:%d: key: unknown input event '%s'", desc->script,
                                 script.commands[i].line, script.commands[i].name);
+    if (res == SSS_OK) res = check_files(&v, &script, err);
     if (res == SSS_OK) {
         v.has_light = v.scene->light_count > 0;
         v.home = v.scene->camera;
@@ -476,5 +506,6 @@ sss_result sss_view_run(const sss_view_desc *desc, sss_error *err)
     sss_scene_free(v.scene);
     free(v.scene);
     free(v.text);
+    sss_io_free(&v.files);
     return res;
 }

@@ -3,6 +3,7 @@
 #ifndef SSS_VIEW_VIEWER_H
 #define SSS_VIEW_VIEWER_H
 
+#include "core/file_util.h"
 #include "sss/gl.h"
 #include "sss/scene.h"
 #include "sss/view.h"
@@ -119,6 +120,8 @@ struct viewer {
     int rebuild_in_place;         /* it updated the renderer's materials (else: a new renderer) */
     double rebuild_scene_ms, rebuild_tables_ms; /* the worker's loader and LUT times */
     const char *shot_path;        /* a script's screenshot, taken after the panel is drawn */
+    sss_io_set files;             /* the inputs no screenshot may overwrite: the scene, every file it
+                                   * reads, the script (material edits change no file name) */
 };
 
 typedef struct viewer viewer;
@@ -167,6 +170,11 @@ void view_update_dssim(viewer *v);
 int view_buffer_to_show(viewer *v, sss_image *out);
 /* sss-view-NNNN.png, the first that does not exist in the working folder; 0 when all are taken. */
 int view_next_screenshot_name(char *buf, size_t cap);
+/* The output rules of every command (sss_io_check) for the viewer's outputs: refuses one that is the
+ * same file as an input (v->files) or as another of paths. */
+sss_result view_check_outputs(const viewer *v, const char *const *paths, size_t count, sss_error *err);
+/* Writes the window's back buffer to path as PNG, after view_check_outputs. */
+sss_result view_save_screenshot(const viewer *v, const char *path, sss_error *err);
 sss_result view_current_key(viewer *v, char **key, char **json, sss_error *err);
 /* commands.c: the panel's widgets and the script's lines, one function each; failures are returned
  * (the panel turns them into messages, a script stops) and leave the viewer usable. */

@@ -140,6 +140,46 @@ static void test_same_file(const char *dir)
     remove(hard);
 }
 
+/* A command's file set: two outputs that name one entry (spelled apart, not written yet) or one
+ * existing file (a hard link) are refused, as is an output that is an input; distinct ones pass. */
+static void test_io_set(const char *dir)
+{
+    char in[512], sub[512], a[512], a2[512], a3[512], b[512], hard[512];
+    snprintf(in, sizeof in, "%s/in.txt", dir);
+    snprintf(sub, sizeof sub, "%s/sub", dir);
+    snprintf(a, sizeof a, "%s/a.png", dir);
+    snprintf(a2, sizeof a2, "%s/./a.png", dir);
+    snprintf(a3, sizeof a3, "%s/sub/../a.png", dir);
+    snprintf(b, sizeof b, "%s/b.png", dir);
+    snprintf(hard, sizeof hard, "%s/hard.png", dir);
+    sss_error err = {0};
+    CHECK(write_atomic(in, "in", &err) && mkdir(sub, 0777) == 0);
+    const char *pairs[][2] = {{a, a}, {a, a2}, {a3, a}, {in, b}, {b, hard}};
+    int refused[] = {1, 1, 1, 1, 0};
+    for (int i = 0; i < 5; i++) {
+        sss_io_set io = {0};
+        sss_io_add_input(&io, in);
+        sss_io_add_input(&io, NULL);
+        sss_io_add_output(&io, pairs[i][0]);
+        sss_io_add_output(&io, pairs[i][1]);
+        sss_result r = sss_io_check(&io, &err);
+        CHECK_MSG(r == (refused[i] ? SSS_ERROR_INVALID_ARGUMENT : SSS_OK), "pair %d: %s", i, err.message);
+        sss_io_free(&io);
+    }
+    CHECK_MSG(strstr(err.message, "is the same file as the input") != NULL, "%s", err.message);
+    CHECK(write_atomic(b, "b", &err) && link(b, hard) == 0); /* now one existing file */
+    sss_io_set io = {0};
+    sss_io_add_output(&io, b);
+    sss_io_add_output(&io, hard);
+    CHECK(sss_io_check(&io, &err) == SSS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(strstr(err.message, "hard.png: is the same file as the output") != NULL, "%s", err.message);
+    sss_io_free(&io);
+    remove(in);
+    remove(b);
+    remove(hard);
+    rmdir(sub);
+}
+
 int main(void)
 {
     char dir[] = "/tmp/sss-test-file-XXXXXX";
@@ -184,6 +224,7 @@ int main(void)
     test_transaction(dir);
     test_temp_names(dir);
     test_same_file(dir);
+    test_io_set(dir);
     rmdir(dir);
     return CHECK_DONE();
 }
