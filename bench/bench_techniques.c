@@ -10,7 +10,8 @@
  * A technique may carry parameters as in `sss eval`: NAME:param=value[:param=value] (maisch2020:outer_divisor=2).
  * One renderer per scene and technique, resized to each size (its CPU tables are built once).
  * --budget S: stop timing a technique at one size once S seconds of timed frames have passed (at least 3
- * frames), so that a slow technique cannot use up a fixed time on a GPU machine. --tsv/--json: one row
+ * frames), so that a slow technique cannot use up a fixed time on a GPU machine. --frames 0: no frames,
+ * only the GPU memory of each renderer after creation and resizing. --tsv/--json: one row
  * per scene x zoom x technique x size, both files rewritten whole after each row (a run stopped early
  * leaves complete files); bench/gpu/run.sh reads them. --images DIR: the image of every technique at the
  * first size, DIR/<scene>_<technique>.png, to compare a GPU's images with llvmpipe's.
@@ -86,14 +87,15 @@ static const char *TSV_HEADER = "scene\ttechnique\twidth\theight\tzoom\tstatus\t
 static void tsv_row(FILE *f, const run *rn, const row *w)
 {
     fprintf(f, "%s\t%s\t%d\t%d\t%g\t%s\t%d\t%d\t%s\t", w->scene, w->technique, w->width, w->height, w->zoom,
-            w->ok ? "ok" : "failed", w->frames, rn->opt.warmup, w->ok ? w->median.method : "n/a");
-    if (w->ok) fprintf(f, "%.6f\t%.6f\t%zu\t%zu\t%zu\t", w->median.total_ms, w->wall_ms, w->technique_bytes,
-                       w->frame_bytes, w->renderer_bytes);
-    else fputs("n/a\tn/a\tn/a\tn/a\tn/a\t", f);
+            w->ok ? "ok" : "failed", w->frames, rn->opt.warmup, w->frames ? w->median.method : "n/a");
+    if (w->ok && w->frames) fprintf(f, "%.6f\t%.6f\t", w->median.total_ms, w->wall_ms);
+    else fputs("n/a\tn/a\t", f);
+    if (w->ok) fprintf(f, "%zu\t%zu\t%zu\t", w->technique_bytes, w->frame_bytes, w->renderer_bytes);
+    else fputs("n/a\tn/a\tn/a\t", f);
     if (w->ok && w->nvx_bytes >= 0) fprintf(f, "%lld\t", w->nvx_bytes);
     else fputs("n/a\t", f);
     fprintf(f, "%.3f\t", w->create_s);
-    for (int p = 0; w->ok && p < w->median.pass_count; p++)
+    for (int p = 0; w->ok && w->frames && p < w->median.pass_count; p++)
         fprintf(f, "%s%s=%.6f", p ? ";" : "", w->median.passes[p].name, w->median.passes[p].ms);
     fputc('\t', f);
     tsv_text(f, w->error);
@@ -108,13 +110,15 @@ static void json_row(FILE *f, const run *rn, const row *w)
     json_string(f, w->technique);
     fprintf(f, ", \"width\": %d, \"height\": %d, \"zoom\": %g, \"status\": \"%s\", \"frames\": %d, \"warmup\": %d", w->width,
             w->height, w->zoom, w->ok ? "ok" : "failed", w->frames, rn->opt.warmup);
-    if (w->ok) {
+    if (w->ok && w->frames) {
         fprintf(f, ",\n     \"frame_ms\": %.6f, \"wall_ms\": %.6f, \"passes\": [", w->median.total_ms, w->wall_ms);
         for (int p = 0; p < w->median.pass_count; p++)
             fprintf(f, "%s{\"name\": \"%s\", \"ms\": %.6f}", p ? ", " : "", w->median.passes[p].name, w->median.passes[p].ms);
-        fprintf(f, "],\n     \"technique_bytes\": %zu, \"frame_bytes\": %zu, \"renderer_bytes\": %zu", w->technique_bytes,
-                w->frame_bytes, w->renderer_bytes);
+        fputs("]", f);
     }
+    if (w->ok)
+        fprintf(f, ",\n     \"technique_bytes\": %zu, \"frame_bytes\": %zu, \"renderer_bytes\": %zu", w->technique_bytes,
+                w->frame_bytes, w->renderer_bytes);
     if (w->ok && w->nvx_bytes >= 0) fprintf(f, ", \"nvx_bytes\": %lld", w->nvx_bytes);
     else fputs(", \"nvx_bytes\": \"n/a\"", f);
     fprintf(f, ", \"create_s\": %.3f, \"error\": ", w->create_s);
@@ -174,7 +178,7 @@ static int write_outputs(const run *rn)
 
 static void print_row(const row *w)
 {
-    if (!w->ok) return;
+    if (!w->ok || !w->frames) return;
     fprintf(stderr, "  %s %s %dx%d: %.3f ms (wall %.3f), %d frames\n", w->scene, w->technique, w->width, w->height,
             w->median.total_ms, w->wall_ms, w->frames);
 }
@@ -245,7 +249,8 @@ static long long nvx_used(run *rn, size_t before)
 }
 
 /* Warm-up and timed frames of r at its current size into out (medians, memory). */
-static void time_frames(run *rn, sss_gl_renderer *r, size_t bytes_before, size_t nvx_before, row *out)
+/* Warm-up and timed frames of r at its current size into out (medians); 0 after a failure. */
+static int time_frames(run *rn, sss_gl_renderer *r, row *out)
 {
     sss_error err = {0};
     sss_gl_timing_series series;
@@ -253,11 +258,11 @@ static void time_frames(run *rn, sss_gl_renderer *r, size_t bytes_before, size_t
     if (!wall || sss_gl_timing_series_init(&series, rn->opt.warmup, rn->opt.frames, &err) != SSS_OK) {
         free(wall);
         fail(out, "timing", wall ? err.message : "out of memory");
-        return;
+        return 0;
     }
     double t_first = 0.0;
     int ok = 1;
-    for (int f = 0; ok && f < rn->opt.warmup + rn->opt.frames; f++) {
+    for (int f = 0; f < rn->opt.warmup + rn->opt.frames; f++) {
         double t0 = sss_time_seconds();
         if (sss_gl_renderer_render(r, 0.0, &err) != SSS_OK) {
             fail(out, "render", err.message);
@@ -275,15 +280,21 @@ static void time_frames(run *rn, sss_gl_renderer *r, size_t bytes_before, size_t
     sss_gl_timing_series_median(&series, &out->median);
     out->frames = series.timed;
     out->wall_ms = series.timed > 0 ? sss_median(wall, series.timed) : 0.0;
-    out->ok = ok && series.timed > 0;
+    sss_gl_timing_series_free(&series);
+    free(wall);
+    return ok && out->frames > 0;
+}
+
+/* The frames (none with --frames 0: memory only), then what r holds on the GPU. */
+static void measure(run *rn, sss_gl_renderer *r, size_t bytes_before, size_t nvx_before, row *out)
+{
+    out->ok = rn->opt.frames == 0 || time_frames(rn, r, out);
     sss_gl_stats st;
     sss_gl_renderer_stats(r, &st);
     out->per_pixel_bytes = st.per_pixel_bytes;
     sss_gl_renderer_gpu_memory(r, &out->technique_bytes, &out->frame_bytes);
     out->renderer_bytes = sss_gl_allocated_bytes() - bytes_before;
     out->nvx_bytes = nvx_used(rn, nvx_before);
-    sss_gl_timing_series_free(&series);
-    free(wall);
 }
 
 static row *new_row(run *rn, const char *scene, const char *technique, int s, double zoom)
@@ -351,8 +362,8 @@ static void bench_technique(run *rn, const char *path, const sss_scene *scene, c
         out->create_s = create_s;
         if (!r) fail(out, "create", ok || err.message[0] ? err.message : "expected NAME:param=value[:param=value]");
         else if (s > 0 && sss_gl_renderer_resize(r, out->width, out->height, &err) != SSS_OK) fail(out, "resize", err.message);
-        else time_frames(rn, r, bytes_before, nvx_before, out);
-        if (r && out->ok && s == 0 && rn->opt.images) save_image(rn, r, scene, out);
+        else measure(rn, r, bytes_before, nvx_before, out);
+        if (r && out->ok && out->frames && s == 0 && rn->opt.images) save_image(rn, r, scene, out);
         write_outputs(rn);
         print_row(out);
     }
@@ -397,7 +408,7 @@ static int parse_count(const char *v, int lo, int *out)
 static int parse_option(options *o, const char *a, const char *v)
 {
     if (strcmp(a, "--techniques") == 0) snprintf(o->list, sizeof o->list, "%s", v);
-    else if (strcmp(a, "--frames") == 0) return parse_count(v, 1, &o->frames);
+    else if (strcmp(a, "--frames") == 0) return parse_count(v, 0, &o->frames);
     else if (strcmp(a, "--warmup") == 0) return parse_count(v, 0, &o->warmup);
     else if (strcmp(a, "--budget") == 0) return (o->budget = atof(v)) > 0.0;
     else if (strcmp(a, "--tsv") == 0) o->tsv = v;

@@ -116,6 +116,8 @@ env_info() { # BUNDLE
     if command -v nvidia-smi > /dev/null; then
         nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm,clocks.max.mem --format=csv 2>&1
     fi
+    echo "__EGL_VENDOR_LIBRARY_FILENAMES=${__EGL_VENDOR_LIBRARY_FILENAMES:-}"
+    command -v ldconfig > /dev/null && ldconfig -p | grep -E 'libEGL|libGLX|libOpenGL|libGLdispatch|nvidia' | head -20
     echo "--- bundle"
     cat "$1/MANIFEST"
     echo "--- ldd"
@@ -128,16 +130,24 @@ run() { # BUNDLE_DIR OUT_DIR [--small]
     b=$(cd "$1" && pwd)
     { mkdir -p "$2" && out=$(cd "$2" && pwd); } || die "cannot create $2"
     export LD_LIBRARY_PATH="$b/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
-    local missing
+    local missing vendor=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
     missing=$(ldd "$b/bin/bench_techniques" 2>&1 | grep "not found")
     [ -z "$missing" ] || die "libraries missing on this machine: $missing"
+    # libepoxy opens the GL loaders at run time: the machine's, or .gl/'s unpacked into / (docs/performance.md)
+    if command -v ldconfig > /dev/null && ! ldconfig -p | grep 'libEGL\.so\.1' > /dev/null; then
+        die "no libEGL.so.1 on this machine: unpack the GL loaders first (docs/performance.md)"
+    fi
+    # the device tool's NVIDIA machines keep the driver's EGL vendor file outside glvnd's default folders
+    if [ -z "${__EGL_VENDOR_LIBRARY_FILENAMES:-}" ] && [ -f "$vendor" ]; then
+        export __EGL_VENDOR_LIBRARY_FILENAMES=$vendor
+    fi
     if [ "$small" = --small ]; then
         scenes=$SMALL_SCENES sizes=$SMALL_SIZES args=(--warmup 1 --frames 2)
     else
         scenes=$SCENES sizes=$SIZES args=(--warmup 10 --frames 50 --budget 2)
     fi
     for s in $sizes; do args+=(--size "$s"); done
-    env_info "$b" > "$out/env.txt"
+    env_info "$b" > "$out/env.txt" 2>&1
     rm -rf "$out/images" && mkdir -p "$out/images"
     # shellcheck disable=SC2086 # the scene list splits on spaces
     (cd "$b" && timeout "$BENCH_SECONDS" bin/bench_techniques $scenes "${args[@]}" --tsv "$out/bench.tsv" \
