@@ -73,6 +73,10 @@ typedef struct sss_gl_context_info {
 /* Strings stay valid while the context lives. */
 void sss_gl_context_get_info(const sss_gl_context *ctx, sss_gl_context_info *out);
 int sss_gl_context_make_current(sss_gl_context *ctx); /* 1 on success */
+/* The driver's view of video memory (GL_NVX_gpu_memory_info: NVIDIA): total dedicated and currently
+ * available bytes, 1 on success (the context is made current). Returns 0 and sets both to 0 where the
+ * extension is not offered (Mesa, llvmpipe). */
+int sss_gl_context_video_memory(sss_gl_context *ctx, size_t *total_bytes, size_t *available_bytes);
 
 /* Window helpers (no-ops / 1 on headless contexts). */
 int sss_gl_window_should_close(sss_gl_context *ctx); /* also polls events */
@@ -302,11 +306,6 @@ void sss_gl_renderer_gpu_memory(const sss_gl_renderer *r, size_t *technique_byte
  * renderer, pass or viewer made, scene data included), counted as for sss_gl_stats: the difference
  * across sss_gl_renderer_create is what one renderer holds; after every _destroy it is back where it was. */
 size_t sss_gl_allocated_bytes(void);
-
-/* The driver's view of video memory (GL_NVX_gpu_memory_info: NVIDIA): total dedicated and currently
- * available bytes. Returns 0 and sets both to 0 where the extension is not offered (Mesa, llvmpipe).
- * The context must be current. */
-int sss_gl_context_video_memory(sss_gl_context *ctx, size_t *total_bytes, size_t *available_bytes);
 
 #ifdef __cplusplus
 }
