@@ -73,6 +73,10 @@ typedef struct sss_gl_context_info {
 /* Strings stay valid while the context lives. */
 void sss_gl_context_get_info(const sss_gl_context *ctx, sss_gl_context_info *out);
 int sss_gl_context_make_current(sss_gl_context *ctx); /* 1 on success */
+/* The driver's view of video memory (GL_NVX_gpu_memory_info: NVIDIA): total dedicated and currently
+ * available bytes, 1 on success (the context is made current). Returns 0 and sets both to 0 where the
+ * extension is not offered (Mesa, llvmpipe). */
+int sss_gl_context_video_memory(sss_gl_context *ctx, size_t *total_bytes, size_t *available_bytes);
 
 /* Window helpers (no-ops / 1 on headless contexts). */
 int sss_gl_window_should_close(sss_gl_context *ctx); /* also polls events */
@@ -290,6 +294,18 @@ typedef struct sss_gl_stats {
 } sss_gl_stats;
 
 void sss_gl_renderer_stats(sss_gl_renderer *r, sss_gl_stats *out);
+
+/* GPU memory a renderer holds now, counted where the GL allocates and frees storage (logical sizes:
+ * texels x the bits of the format, buffer sizes; drivers add padding): the technique's own textures and
+ * buffers (its passes' targets, splat buffers, tables) and the shared frame targets (G-buffer,
+ * illumination and their mip chains, the linear result, the SSAA output). Scene data (meshes, LUTs,
+ * shadow maps) is in neither. Either pointer may be NULL; a NULL renderer gives 0. */
+void sss_gl_renderer_gpu_memory(const sss_gl_renderer *r, size_t *technique_bytes, size_t *frame_bytes);
+
+/* GPU bytes held now by the textures and buffers sss created on this thread's contexts (everything a
+ * renderer, pass or viewer made, scene data included), counted as for sss_gl_stats: the difference
+ * across sss_gl_renderer_create is what one renderer holds; after every _destroy it is back where it was. */
+size_t sss_gl_allocated_bytes(void);
 
 #ifdef __cplusplus
 }

@@ -300,6 +300,19 @@ void sss_gl_context_get_info(const sss_gl_context *ctx, sss_gl_context_info *out
     out->software = ctx->software;
 }
 
+int sss_gl_context_video_memory(sss_gl_context *ctx, size_t *total_bytes, size_t *available_bytes)
+{
+    if (total_bytes) *total_bytes = 0;
+    if (available_bytes) *available_bytes = 0;
+    if (!ctx || !sss_gl_context_make_current(ctx) || !epoxy_has_gl_extension("GL_NVX_gpu_memory_info")) return 0;
+    GLint total_kib = 0, available_kib = 0; /* the extension counts KiB */
+    glGetIntegerv(GL_GPU_MEMORY_INFO_DEDICATED_VIDMEM_NVX, &total_kib);
+    glGetIntegerv(GL_GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX, &available_kib);
+    if (total_bytes) *total_bytes = (size_t)(total_kib > 0 ? total_kib : 0) * 1024;
+    if (available_bytes) *available_bytes = (size_t)(available_kib > 0 ? available_kib : 0) * 1024;
+    return 1;
+}
+
 int sss_gl_context_make_current(sss_gl_context *ctx)
 {
     if (!ctx) return 0;

@@ -82,6 +82,37 @@ void gl_timer_begin(gl_timer *t, const char *name);
 void gl_timer_end(gl_timer *t);
 void gl_timer_frame_end(gl_timer *t); /* collects query results */
 
+/* ---- GPU memory (gpu_memory.c) --------------------------------------------------------------
+ * Every file that includes this header allocates and frees GL storage through these (the names of the
+ * GL calls are redirected below), so the bytes of textures and buffers are counted at one place. */
+
+void gl_mem_texture_storage_2d(GLuint t, GLsizei levels, GLenum format, GLsizei w, GLsizei h);
+void gl_mem_texture_storage_3d(GLuint t, GLsizei levels, GLenum format, GLsizei w, GLsizei h, GLsizei d);
+void gl_mem_buffer_storage(GLuint b, GLsizeiptr size, const void *data, GLbitfield flags);
+void gl_mem_delete_textures(GLsizei n, const GLuint *t);
+void gl_mem_delete_buffers(GLsizei n, const GLuint *b);
+#undef glTextureStorage2D
+#undef glTextureStorage3D
+#undef glNamedBufferStorage
+#undef glDeleteTextures
+#undef glDeleteBuffers
+#define glTextureStorage2D gl_mem_texture_storage_2d
+#define glTextureStorage3D gl_mem_texture_storage_3d
+#define glNamedBufferStorage gl_mem_buffer_storage
+#define glDeleteTextures gl_mem_delete_textures
+#define glDeleteBuffers gl_mem_delete_buffers
+
+/* Bytes held now by this thread's textures and buffers (allocated minus freed). */
+long long gl_mem_live(void);
+/* Runs `call` and adds the bytes it allocated minus those it freed to `account` (a long long): how the
+ * renderer keeps the technique's own and the shared frame targets' memory apart. */
+#define GL_MEM_ACCOUNT(account, call)                                                                      \
+    do {                                                                                                   \
+        long long gl_mem_before_ = gl_mem_live();                                                          \
+        call;                                                                                              \
+        (account) += gl_mem_live() - gl_mem_before_;                                                       \
+    } while (0)
+
 /* ---- Binding points ------------------------------------------------------------------------- */
 
 enum {
@@ -344,6 +375,9 @@ struct sss_gl_renderer {
     int out_width, out_height;     /* the output size (read back, presented) */
     GLuint prog_ssaa, ssaa_tex, ssaa_fbo; /* the k x k box filter into the output image (ssaa.c) */
     size_t ssaa_bytes;
+    /* GPU bytes held by the technique's own textures and buffers, and by the shared frame targets and
+     * the SSAA output, counted at the GL calls (gpu_memory.c) around every call that makes or frees them */
+    long long tech_gpu_bytes, frame_gpu_bytes;
     double time;
     gl_scene gs;
     gl_frame frame;

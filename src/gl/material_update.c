@@ -109,7 +109,7 @@ static sss_result refresh_technique(sss_gl_renderer *r, sss_error *err)
 {
     sss_result res;
     if (r->tech->materials_changed) {
-        res = r->tech->materials_changed(r, r->tech_state, err);
+        GL_MEM_ACCOUNT(r->tech_gpu_bytes, res = r->tech->materials_changed(r, r->tech_state, err));
         if (res != SSS_OK) sss_error_prefix(err, r->tech->info.name);
     } else {
         gl_runtime_technique_destroy(r);

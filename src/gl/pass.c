@@ -44,7 +44,7 @@ sss_result gl_frame_run(sss_gl_renderer *r, const gl_camera *cam, double time, s
         res = gl_pass_mipmaps(r, err);
     }
     gl_timer_end(t);
-    if (res == SSS_OK) res = r->tech->render(r, r->tech_state, err);
+    if (res == SSS_OK) GL_MEM_ACCOUNT(r->tech_gpu_bytes, res = r->tech->render(r, r->tech_state, err));
     if (res == SSS_OK) res = gl_ssaa_resolve(r, err);
     gl_timer_frame_end(t);
     return res;

@@ -128,14 +128,15 @@ sss_result gl_runtime_technique_create(sss_gl_renderer *r, sss_error *err)
 {
     r->tech_state = calloc(1, r->tech->state_size ? r->tech->state_size : 1);
     if (!r->tech_state) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (technique state)");
-    sss_result res = r->tech->create ? r->tech->create(r, r->tech_state, err) : SSS_OK;
+    sss_result res = SSS_OK;
+    if (r->tech->create) GL_MEM_ACCOUNT(r->tech_gpu_bytes, res = r->tech->create(r, r->tech_state, err));
     if (res != SSS_OK) sss_error_prefix(err, r->tech->info.name);
     return res;
 }
 
 void gl_runtime_technique_destroy(sss_gl_renderer *r)
 {
-    if (r->tech_state && r->tech->destroy) r->tech->destroy(r, r->tech_state);
+    if (r->tech_state && r->tech->destroy) GL_MEM_ACCOUNT(r->tech_gpu_bytes, r->tech->destroy(r, r->tech_state));
     free(r->tech_state);
     r->tech_state = NULL;
 }
@@ -223,8 +224,8 @@ static sss_result create_gl_parts(sss_gl_renderer *r, const sss_gl_tables *table
         glCreateVertexArrays(1, &r->vao_empty);
         res = build_scene(r, err);
     }
-    if (res == SSS_OK) res = create_frame(r, err);
-    if (res == SSS_OK) res = gl_ssaa_resize(r, err);
+    if (res == SSS_OK) GL_MEM_ACCOUNT(r->frame_gpu_bytes, res = create_frame(r, err));
+    if (res == SSS_OK) GL_MEM_ACCOUNT(r->frame_gpu_bytes, res = gl_ssaa_resize(r, err));
     if (res == SSS_OK) res = gl_runtime_technique_create(r, err);
     r->tables = NULL;
     if (res == SSS_OK) res = gl_check(r->ctx, "renderer creation", err);
@@ -301,7 +302,7 @@ sss_result sss_gl_renderer_set_param(sss_gl_renderer *r, const char *name, doubl
     if (scene_level) r->scene_dirty = 1;
     else if (r->tech->resize && r->tech_state) {
         sss_gl_context_make_current(r->ctx);
-        res = r->tech->resize(r, r->tech_state, err);
+        GL_MEM_ACCOUNT(r->tech_gpu_bytes, res = r->tech->resize(r, r->tech_state, err));
     }
     return res;
 }
@@ -321,7 +322,7 @@ static sss_result apply_size(sss_gl_renderer *r, int width, int height, int k, s
     if (width == r->out_width && height == r->out_height && k == r->supersample) return SSS_OK;
     sss_gl_context_make_current(r->ctx);
     int external = r->frame.external;
-    gl_frame_free(&r->frame);
+    GL_MEM_ACCOUNT(r->frame_gpu_bytes, gl_frame_free(&r->frame));
     r->frame.external = external;
     r->supersample = k;
     r->out_width = width;
@@ -329,9 +330,11 @@ static sss_result apply_size(sss_gl_renderer *r, int width, int height, int k, s
     r->width = width * k;
     r->height = height * k;
     r->frame_rendered = 0;
-    sss_result res = create_frame(r, err);
-    if (res == SSS_OK) res = gl_ssaa_resize(r, err);
-    if (res == SSS_OK && r->tech->resize) res = r->tech->resize(r, r->tech_state, err);
+    sss_result res = SSS_OK;
+    GL_MEM_ACCOUNT(r->frame_gpu_bytes, res = create_frame(r, err));
+    if (res == SSS_OK) GL_MEM_ACCOUNT(r->frame_gpu_bytes, res = gl_ssaa_resize(r, err));
+    if (res == SSS_OK && r->tech->resize)
+        GL_MEM_ACCOUNT(r->tech_gpu_bytes, res = r->tech->resize(r, r->tech_state, err));
     return res;
 }
 
@@ -505,4 +508,10 @@ void sss_gl_renderer_stats(sss_gl_renderer *r, sss_gl_stats *out)
     if (r->tech->stats && r->tech_state) r->tech->stats(r, r->tech_state, out);
     size_t k = (size_t)gl_supersample(r);
     out->per_pixel_bytes = out->per_pixel_bytes * k * k + r->ssaa_bytes / ((size_t)r->out_width * (size_t)r->out_height);
+}
+
+void sss_gl_renderer_gpu_memory(const sss_gl_renderer *r, size_t *technique_bytes, size_t *frame_bytes)
+{
+    if (technique_bytes) *technique_bytes = r && r->tech_gpu_bytes > 0 ? (size_t)r->tech_gpu_bytes : 0;
+    if (frame_bytes) *frame_bytes = r && r->frame_gpu_bytes > 0 ? (size_t)r->frame_gpu_bytes : 0;
 }
