@@ -291,6 +291,9 @@ typedef struct sss_gl_stats {
     unsigned splat_total;       /* triangles of the splat meshes */
     unsigned splat_drawn;       /* splats that survived culling in the last frame */
     int material_count, light_count, virtual_light_count, object_count;
+    /* fragment shader invocations of the last frame's shell splatting (chen2012, dss: a pipeline-statistics
+     * query, which waits for the frame); -1 when not counted (other techniques, no such query, no frame) */
+    long long splat_fragments;
 } sss_gl_stats;
 
 void sss_gl_renderer_stats(sss_gl_renderer *r, sss_gl_stats *out);

@@ -5,7 +5,7 @@
  * otherwise reach the pass's draws. Queries only: nothing is allocated. */
 #include <string.h>
 
-#include "gl/gl_internal.h"
+#include "gl/pass_state.h"
 
 static const GLenum texture_targets[GL_PASS_TEXTURE_TARGETS] = {
     GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY, GL_TEXTURE_CUBE_MAP, GL_TEXTURE_CUBE_MAP_ARRAY, GL_TEXTURE_3D};

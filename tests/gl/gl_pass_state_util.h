@@ -6,7 +6,7 @@
 #ifndef SSS_GL_PASS_STATE_UTIL_H
 #define SSS_GL_PASS_STATE_UTIL_H
 
-#include "gl/gl_internal.h"
+#include "gl/core/gl_base.h"
 #include "gl_test_util.h"
 
 #define MAX_STATE 2000

@@ -13,7 +13,7 @@
  *  - chen2012, which never reads the frame's irradiance, is refused as a pass (sss_gl_pass_create);
  *  - bad frames: wrong size, format, a name that is not a texture, missing mip levels, a projection
  *    that is not perspective: INVALID_ARGUMENT naming the field, the output texture untouched. */
-#include "gl/gl_internal.h"
+#include "gl/gl_test.h"
 #include "gl_pass_state_util.h"
 #include "gl_test_util.h"
 #include "sss/gl_pass.h"
@@ -23,14 +23,15 @@
 /* The renderer's camera as plain OpenGL matrices (standard depth range), from the public camera API. */
 static void camera_matrices(const sss_gl_renderer *r, sss_gl_pass_frame *f)
 {
-    sss_camera cam = r->scene->camera;
-    cam.width = r->width;
-    cam.height = r->height;
+    const gl_core *core = gl_test_renderer_core(r);
+    sss_camera cam = core->scene->camera;
+    cam.width = core->width;
+    cam.height = core->height;
     sss_camera_basis b;
     sss_camera_basis_init(&cam, &b, NULL);
     double v[16], p[16];
     sss_camera_view_matrix(&b, v);
-    sss_camera_projection_matrix(&b, r->near_plane, r->far_plane, p);
+    sss_camera_projection_matrix(&b, core->view.camera.near_plane, core->far_plane, p);
     for (int i = 0; i < 4; i++)
         for (int j = 0; j < 4; j++) {
             f->view[4 * j + i] = (float)v[4 * i + j];
@@ -208,11 +209,11 @@ static void check_technique(sss_scene *scene, const char *technique)
     int w = pd.width, h = pd.height;
     sss_gl_pass_frame f;
     memset(&f, 0, sizeof f);
-    f.position = r->frame.pos;
-    f.normal = r->frame.nrm;
-    f.albedo = r->frame.albedo;
-    f.irradiance = r->frame.irr;
-    f.reflected = r->frame.refl;
+    f.position = gl_test_renderer_core(r)->frame.pos;
+    f.normal = gl_test_renderer_core(r)->frame.nrm;
+    f.albedo = gl_test_renderer_core(r)->frame.albedo;
+    f.irradiance = gl_test_renderer_core(r)->frame.irr;
+    f.reflected = gl_test_renderer_core(r)->frame.refl;
     f.time = 0.25;
     camera_matrices(r, &f);
     GLuint t_clean = run_pass(pass, &f, w, h, technique, "clean");
@@ -222,7 +223,7 @@ static void check_technique(sss_scene *scene, const char *technique)
     size_t n = (size_t)w * h * 4;
     float *clean = take_image(t_clean, w, h), *again = take_image(t_again, w, h),
           *hostile = take_image(t_hostile, w, h), *own = malloc(n * sizeof(float));
-    CHECK(clean && again && hostile && own && read_rgba(r->frame.final, w, h, own));
+    CHECK(clean && again && hostile && own && read_rgba(gl_test_renderer_core(r)->frame.final, w, h, own));
     if (clean && again && hostile && own) {
         image_diff vs_renderer = compare_rgb(clean, own, n), repeat = compare_rgb(again, clean, n),
                    vs_clean = compare_rgb(hostile, clean, n);
@@ -318,10 +319,10 @@ static void check_bad_frames(const sss_scene *scene)
     }
     sss_gl_pass_frame good;
     memset(&good, 0, sizeof good);
-    good.position = r->frame.pos;
-    good.normal = r->frame.nrm;
-    good.albedo = r->frame.albedo;
-    good.irradiance = r->frame.irr;
+    good.position = gl_test_renderer_core(r)->frame.pos;
+    good.normal = gl_test_renderer_core(r)->frame.nrm;
+    good.albedo = gl_test_renderer_core(r)->frame.albedo;
+    good.irradiance = gl_test_renderer_core(r)->frame.irr;
     good.output = output_texture(w, h, 7.0f);
     camera_matrices(r, &good);
     GLuint small = gl_texture_2d(GL_RGBA32F, w / 2, h, 1, NULL);

@@ -10,7 +10,7 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "gl/mertens2003/tech_mertens2003.h"
+#include "gl/techniques/mertens2003/tech_mertens2003.h"
 #include "sss/material.h"
 #include "sss/profile.h"
 

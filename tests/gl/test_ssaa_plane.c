@@ -34,7 +34,6 @@
  *    only 36-48 fragments a splat and the fine level's quads, (2 (2.5 + 0.375) k)^2 = 132, weigh; +5%
  *    on eval_backlit, +10% on eval_front). The pyramid starting at the render pixel made 3.0x
  *    (chen2012) and 12x (dss). */
-#include "gl/dss/tech_dss_shells.h"
 #include "splat_plane_util.h"
 #include "gl_test_util.h"
 
@@ -75,7 +74,7 @@ static int render_k(const sss_scene *scene, const char *technique, const sss_gl_
     sss_gl_stats st;
     sss_gl_renderer_stats(r, &st);
     work->drawn = st.splat_drawn;
-    work->fragments = shell_splat_fragments(shell_targets_of(r));
+    work->fragments = st.splat_fragments;
     sss_gl_renderer_destroy(r);
     return 1;
 }
