@@ -66,12 +66,6 @@ typedef struct sss_export_gltf_desc {
 SSS_API sss_result sss_export_gltf(const sss_scene *scene, sss_export_gltf_desc *desc, const char *out_path,
                                    sss_error *err);
 
-/* The PBRT-v3 light-to-world matrix (row-major 4x4) of an environment light with the given rotate_y,
- * so that PBRT's infinite-light lookup (u = phi/2pi about +z, v = theta/pi from +z) shows the
- * equirectangular map where docs/scene-format.md puts it (+y up, u = 0.5 at -z, u growing towards +x...
- * exactly as sss_reference's environment lookup). Exposed for tests. */
-SSS_API void sss_export_pbrt_env_light_to_world(double rotate_y_degrees, double m[16]);
-
 #ifdef __cplusplus
 }
 #endif

@@ -143,11 +143,6 @@ SSS_API void sss_svd_kernel_free(sss_svd_kernel *k);
  * (densities, 1 / length). grid in [2, 512]; ~grid^2 * iterations work. */
 SSS_API sss_result sss_kernel_guided(const sss_profile *profile, int grid, double extent, double k, double b,
                                      double *out, sss_error *err);
-/* The discretised objective of Eq. 8 (with the floor, the same cell averages of R_d) for one
- * channel's a (grid values): sum_ij (Gamma_ij + floor) (avg R_d_ij - a_i a_j)^2 h^2. NAN on bad input
- * (grid outside [1, 512]) or without memory. For checking optimality. */
-SSS_API double sss_kernel_guided_objective(const sss_profile *profile, int grid, double extent, double k, double b,
-                                           int channel, const double *a);
 
 #ifdef __cplusplus
 }

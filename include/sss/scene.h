@@ -390,9 +390,8 @@ SSS_API sss_result sss_scene_set_light(sss_scene *scene, size_t index, const cha
 /* The cached table for (eta, g), or NULL. */
 SSS_API const sss_pbd_table *sss_scene_find_table(const sss_scene *scene, double eta, double g);
 
-/* Short names for messages and tools: "twist", "sphere", "point", "pbd", ... */
+/* Short names for messages and tools: "twist", "point", "pbd", ... */
 SSS_API const char *sss_animation_type_name(sss_animation_type type);
-SSS_API const char *sss_shape_name(sss_shape shape);
 SSS_API const char *sss_light_type_name(sss_light_type type);
 SSS_API const char *sss_scene_profile_name(sss_scene_profile profile);
 

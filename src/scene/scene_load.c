@@ -526,12 +526,6 @@ const char *sss_animation_type_name(sss_animation_type type)
     return "unknown";
 }
 
-const char *sss_shape_name(sss_shape shape)
-{
-    static const char *const names[] = {"mesh", "sphere", "torus", "trefoil", "plane", "box"};
-    return (unsigned)shape < SCENE_COUNT(names) ? names[shape] : "unknown";
-}
-
 const char *sss_light_type_name(sss_light_type type)
 {
     static const char *const names[] = {"point", "spot", "directional", "area", "environment"};
