@@ -137,7 +137,7 @@ static sss_result frame(viewer *v, int fixed, const char *screenshot, sss_error 
     double entered = sss_time_seconds();
     int building = view_rebuild_busy(v);
     check_size(v);
-    view_run_actions(v);
+    view_cmd_keys(v);
     view_poll_rebuild(v);
     if (v->playing && !fixed) {
         double now = glfwGetTime();
@@ -309,50 +309,70 @@ static sss_result wait_rebuild(viewer *v, int *frames, double *longest_ms, sss_e
     return res;
 }
 
-/* --script: each line's action, `frames N` renders N frames, `screenshot F` renders one and writes
- * the window as shown (after the reference in the background, when one is running, has finished). */
+/* A script's `frames N` (N frames, their median times reported) or `screenshot F` (one frame, the
+ * window as shown written after the edits and the reference in the background are done). */
+static sss_result script_frames(viewer *v, const view_command *c, sss_error *err)
+{
+    int n = c->kind == VIEW_CMD_FRAMES ? c->index : 1;
+    sss_result res = SSS_OK;
+    if (c->kind == VIEW_CMD_SCREENSHOT) {
+        int waited = 0;
+        double longest = 0.0;
+        res = wait_rebuild(v, &waited, &longest, err);
+        wait_reference(v);
+        v->shot_path = c->text;
+    }
+    double *ms = calloc(2 * (size_t)n, sizeof *ms), *overlay_ms = ms + n;
+    if (!ms) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (frame times)");
+    for (int k = 0; k < n && res == SSS_OK; k++) {
+        glfwPollEvents();
+        res = frame(v, 1, NULL, err);
+        ms[k] = v->frame_ms;
+        overlay_ms[k] = v->overlay_ms;
+        if (res == SSS_OK) res = script_build_error(v, err);
+    }
+    if (res == SSS_OK && c->kind == VIEW_CMD_SCREENSHOT) view_message(v, "saved %s", c->text);
+    else if (res == SSS_OK) /* wall time from render to swap, the panel (when shown) included */
+        view_message(v, "%d frames: median frame time %.2f ms, of which %s %.2f ms", n, sss_median(ms, n),
+                     v->overlay ? (v->panel ? "panel" : "text overlay") : "hidden panel", sss_median(overlay_ms, n));
+    free(ms);
+    return res;
+}
+
+/* One line of a script: frames and waits run here (they draw), input events go to input.c, the
+ * other actions to commands.c. */
+static sss_result script_line(viewer *v, const view_command *c, sss_error *err)
+{
+    sss_result res = SSS_OK;
+    if (c->kind == VIEW_CMD_FRAMES || c->kind == VIEW_CMD_SCREENSHOT) {
+        res = script_frames(v, c, err);
+    } else if (c->kind == VIEW_CMD_WAIT) {
+        int frames = 0;
+        double longest = 0.0;
+        res = wait_rebuild(v, &frames, &longest, err);
+        if (res == SSS_OK)
+            view_message(v, "wait: %d frames drawn until the material edits were applied (longest %.1f ms)", frames,
+                         longest);
+    } else if (c->kind == VIEW_CMD_KEY) {
+        if (!view_input_event(v, c->name, 1))
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "key: unknown input event '%s'", c->name);
+        view_cmd_keys(v);
+    } else {
+        v->script_line = c->line;
+        res = view_cmd_run(v, c, err);
+        v->script_line = 0;
+    }
+    return res;
+}
+
+/* --script: each line's action; a failure stops the script, naming its line (for a material edit
+ * that failed in the worker, the edit's line). */
 static sss_result run_script(viewer *v, const view_script *script, sss_error *err)
 {
     for (int i = 0; i < script->count; i++) {
         const view_command *c = &script->commands[i];
-        sss_result res = SSS_OK;
         sss_error cerr = {0};
-        if (c->kind == VIEW_CMD_FRAMES || c->kind == VIEW_CMD_SCREENSHOT) {
-            int n = c->kind == VIEW_CMD_FRAMES ? c->index : 1;
-            if (c->kind == VIEW_CMD_SCREENSHOT) {
-                int waited = 0;
-                double longest = 0.0;
-                res = wait_rebuild(v, &waited, &longest, &cerr);
-                wait_reference(v);
-                v->shot_path = c->text;
-            }
-            double *ms = calloc(2 * (size_t)n, sizeof *ms), *overlay_ms = ms + n;
-            if (!ms) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (frame times)");
-            for (int k = 0; k < n && res == SSS_OK; k++) {
-                glfwPollEvents();
-                res = frame(v, 1, NULL, &cerr);
-                ms[k] = v->frame_ms;
-                overlay_ms[k] = v->overlay_ms;
-                if (res == SSS_OK) res = script_build_error(v, &cerr);
-            }
-            if (res == SSS_OK && c->kind == VIEW_CMD_SCREENSHOT) view_message(v, "saved %s", c->text);
-            else if (res == SSS_OK) /* wall time from render to swap, the panel (when shown) included */
-                view_message(v, "%d frames: median frame time %.2f ms, of which %s %.2f ms", n, sss_median(ms, n),
-                             v->overlay ? (v->panel ? "panel" : "text overlay") : "hidden panel",
-                             sss_median(overlay_ms, n));
-            free(ms);
-        } else if (c->kind == VIEW_CMD_WAIT) {
-            int frames = 0;
-            double longest = 0.0;
-            res = wait_rebuild(v, &frames, &longest, &cerr);
-            if (res == SSS_OK)
-                view_message(v, "wait: %d frames drawn until the material edits were applied (longest %.1f ms)",
-                             frames, longest);
-        } else {
-            v->script_line = c->line;
-            res = view_cmd_run(v, c, &cerr);
-            v->script_line = 0;
-        }
+        sss_result res = script_line(v, c, &cerr);
         if (res != SSS_OK) {
             v->shot_path = NULL;
             int line = v->build_failed_line ? v->build_failed_line : c->line;
