@@ -18,7 +18,10 @@ enum { CLI_EXIT_OK = 0, CLI_EXIT_ERROR = 1, CLI_EXIT_USAGE = 2 };
  * -h/--help are common to every command and handled by the parser.
  * A command is three steps: parse (argv -> its options struct, values and their combinations
  * checked; usage errors exit 2), run (options -> the work, an exit code), and the entry point
- * sss_cmd_NAME that chains them. */
+ * sss_cmd_NAME that chains them. A new command: src/cli/cmd_NAME.c with its option table, its spec
+ * (operands, about, notes), an options struct, a setter for cli_parse, NAME_parse, NAME_run and
+ * sss_cmd_NAME; an entry in main.c's commands[]. --help, `sss help NAME`, the option suggestions and
+ * the completion follow from the table. */
 
 /* What an option's value is: the parser only takes it; the command parses numbers and checks ranges
  * (its messages name its limits). The kind picks what completion offers. */
