@@ -33,8 +33,8 @@ static const cli_option options[] = {
      "sizes compared with the reference, WxH,... (default: the camera's);\n"
      "the first one is used for the sheets",
      NULL, NULL},
-    {OPT_WIDTH, "--width", NULL, CLI_ARG_NUMBER, "W", "with --height: one size WxH for every scene (--resolutions WxH)", NULL,
-     NULL},
+    {OPT_WIDTH, "--width", NULL, CLI_ARG_NUMBER, "W", "with --height: one size WxH for every scene (--resolutions WxH)",
+     NULL, NULL},
     {OPT_HEIGHT, "--height", NULL, CLI_ARG_NUMBER, "H", "with --width", NULL, NULL},
     {OPT_TIMING_RESOLUTIONS, "--timing-resolutions", NULL, CLI_ARG_TEXT, "LIST",
      "extra sizes where only frame times are measured", NULL, NULL},
@@ -50,15 +50,16 @@ static const cli_option options[] = {
      NULL, NULL},
     {OPT_REFERENCE_DIR, "--reference-dir", NULL, CLI_ARG_DIR, "DIR", "where cached references are looked up instead", NULL,
      NULL},
-    {OPT_REFERENCE_QUALITY, "--reference-quality", NULL, CLI_ARG_TEXT, "Q", "final or draft, for references that are rendered",
-     "draft final", "final"},
+    {OPT_REFERENCE_QUALITY, "--reference-quality", NULL, CLI_ARG_TEXT, "Q",
+     "final or draft, for references that are rendered", "draft final", "final"},
     {OPT_REFERENCE_BOUNCES, "--reference-bounces", NULL, CLI_ARG_NUMBER, "N",
      "the truth: 1 = the single-event integral (`sss reference --bounces 1`,\n"
      "what techniques that model one event converge to), N = N bounces;\n"
      "default: the full transport (bounces until converged)",
      NULL, NULL},
     {OPT_THREADS, "--threads", NULL, CLI_ARG_NUMBER, "N", "threads of the reference renderer", NULL, "all cores"},
-    {OPT_THREADS, "--reference-threads", NULL, CLI_ARG_NUMBER, "N", NULL, NULL, NULL}, /* the old spelling, still accepted */
+    /* the old spelling, still accepted */
+    {OPT_THREADS, "--reference-threads", NULL, CLI_ARG_NUMBER, "N", NULL, NULL, NULL},
     {OPT_SAM_SWEEP, "--sam-sweep", NULL, CLI_ARG_NONE, NULL,
      "RMSE of `sam` against back-side samples n (Maisch & Ropinski 2017, Fig. 10)\n"
      "even when sam is not among the techniques",

@@ -140,7 +140,8 @@ static int kernel_parse(int argc, char **argv, kernel_options *o)
     if (!o->method) o->method = o->preset ? "artist" : "preintegrated";
     if (o->preset && strcmp(o->method, "artist") != 0)
         return cli_usage_error(CMD, "--method %s needs a MEDIUM, not --artist", o->method);
-    if (!o->preset && strcmp(o->method, "artist") == 0) return cli_usage_error(CMD, "--method artist needs --artist PRESET");
+    if (!o->preset && strcmp(o->method, "artist") == 0)
+        return cli_usage_error(CMD, "--method artist needs --artist PRESET");
     return CLI_EXIT_OK;
 }
 

@@ -53,7 +53,8 @@ static const cli_option options[] = {
      "light only); default: until a bounce adds less than a set fraction of\n"
      "bounce 2's light (below)",
      NULL, NULL},
-    {OPT_STATS, "--stats", NULL, CLI_ARG_NONE, NULL, "print sample counts, tree statistics and timings to stdout", NULL, NULL},
+    {OPT_STATS, "--stats", NULL, CLI_ARG_NONE, NULL, "print sample counts, tree statistics and timings to stdout", NULL,
+     NULL},
 };
 
 static void print_more(FILE *f)

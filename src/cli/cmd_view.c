@@ -17,7 +17,8 @@ enum {
     OPT_REFERENCE, OPT_DRAFT_REFERENCE, OPT_SUPERSAMPLE, OPT_INPUT, OPT_SCRIPT
 };
 static const cli_option options[] = {
-    {OPT_TECHNIQUE, "--technique", NULL, CLI_ARG_TECHNIQUE, "NAME", "first technique", NULL, "the scene's render.technique"},
+    {OPT_TECHNIQUE, "--technique", NULL, CLI_ARG_TECHNIQUE, "NAME", "first technique", NULL,
+     "the scene's render.technique"},
     {OPT_WIDTH, "--width", NULL, CLI_ARG_NUMBER, "W", "window width", NULL, "the scene camera's"},
     {OPT_HEIGHT, "--height", NULL, CLI_ARG_NUMBER, "H", "window height", NULL, "the scene camera's"},
     {OPT_PARAM, "--param", NULL, CLI_ARG_TEXT, "NAME=VALUE",
