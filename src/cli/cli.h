@@ -18,7 +18,7 @@ enum { CLI_EXIT_OK = 0, CLI_EXIT_ERROR = 1, CLI_EXIT_USAGE = 2 };
  * -h/--help are common to every command and handled by the parser.
  * A command is three steps: parse (argv -> its options struct, values and their combinations
  * checked; usage errors exit 2), run (options -> the work, an exit code), and the entry point
- * sss_cmd_NAME that chains them. A new command: src/cli/cmd_NAME.c with its option table, its spec
+ * sss_cmd_NAME that chains them. A new command: a file cmd_NAME.c here with its option table, its spec
  * (operands, about, notes), an options struct, a setter for cli_parse, NAME_parse, NAME_run and
  * sss_cmd_NAME; an entry in main.c's commands[]. --help, `sss help NAME`, the option suggestions and
  * the completion follow from the table. */
@@ -229,7 +229,8 @@ int cli_scene_resize(const char *cmd, struct sss_scene *scene, int width, int he
 int cli_require_extension(const char *cmd, const char *option, const char *path, const char *ext);
 
 /* The profile of a measured medium, for the commands that take MEDIUM [--scale S] [--eta E]
- * [--model pbd|dipole]. */
+ * [--model pbd|dipole]; --eta's default, as PBRT-v3's subsurface material's (eta 1.33). */
+#define CLI_DEFAULT_ETA 1.33
 typedef struct cli_medium_profile {
     sss_material material;
     sss_pbd_table *table; /* heap-allocated for PBD, NULL for the dipole */

@@ -31,7 +31,7 @@ static void print_option_words(const cli_command_spec *spec)
         sep = " ";
         if (o->short_name) printf(" %s", o->short_name);
     }
-    printf("%s--quiet --progress --help", sep);
+    for (int k = 0; k < CLI_COMMON_OPTION_COUNT; k++, sep = " ") printf("%s%s", sep, cli_common_options[k].name);
 }
 
 /* The shell command that fills COMPREPLY with values of kind for the word $cur. */

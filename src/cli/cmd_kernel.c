@@ -23,7 +23,8 @@ static const cli_option options[] = {
      "single-layer multi-layer production", NULL},
     {OPT_SCALE, "--scale", NULL, CLI_ARG_NUMBER, "S", "millimetres per scene unit", NULL, "1 = offsets in mm"},
     {OPT_ETA, "--eta", NULL, CLI_ARG_NUMBER, "E",
-     "relative index of refraction in [" CLI_STR(SSS_ETA_MIN) ", " CLI_STR(SSS_ETA_MAX) "]", NULL, "1.33"},
+     "relative index of refraction in [" CLI_STR(SSS_ETA_MIN) ", " CLI_STR(SSS_ETA_MAX) "]", NULL,
+     CLI_STR(CLI_DEFAULT_ETA)},
     {OPT_MODEL, "--model", NULL, CLI_ARG_TEXT, "M", "profile: pbd or dipole", "pbd dipole", "pbd"},
     {OPT_TAPS, "--taps", NULL, CLI_ARG_NUMBER, "N", "odd number of taps", NULL, CLI_STR(DEFAULT_TAPS)},
     {OPT_RANGE, "--range", NULL, CLI_ARG_NUMBER, "X", "half-width the taps cover", NULL, "99.9% of the widest channel"},
@@ -131,8 +132,8 @@ static int set_option(void *opts, int id, const char *a, const char *v)
 
 static int kernel_parse(int argc, char **argv, kernel_options *o)
 {
-    *o = (kernel_options){.model = "pbd", .scale = 1.0, .eta = 1.33, .taps = DEFAULT_TAPS, .rank = DEFAULT_RANK,
-                          .grid = DEFAULT_GRID};
+    *o = (kernel_options){.model = "pbd", .scale = 1.0, .eta = CLI_DEFAULT_ETA, .taps = DEFAULT_TAPS,
+                          .rank = DEFAULT_RANK, .grid = DEFAULT_GRID};
     int status = cli_parse(&cli_spec_kernel, argc, argv, 1, set_option, o, NULL);
     if (status != CLI_EXIT_OK) return status;
     if (o->medium && o->preset) return cli_usage_error(CMD, "give a MEDIUM or --artist PRESET, not both");

@@ -18,7 +18,8 @@ static const cli_option options[] = {
     {OPT_OUTPUT, "--output", "-o", CLI_ARG_FILE, "FILE", "output image, .exr (32-bit float) or .pfm", NULL, CLI_REQUIRED},
     {OPT_SCALE, "--scale", NULL, CLI_ARG_NUMBER, "S", "millimetres per scene unit", NULL, "1 = r in mm, A in mm^2"},
     {OPT_ETA, "--eta", NULL, CLI_ARG_NUMBER, "E",
-     "relative index of refraction in [" CLI_STR(SSS_ETA_MIN) ", " CLI_STR(SSS_ETA_MAX) "]", NULL, "1.33"},
+     "relative index of refraction in [" CLI_STR(SSS_ETA_MIN) ", " CLI_STR(SSS_ETA_MAX) "]", NULL,
+     CLI_STR(CLI_DEFAULT_ETA)},
     {OPT_MODEL, "--model", NULL, CLI_ARG_TEXT, "M", "pbd (Photon Beam Diffusion table, as PBRT-v3) or dipole",
      "pbd dipole", "pbd"},
     {OPT_SIZE, "--size", NULL, CLI_ARG_NUMBER, "N", "texels per axis, [2, " CLI_STR(MAX_SIZE) "]", NULL,
@@ -82,7 +83,8 @@ static int set_option(void *opts, int id, const char *a, const char *v)
 
 static int lut_parse(int argc, char **argv, lut_options *o)
 {
-    *o = (lut_options){.model = "pbd", .axes = "linear", .scale = 1.0, .eta = 1.33, .size = DEFAULT_SIZE};
+    *o = (lut_options){.model = "pbd", .axes = "linear", .scale = 1.0, .eta = CLI_DEFAULT_ETA,
+                       .size = DEFAULT_SIZE};
     int status = cli_parse(&cli_spec_lut, argc, argv, 1, set_option, o, NULL);
     if (status != CLI_EXIT_OK) return status;
     if (!o->medium) return cli_usage_error(CMD, "missing MEDIUM");

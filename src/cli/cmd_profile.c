@@ -16,7 +16,8 @@ enum { OPT_SCALE, OPT_ETA, OPT_MODEL, OPT_R };
 static const cli_option options[] = {
     {OPT_SCALE, "--scale", NULL, CLI_ARG_NUMBER, "S", "millimetres per scene unit", NULL, "1 = radii in mm"},
     {OPT_ETA, "--eta", NULL, CLI_ARG_NUMBER, "E",
-     "relative index of refraction in [" CLI_STR(SSS_ETA_MIN) ", " CLI_STR(SSS_ETA_MAX) "]", NULL, "1.33"},
+     "relative index of refraction in [" CLI_STR(SSS_ETA_MIN) ", " CLI_STR(SSS_ETA_MAX) "]", NULL,
+     CLI_STR(CLI_DEFAULT_ETA)},
     {OPT_MODEL, "--model", NULL, CLI_ARG_TEXT, "M",
      "pbd (Photon Beam Diffusion table, as PBRT-v3) or dipole\n"
      "(classical dipole of Jensen et al. 2001)",
@@ -101,7 +102,7 @@ static int set_option(void *opts, int id, const char *a, const char *v)
 
 static int profile_parse(int argc, char **argv, profile_options *o)
 {
-    *o = (profile_options){.model = "pbd", .scale = 1.0, .eta = 1.33, .count = DEFAULT_COUNT};
+    *o = (profile_options){.model = "pbd", .scale = 1.0, .eta = CLI_DEFAULT_ETA, .count = DEFAULT_COUNT};
     int status = cli_parse(&cli_spec_profile, argc, argv, 1, set_option, o, NULL);
     if (status != CLI_EXIT_OK) return status;
     if (!o->medium) return cli_usage_error(CMD, "missing MEDIUM");

@@ -24,7 +24,8 @@ static const cli_option build_options[] = {
     {OPT_MEDIUM, "--medium", NULL, CLI_ARG_MEDIUM, "NAME", "measured medium (mesh input, required there), e.g. Marble",
      NULL, NULL},
     {OPT_SCALE, "--scale", NULL, CLI_ARG_NUMBER, "S", "millimetres per mesh unit", NULL, "1"},
-    {OPT_ETA, "--eta", NULL, CLI_ARG_NUMBER, "E", "relative index of refraction", NULL, "1.33"},
+    {OPT_ETA, "--eta", NULL, CLI_ARG_NUMBER, "E", "relative index of refraction", NULL,
+     CLI_STR(CLI_DEFAULT_ETA)},
     {OPT_MODEL, "--model", NULL, CLI_ARG_TEXT, "M", "pbd (as PBRT-v3) or dipole", "pbd dipole", "pbd"},
     OBJECT_OPTION,
     {OPT_LINKS, "--links", "-n", CLI_ARG_NUMBER, "N", "back-side links per vertex, 1.." CLI_STR(SSS_SAM_MAX_N), NULL,
@@ -240,7 +241,7 @@ static int build_set(void *opts, int id, const char *a, const char *v)
 
 static int build_parse(int argc, char **argv, sam_build_options *o)
 {
-    *o = (sam_build_options){.model = "pbd", .scale = 1.0, .eta = 1.33, .n = DEFAULT_LINKS,
+    *o = (sam_build_options){.model = "pbd", .scale = 1.0, .eta = CLI_DEFAULT_ETA, .n = DEFAULT_LINKS,
                              .samples = DEFAULT_SAMPLES, .object = -1};
     int status = cli_parse(&cli_spec_sam_build, argc, argv, 2, build_set, o, NULL);
     if (status != CLI_EXIT_OK) return status;
