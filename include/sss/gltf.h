@@ -84,7 +84,9 @@ typedef struct sss_gltf_scene {
 } sss_gltf_scene;
 
 /* Imports a .gltf or .glb (by content: a .glb starts with "glTF"). desc may be NULL. On failure *out
- * is left empty and err names the file and the JSON path. */
+ * is left empty and err names the file and the JSON path. A scene it returns passes the scene loader's
+ * checks (sss_scene_parse of sss_gltf_scene_json's text with these meshes and images), so the scene
+ * sss_gltf_write_scene writes from it loads. */
 SSS_API sss_result sss_gltf_load(const char *path, const sss_gltf_desc *desc, sss_gltf_scene *out, sss_error *err);
 /* The same from memory; base_dir resolves external URIs (NULL = "."), name is used in messages. */
 SSS_API sss_result sss_gltf_parse(const void *data, size_t size, const char *base_dir, const char *name,

@@ -318,15 +318,22 @@ typedef struct sss_light {
     double position[3];  /* point, spot */
     double look_at[3];   /* spot (!= position) */
     double cone_angle, cone_delta; /* spot, degrees */
-    double intensity[3]; /* point, spot: W/sr, >= 0 */
+    double intensity[3]; /* point, spot: W/sr, 0..SSS_SCENE_MAX_LIGHT_VALUE */
     double direction[3]; /* directional: unit direction the light TRAVELS (normalised on load) */
-    double radiance[3];  /* directional (irradiance at normal incidence), area: >= 0 */
+    double radiance[3];  /* directional (irradiance at normal incidence), area: 0..SSS_SCENE_MAX_LIGHT_VALUE */
     double center[3], u[3], v[3]; /* area: half-extent vectors, non-zero and not parallel */
     int two_sided;       /* area, default 0: emits towards u x v only */
     char *file;          /* environment: resolved path */
-    double scale[3];     /* environment, default [1, 1, 1], >= 0 */
+    double scale[3];     /* environment, default [1, 1, 1], 0..SSS_SCENE_MAX_LIGHT_VALUE */
     double rotate_y;     /* environment, degrees, default 0 */
 } sss_light;
+
+/* The largest intensity, radiance or environment scale (per channel) the loader accepts; positions,
+ * look_at and area extents must be within the float range. The real-time renderer carries lights in
+ * float (at most 3.4e38) and multiplies them by 1/r^2, the profiles and the sum over lights: 3e38 already
+ * overflowed to NaN with a light 0.02 units from a surface; 1e30 leaves a factor 3.4e8 (a light 1e-4
+ * units away). docs/limits.md. */
+#define SSS_SCENE_MAX_LIGHT_VALUE 1e30
 
 /* ---- The scene -------------------------------------------------------------------------------- */
 

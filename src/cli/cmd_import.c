@@ -48,7 +48,8 @@ static int set_option(void *opts, int id, const char *a, const char *v)
         break;
     case OPT_LIGHT_SCALE:
         if (!cli_parse_double(cmd, a, v, &desc->light_scale)) return CLI_EXIT_USAGE;
-        if (!(desc->light_scale > 0)) return cli_usage_error(cmd, "--light-scale must be > 0");
+        if (!(desc->light_scale > 0 && desc->light_scale <= SSS_SCENE_MAX_LIGHT_VALUE))
+            return cli_usage_error(cmd, "--light-scale must be in (0, %g] (docs/limits.md)", SSS_SCENE_MAX_LIGHT_VALUE);
         break;
     default: /* CLI_OPERAND */
         if (o->asset) return cli_usage_error(cmd, "unexpected argument '%s'", v);

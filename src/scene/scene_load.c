@@ -10,7 +10,6 @@
 #include <unistd.h>
 
 #include "core/file_util.h"
-#include "core/text.h"
 #include "sss/image.h"
 #include "scene/scene_internal.h"
 
@@ -173,21 +172,6 @@ static sss_result parse_light_cb(scene_ctx *c, const cJSON *e, void *out)
     return scene_parse_light(c, e, out);
 }
 
-/* Line and column (1-based) of offset in text. */
-static void line_column(const char *text, size_t offset, size_t *line, size_t *col)
-{
-    *line = 1;
-    *col = 1;
-    for (size_t i = 0; i < offset; i++) {
-        if (text[i] == '\n') {
-            (*line)++;
-            *col = 1;
-        } else {
-            (*col)++;
-        }
-    }
-}
-
 /* The optional top-level "version" (docs/scene-format.md): absent = 1. Checked before the field names,
  * so that a newer file is refused for its version rather than for a field this reader does not know. */
 static sss_result parse_version(jr *r, const cJSON *root)
@@ -305,7 +289,7 @@ static int take_given_texture(scene_ctx *c, sss_scene_texture *t)
         free(resolved);
         if (same) {
             t->image = g->image;
-            memset(&g->image, 0, sizeof g->image);
+            if (!c->given_lent) memset(&g->image, 0, sizeof g->image);
             return 1;
         }
     }
@@ -324,9 +308,11 @@ static sss_result load_texture(scene_ctx *c, sss_scene *s, sss_scene_material *m
         }
     sss_scene_texture *t = &s->textures[s->texture_count];
     if (!(t->path = scene_strdup(m->texture))) return sss_error_set(c->r.err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
-    sss_result res = take_given_texture(c, t) ? SSS_OK : sss_image_read(m->texture, &t->image, c->r.err);
+    int given = take_given_texture(c, t);
+    sss_result res = given ? SSS_OK : sss_image_read(m->texture, &t->image, c->r.err);
     if (res == SSS_OK && sss_image_count_nonfinite(&t->image))
         res = sss_error_set(c->r.err, SSS_ERROR_NUMERIC, "%s: albedo texture holds NaN or Inf", m->texture);
+    if (given && c->given_lent) memset(&t->image, 0, sizeof t->image); /* checked; stays with its owner */
     if (res != SSS_OK) {
         free(t->path);
         sss_image_free(&t->image);
@@ -354,7 +340,7 @@ static sss_result load_object(scene_ctx *c, sss_scene *s, sss_scene_object *o)
     size_t index = (size_t)(o - s->objects);
     if (index < c->given_count) {
         o->mesh = c->given_meshes[index];
-        memset(&c->given_meshes[index], 0, sizeof c->given_meshes[index]);
+        if (!c->given_lent) memset(&c->given_meshes[index], 0, sizeof c->given_meshes[index]);
         res = SSS_OK;
     } else if (o->mesh_path) {
         res = sss_mesh_read(o->mesh_path, &o->mesh, r->err);
@@ -395,17 +381,14 @@ static sss_result load_phase(scene_ctx *c, sss_scene *s)
         size_t m2 = jr_enter_index(r, i);
         res = load_object(c, s, &s->objects[i]);
         jr_leave(r, m2);
+        if (c->given_lent && i < c->given_count) /* checked; stays with its owner */
+            memset(&s->objects[i].mesh, 0, sizeof s->objects[i].mesh);
     }
     jr_leave(r, mark);
     return res;
 }
 
 /* ---- Entry points ---------------------------------------------------------------------------- */
-
-static int is_space(char ch)
-{
-    return ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r';
-}
 
 sss_result sss_scene_parse(const char *json_text, size_t size, const char *base_dir, const char *name,
                            const sss_scene_load_desc *desc, sss_scene *scene, sss_error *err)
@@ -422,6 +405,7 @@ sss_result scene_parse_given(const char *json_text, size_t size, const char *bas
     ctx.given_count = given && given->meshes ? given->mesh_count : 0;
     ctx.given_textures = given ? given->textures : NULL;
     ctx.given_texture_count = given && given->textures ? given->texture_count : 0;
+    ctx.given_lent = given ? given->lent : 0;
     if (!name) name = "scene";
     jr_init(&ctx.r, name, err);
     ctx.base_dir = base_dir ? base_dir : ".";
@@ -431,37 +415,9 @@ sss_result scene_parse_given(const char *json_text, size_t size, const char *bas
         return jr_fail(&ctx.r, SSS_ERROR_LIMIT, "%zu bytes, more than the %u accepted", size,
                        (unsigned)SSS_SCENE_MAX_FILE_SIZE);
 
-    size_t start = 0;
-    if (size >= 3 && memcmp(json_text, "\xEF\xBB\xBF", 3) == 0) start = 3; /* UTF-8 byte order mark */
-    size_t k = start;
-    while (k < size && is_space(json_text[k])) k++;
-    if (k == size) return jr_fail(&ctx.r, SSS_ERROR_PARSE, "empty file (expected a JSON object)");
-
-    const char *end = NULL;
-    cJSON *root = cJSON_ParseWithLengthOpts(json_text + start, size - start, &end, 0);
-    size_t line, col;
-    if (!root) {
-        size_t off = end && end >= json_text + start && end <= json_text + size ? (size_t)(end - json_text) : start;
-        line_column(json_text, off, &line, &col);
-        return jr_fail(&ctx.r, SSS_ERROR_PARSE, "line %zu, column %zu: malformed JSON", line, col);
-    }
-    size_t off = end ? (size_t)(end - json_text) : size;
-    while (off < size && is_space(json_text[off])) off++;
-    if (off < size) {
-        cJSON_Delete(root);
-        line_column(json_text, off, &line, &col);
-        return jr_fail(&ctx.r, SSS_ERROR_PARSE, "line %zu, column %zu: unexpected text after the JSON value",
-                       line, col);
-    }
-
-    char nul_path[JR_PATH_SIZE];
-    if (sss_json_find_nul(json_text + start, size - start, nul_path, sizeof nul_path)) {
-        cJSON_Delete(root); /* cJSON would keep only the part before the NUL */
-        return jr_fail(&ctx.r, SSS_ERROR_PARSE, "%s%sa string holds a NUL character (\\u0000)", nul_path,
-                       nul_path[0] ? ": " : "");
-    }
-
-    sss_result res = SSS_OK;
+    cJSON *root = NULL;
+    sss_result res = jr_parse(&ctx.r, json_text, size, &root);
+    if (res != SSS_OK) return res;
     scene->name = scene_strdup(name);
     scene->base_dir = scene_strdup(ctx.base_dir);
     if (!scene->name || !scene->base_dir) res = jr_fail(&ctx.r, SSS_ERROR_OUT_OF_MEMORY, "out of memory");

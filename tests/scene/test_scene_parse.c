@@ -264,6 +264,15 @@ static const bad_case bad_cases[] = {
     {WITH_LIGHT("{\"type\": \"point\", \"position\": [0, 1, 0], \"intensity\": [1, -1, 1]}"), "lights[0].intensity[1]"},
     {WITH_LIGHT("{\"type\": \"directional\", \"direction\": [0, 0, 0], \"radiance\": [1, 1, 1]}"),
      "lights[0].direction: must be a non-zero vector"},
+    /* beyond what the real-time renderer carries in float (SSS_SCENE_MAX_LIGHT_VALUE, positions in float) */
+    {WITH_LIGHT("{\"type\": \"point\", \"position\": [0, 1, 0], \"intensity\": [1, 1, 1e39]}"),
+     "lights[0].intensity[2]: 1e+39: out of range [0, 1e+30]"},
+    {WITH_LIGHT("{\"type\": \"directional\", \"direction\": [0, -1, 0], \"radiance\": [2e30, 1, 1]}"),
+     "lights[0].radiance[0]: 2e+30: out of range [0, 1e+30]"},
+    {WITH_LIGHT("{\"type\": \"point\", \"position\": [0, -1e39, 0], \"intensity\": [1, 1, 1]}"),
+     "lights[0].position[1]: -1e+39: out of range [-3.40282e+38, 3.40282e+38]"},
+    {WITH_LIGHT("{\"type\": \"area\", \"center\": [0, 1, 0], \"u\": [1e39, 0, 0], \"v\": [0, 0, 1], \"radiance\": [1, 1, 1]}"),
+     "lights[0].u[0]: 1e+39"},
     {WITH_LIGHT("{\"type\": \"environment\", \"file\": \"sky.hdr\"}"), "lights[0].file: sky.hdr: cannot open"},
     {"{" CAM ", \"objects\": [" OBJ "], \"lights\": {}}", "lights: expected an array"},
     /* files */
