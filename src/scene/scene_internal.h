@@ -20,6 +20,11 @@ typedef struct scene_ctx {
                                         * to base_dir as the scene text names it); taken over when used */
     size_t given_texture_count;
     int given_lent; /* the given meshes and textures are checked, then left with their owner */
+    /* load phase: per object, the first object with the same texture file; the given textures' resolved
+     * paths, sorted (both found once by sorting, not by comparing every pair) */
+    size_t *texture_owner;
+    struct scene_path_index *given_by_path;
+    size_t given_by_path_count;
 } scene_ctx;
 
 /* What an imported asset hands the loader in memory instead of files. */

@@ -109,6 +109,22 @@ static void test_defaults(void)
                       "   \"material\": {\"type\": \"subsurface\", \"medium\": \"Skin1\", \"texture\": \"assets/albedo.png\"}}]}";
     if (parse_ok(tex, "tex.json", &s)) CHECK(s.objects[0].mesh.uvs != NULL && strstr(s.objects[0].material.texture, "albedo.png"));
     sss_scene_free(&s);
+
+    /* One decoded image per texture file, in the order of first use, shared by the objects naming it. */
+#define TEX_PLANE(t) "{\"procedural\": {\"shape\": \"plane\", \"size\": 2}, \"material\": {\"type\": " \
+                     "\"subsurface\", \"medium\": \"Skin1\"" t "}}"
+    const char *shared = "{\"camera\": {\"position\": [0, 3, 3], \"look_at\": [0, 0, 0]}, \"objects\": ["
+        TEX_PLANE(", \"texture\": \"assets/albedo.png\"") "," TEX_PLANE(", \"texture\": \"assets/sky.hdr\"") ","
+        TEX_PLANE(", \"texture\": \"assets/albedo.png\"") "," TEX_PLANE("") "]}";
+#undef TEX_PLANE
+    if (parse_ok(shared, "shared.json", &s)) {
+        CHECK(s.texture_count == 2 && strstr(s.textures[0].path, "albedo.png") && strstr(s.textures[1].path, "sky.hdr"));
+        CHECK(s.objects[0].material.texture_image == &s.textures[0].image);
+        CHECK(s.objects[1].material.texture_image == &s.textures[1].image);
+        CHECK(s.objects[2].material.texture_image == &s.textures[0].image);
+        CHECK(s.objects[3].material.texture_image == NULL);
+    }
+    sss_scene_free(&s);
 }
 
 /* Finite values at the edge of the double range are either refused or give a unit basis, unit light
