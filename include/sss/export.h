@@ -45,8 +45,8 @@ typedef struct sss_export_pbrt_desc {
 
 /* Writes out_path (e.g. "scene.pbrt") and one binary PLY per object beside it
  * ("<stem>_objN.ply"). All files are written atomically; on failure none is left behind. */
-sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *desc, const char *out_path,
-                           sss_error *err);
+SSS_API sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *desc, const char *out_path,
+                                   sss_error *err);
 
 typedef struct sss_export_gltf_desc {
     double time;        /* pose of animated objects (seconds); default 0 */
@@ -63,14 +63,8 @@ typedef struct sss_export_gltf_desc {
  * than PBD, the render settings, area and environment lights (glTF 2.0 has neither: counted in
  * desc->skipped_lights). The scene must have been loaded with its meshes (textures decoded). desc may
  * be NULL. Written atomically. */
-sss_result sss_export_gltf(const sss_scene *scene, sss_export_gltf_desc *desc, const char *out_path,
-                           sss_error *err);
-
-/* The PBRT-v3 light-to-world matrix (row-major 4x4) of an environment light with the given rotate_y,
- * so that PBRT's infinite-light lookup (u = phi/2pi about +z, v = theta/pi from +z) shows the
- * equirectangular map where docs/scene-format.md puts it (+y up, u = 0.5 at -z, u growing towards +x...
- * exactly as sss_reference's environment lookup). Exposed for tests. */
-void sss_export_pbrt_env_light_to_world(double rotate_y_degrees, double m[16]);
+SSS_API sss_result sss_export_gltf(const sss_scene *scene, sss_export_gltf_desc *desc, const char *out_path,
+                                   sss_error *err);
 
 #ifdef __cplusplus
 }

@@ -69,37 +69,37 @@ typedef struct sss_gl_pass sss_gl_pass;
  * context. Errors as sss_gl_renderer_create, plus a missing scene or size, and SSS_ERROR_UNSUPPORTED
  * for chen2012, which never reads the frame's irradiance (it lights its sources in light space, one
  * buffer per light; docs/integration.md). */
-sss_result sss_gl_pass_create(sss_gl_context *ctx, const sss_gl_pass_desc *desc, sss_gl_pass **out,
-                              sss_error *err);
-void sss_gl_pass_destroy(sss_gl_pass *pass);
+SSS_API sss_result sss_gl_pass_create(sss_gl_context *ctx, const sss_gl_pass_desc *desc, sss_gl_pass **out,
+                                      sss_error *err);
+SSS_API void sss_gl_pass_destroy(sss_gl_pass *pass);
 
 /* Runs the technique on one frame. Checks every texture (exists, size, format, mip levels) and names
  * the field that is wrong; on error nothing is written. Restores the GL state listed below; GL errors
  * pending before the call are cleared (glGetError), so check yours before it. */
-sss_result sss_gl_pass_execute(sss_gl_pass *pass, const sss_gl_pass_frame *frame, sss_error *err);
+SSS_API sss_result sss_gl_pass_execute(sss_gl_pass *pass, const sss_gl_pass_frame *frame, sss_error *err);
 
 /* New input/output size (the pass's own targets follow); the next frame's textures must have it. */
-sss_result sss_gl_pass_resize(sss_gl_pass *pass, int width, int height, sss_error *err);
+SSS_API sss_result sss_gl_pass_resize(sss_gl_pass *pass, int width, int height, sss_error *err);
 /* Changes a technique or shared parameter (as sss_gl_renderer_set_param). */
-sss_result sss_gl_pass_set_param(sss_gl_pass *pass, const char *name, double value, sss_error *err);
+SSS_API sss_result sss_gl_pass_set_param(sss_gl_pass *pass, const char *name, double value, sss_error *err);
 /* Re-reads the materials of the registered scene (edit objects[i].material in place; the number of
  * objects must not change): LUTs and records are rebuilt now, meshes and programs stay (as
  * sss_gl_renderer_update_materials with scene NULL). */
-sss_result sss_gl_pass_update_materials(sss_gl_pass *pass, sss_error *err);
+SSS_API sss_result sss_gl_pass_update_materials(sss_gl_pass *pass, sss_error *err);
 /* Re-reads the lights (same rules as sss_gl_renderer_update_lights, for every technique, also those
  * that light nothing themselves): a light added, removed or of another type is
  * SSS_ERROR_INVALID_ARGUMENT naming it, and a new pass is needed. */
-sss_result sss_gl_pass_update_lights(sss_gl_pass *pass, sss_error *err);
+SSS_API sss_result sss_gl_pass_update_lights(sss_gl_pass *pass, sss_error *err);
 
 typedef struct sss_gl_pass_info {
     int needs_mips, needs_normal_mips; /* mip chains the inputs must have (see sss_gl_pass_frame) */
     int uses_geometry;                 /* splats or rasterises the registered meshes */
     int uses_lights;                   /* lights the registered meshes itself (its own shadow maps) */
 } sss_gl_pass_info;
-void sss_gl_pass_get_info(const sss_gl_pass *pass, sss_gl_pass_info *out);
-void sss_gl_pass_timings(const sss_gl_pass *pass, sss_gl_timings *out);
+SSS_API void sss_gl_pass_get_info(const sss_gl_pass *pass, sss_gl_pass_info *out);
+SSS_API void sss_gl_pass_timings(const sss_gl_pass *pass, sss_gl_timings *out);
 /* Memory the pass owns (per_pixel_bytes: its own screen-sized targets only, the inputs excluded). */
-void sss_gl_pass_stats(sss_gl_pass *pass, sss_gl_stats *out);
+SSS_API void sss_gl_pass_stats(sss_gl_pass *pass, sss_gl_stats *out);
 
 /* GL state (docs/integration.md, "What the pass sets and restores"). Every call above but get_info,
  * timings and stats queries this state first, sets the values shown (the GL defaults, which the

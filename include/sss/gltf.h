@@ -84,26 +84,28 @@ typedef struct sss_gltf_scene {
 } sss_gltf_scene;
 
 /* Imports a .gltf or .glb (by content: a .glb starts with "glTF"). desc may be NULL. On failure *out
- * is left empty and err names the file and the JSON path. */
-sss_result sss_gltf_load(const char *path, const sss_gltf_desc *desc, sss_gltf_scene *out, sss_error *err);
+ * is left empty and err names the file and the JSON path. A scene it returns passes the scene loader's
+ * checks (sss_scene_parse of sss_gltf_scene_json's text with these meshes and images), so the scene
+ * sss_gltf_write_scene writes from it loads. */
+SSS_API sss_result sss_gltf_load(const char *path, const sss_gltf_desc *desc, sss_gltf_scene *out, sss_error *err);
 /* The same from memory; base_dir resolves external URIs (NULL = "."), name is used in messages. */
-sss_result sss_gltf_parse(const void *data, size_t size, const char *base_dir, const char *name,
-                          const sss_gltf_desc *desc, sss_gltf_scene *out, sss_error *err);
-void sss_gltf_scene_free(sss_gltf_scene *scene);
+SSS_API sss_result sss_gltf_parse(const void *data, size_t size, const char *base_dir, const char *name,
+                                  const sss_gltf_desc *desc, sss_gltf_scene *out, sss_error *err);
+SSS_API void sss_gltf_scene_free(sss_gltf_scene *scene);
 
 /* The scene as JSON text of our format (docs/scene-format.md): objects[i] gets "mesh": mesh_paths[i] and an
  * identity transform (the meshes are in world space); a material's texture is its file path as given,
  * or image_paths[k] for its embedded image k (image_paths may be NULL when no material has one).
  * *json is malloc'd (NUL-terminated). */
-sss_result sss_gltf_scene_json(const sss_gltf_scene *scene, const char *const *mesh_paths,
-                               const char *const *image_paths, char **json, sss_error *err);
+SSS_API sss_result sss_gltf_scene_json(const sss_gltf_scene *scene, const char *const *mesh_paths,
+                                       const char *const *image_paths, char **json, sss_error *err);
 
 /* Writes the scene as scene_path (JSON, written atomically) plus one binary PLY per object beside it
  * (<stem>_objN.ply, world space, referenced by file name) and one PNG per embedded image that a
  * material uses (<stem>_imgK.png: 8-bit sRGB, the decoded pixels exactly). Before writing anything it
  * refuses (SSS_ERROR_INVALID_ARGUMENT) an output that is the same file as one of scene->files or as
  * another output. All the files are written or none (one output transaction, core/file_util.h). */
-sss_result sss_gltf_write_scene(const sss_gltf_scene *scene, const char *scene_path, sss_error *err);
+SSS_API sss_result sss_gltf_write_scene(const sss_gltf_scene *scene, const char *scene_path, sss_error *err);
 
 #ifdef __cplusplus
 }

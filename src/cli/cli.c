@@ -239,30 +239,24 @@ void cli_medium_profile_free(cli_medium_profile *mp)
 
 /* ---- Option tables ------------------------------------------------------------------------------- */
 
+const char CLI_REQUIRED[] = "required";
+
 /* The options every command takes (ids below every command's own). */
 enum { COMMON_QUIET = -100, COMMON_PROGRESS, COMMON_HELP };
-static const cli_option common_options[] = {
-    {COMMON_QUIET, "--quiet", "-q", CLI_ARG_NONE, NULL, "no progress, notes or warnings on stderr (errors still)", NULL},
+const cli_option cli_common_options[CLI_COMMON_OPTION_COUNT] = {
+    {COMMON_QUIET, "--quiet", "-q", CLI_ARG_NONE, NULL, "no progress, notes or warnings on stderr (errors still)", NULL,
+     NULL},
     {COMMON_PROGRESS, "--progress", NULL, CLI_ARG_NONE, NULL,
-     "progress on stderr also when it is not a terminal (long commands)", NULL},
-    {COMMON_HELP, "--help", "-h", CLI_ARG_NONE, NULL, "this help", NULL},
+     "progress on stderr also when it is not a terminal (long commands)", NULL, NULL},
+    {COMMON_HELP, "--help", "-h", CLI_ARG_NONE, NULL, "this help", NULL, NULL},
 };
-
-void cli_parser_init(cli_parser *p, const cli_command_spec *spec, int argc, char **argv, int first)
-{
-    memset(p, 0, sizeof *p);
-    p->spec = spec;
-    p->argc = argc;
-    p->argv = argv;
-    p->next = first;
-}
 
 /* The option named by arg (its first name_len bytes), from the command's table or the common one. */
 static const cli_option *find_option(const cli_command_spec *spec, const char *arg, size_t name_len)
 {
     for (int t = 0; t < 2; t++) {
-        const cli_option *table = t == 0 ? spec->options : common_options;
-        int n = t == 0 ? spec->option_count : CLI_COUNT(common_options);
+        const cli_option *table = t == 0 ? spec->options : cli_common_options;
+        int n = t == 0 ? spec->option_count : CLI_COMMON_OPTION_COUNT;
         for (int k = 0; k < n; k++) {
             const char *names[2] = {table[k].name, table[k].short_name};
             for (int j = 0; j < 2; j++)
@@ -273,90 +267,61 @@ static const cli_option *find_option(const cli_command_spec *spec, const char *a
     return NULL;
 }
 
-static int unknown_option(const cli_parser *p, const char *arg)
+static int unknown_option(const cli_command_spec *spec, const char *arg)
 {
     const char *names[256];
     int n = 0;
-    for (int k = 0; k < p->spec->option_count && n < 250; k++) names[n++] = p->spec->options[k].name;
-    for (int k = 0; k < CLI_COUNT(common_options); k++) names[n++] = common_options[k].name;
+    for (int k = 0; k < spec->option_count && n < 250; k++) names[n++] = spec->options[k].name;
+    for (int k = 0; k < CLI_COMMON_OPTION_COUNT; k++) names[n++] = cli_common_options[k].name;
     char word[128];
     snprintf(word, sizeof word, "%.*s", (int)strcspn(arg, "="), arg);
-    return cli_unknown(p->spec->name, "option", word, names, n);
+    return cli_unknown(spec->name, "option", word, names, n);
 }
 
-int cli_next(cli_parser *p)
+/* One option argv[*next - 1] = a (its value, when it takes one, "--name=value" or the next argument)
+ * handed to set; the common ones kept in *common. */
+static int parse_option(const cli_command_spec *spec, int argc, char **argv, int *next, const char *a,
+                        cli_setter set, void *opts, cli_common *common)
 {
-    for (;;) {
-        if (p->next >= p->argc) return CLI_DONE;
-        const char *a = p->argv[p->next++];
-        p->given = a;
-        p->value = NULL;
-        if (!p->operands_only && strcmp(a, "--") == 0) {
-            p->operands_only = 1;
-            continue;
-        }
-        if (p->operands_only || a[0] != '-' || a[1] == '\0') {
-            p->value = a;
-            return CLI_OPERAND;
-        }
-        const char *eq = strncmp(a, "--", 2) == 0 ? strchr(a, '=') : NULL;
-        const cli_option *o = find_option(p->spec, a, eq ? (size_t)(eq - a) : strlen(a));
-        if (!o) {
-            unknown_option(p, a);
-            return CLI_BAD;
-        }
-        p->given = a[1] == '-' ? o->name : o->short_name; /* as written, without "=value" */
-        if (o->arg == CLI_ARG_NONE) {
-            if (eq) {
-                cli_usage_error(p->spec->name, "%s takes no value", o->name);
-                return CLI_BAD;
-            }
-        } else if (eq) {
-            p->value = eq + 1;
-        } else if (p->next < p->argc) {
-            p->value = p->argv[p->next++];
-        } else {
-            cli_usage_error(p->spec->name, "%s needs a value%s%s", a, o->meta ? " " : "", o->meta ? o->meta : "");
-            return CLI_BAD;
-        }
-        if (o->id == COMMON_QUIET) p->quiet = 1;
-        else if (o->id == COMMON_PROGRESS) p->progress = 1;
-        else if (o->id != COMMON_HELP) return o->id;
+    const char *eq = strncmp(a, "--", 2) == 0 ? strchr(a, '=') : NULL;
+    const cli_option *o = find_option(spec, a, eq ? (size_t)(eq - a) : strlen(a));
+    if (!o) return unknown_option(spec, a);
+    const char *given = a[1] == '-' ? o->name : o->short_name; /* as written, without "=value" */
+    const char *value = NULL;
+    if (o->arg == CLI_ARG_NONE) {
+        if (eq) return cli_usage_error(spec->name, "%s takes no value", o->name);
+    } else if (eq) {
+        value = eq + 1;
+    } else if (*next < argc) {
+        value = argv[(*next)++];
+    } else {
+        return cli_usage_error(spec->name, "%s needs a value%s%s", a, o->meta ? " " : "", o->meta ? o->meta : "");
     }
+    if (o->id == COMMON_QUIET) common->quiet = 1;
+    else if (o->id == COMMON_PROGRESS) common->progress = 1;
+    else if (o->id != COMMON_HELP) return set(opts, o->id, given, value);
+    return CLI_EXIT_OK;
 }
 
-int cli_show_progress(const cli_parser *p)
+int cli_parse(const cli_command_spec *spec, int argc, char **argv, int first, cli_setter set, void *opts,
+              cli_common *common)
 {
-    return !p->quiet && (p->progress || isatty(fileno(stderr)));
-}
-
-#define HELP_COLUMN 24
-
-static void print_option(FILE *f, const cli_option *o)
-{
-    char head[128];
-    int n = snprintf(head, sizeof head, "  %s%s%s%s%s", o->short_name ? o->short_name : "", o->short_name ? ", " : "",
-                     o->name, o->meta ? " " : "", o->meta ? o->meta : "");
-    fputs(head, f);
-    const char *line = o->help;
-    if (n + 1 > HELP_COLUMN) {
-        fputc('\n', f);
-        n = 0;
+    cli_common dropped = {0};
+    if (!common) common = &dropped;
+    memset(common, 0, sizeof *common);
+    int operands_only = 0, status = CLI_EXIT_OK;
+    for (int next = first; next < argc && status == CLI_EXIT_OK;) {
+        const char *a = argv[next++];
+        if (!operands_only && strcmp(a, "--") == 0) operands_only = 1;
+        else if (operands_only || a[0] != '-' || a[1] == '\0') status = set(opts, CLI_OPERAND, a, a);
+        else status = parse_option(spec, argc, argv, &next, a, set, opts, common);
     }
-    for (int first = 1; *line; first = 0) {
-        size_t len = strcspn(line, "\n");
-        fprintf(f, "%*s%.*s\n", (first ? HELP_COLUMN - n : HELP_COLUMN), "", (int)len, line);
-        line += len;
-        if (*line == '\n') line++;
-    }
+    return status;
 }
 
-void cli_print_options(FILE *f, const cli_command_spec *spec)
+int cli_show_progress(const cli_common *common)
 {
-    fprintf(f, "options:\n");
-    for (int k = 0; k < spec->option_count; k++)
-        if (spec->options[k].help) print_option(f, &spec->options[k]);
-    for (int k = 0; k < CLI_COUNT(common_options); k++) print_option(f, &common_options[k]);
+    return !common->quiet && (common->progress || isatty(fileno(stderr)));
 }
 
 const char *cli_suggest(const char *word, const char *const *candidates, int count)
@@ -413,10 +378,10 @@ int cli_check_technique(const char *cmd, const char *name)
     return cli_failf(cmd, "unknown technique '%s' (known: %s)", name, known);
 }
 
-void cli_progress_init(cli_progress *pr, const cli_parser *p)
+void cli_progress_init(cli_progress *pr, const cli_common *common)
 {
     memset(pr, 0, sizeof *pr);
-    pr->active = cli_show_progress(p);
+    pr->active = cli_show_progress(common);
     pr->tty = isatty(fileno(stderr));
     pr->last_percent = -1;
     pr->start = sss_time_seconds();

@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "core/file_util.h"
-#include "core/text.h"
+#include "scene/json_reader.h"
 #include "eval/eval_internal.h"
 
 static const char *quality_name(sss_reference_quality q) { return q == SSS_REFERENCE_DRAFT ? "draft" : "final"; }
@@ -39,11 +39,14 @@ static int read_sidecar(const char *exr, uint64_t *hash, char quality[8], int *b
     char *text = NULL;
     size_t size = 0;
     if (sss_read_file(path, 1 << 20, &text, &size, NULL) != SSS_OK) return 0;
-    char nul_path[256];
-    /* a string cut at a NUL could pass for another scene's hash: such a sidecar counts as absent */
-    cJSON *root = sss_json_find_nul(text, size, nul_path, sizeof nul_path) ? NULL : cJSON_ParseWithLength(text, size);
+    /* a sidecar that is not JSON counts as absent (and one whose string is cut at a NUL could pass for
+     * another scene's hash) */
+    jr r;
+    jr_init(&r, path, NULL);
+    cJSON *root = NULL;
+    sss_result parsed = jr_parse(&r, text, size, &root);
     free(text);
-    if (!root) return 0;
+    if (parsed != SSS_OK) return 0;
     const cJSON *h = cJSON_GetObjectItemCaseSensitive(root, "scene_fnv1a64");
     if (cJSON_IsString(h)) *hash = strtoull(h->valuestring, NULL, 16);
     const cJSON *q = cJSON_GetObjectItemCaseSensitive(root, "quality");

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "core/file_util.h"
+#include "export/export_test.h"
 #include "scene/scene_files.h"
 
 #define PATH_CAP 4096
@@ -43,7 +44,7 @@ static void point(FILE *f, const char *name, const double v[3])
     fprintf(f, " \"point %s\" [%.9g %.9g %.9g]", name, v[0], v[1], v[2]);
 }
 
-void sss_export_pbrt_env_light_to_world(double rotate_y_degrees, double m[16])
+void export_pbrt_env_light_to_world(double rotate_y_degrees, double m[16])
 {
     /* World-to-light W = Rz(rot) M with M d = (d.z, -d.x, d.y): PBRT's phi = atan2(L.y, L.x) then
      * equals 2 pi u of the scene format's map (u = 0.5 + (atan2(d.x, -d.z) + rot) / 2 pi) and its theta,
@@ -175,7 +176,7 @@ static void write_light(FILE *f, const sss_light *l)
     }
     case SSS_LIGHT_ENVIRONMENT: {
         double m[16];
-        sss_export_pbrt_env_light_to_world(l->rotate_y, m);
+        export_pbrt_env_light_to_world(l->rotate_y, m);
         fprintf(f, "AttributeBegin\n");
         transform_directive(f, m);
         /* PBRT resolves relative names against the .pbrt file's folder: write an absolute path. */

@@ -391,8 +391,6 @@ static inline void ref_offset(const ref_ctx *ctx, const double p[3], const doubl
 
 /* Surface samples of one object and their irradiance (ref_points.c). */
 sss_result ref_points_generate(ref_ctx *ctx, size_t object, double spacing, sss_error *err);
-/* Subdivisions m of triangle t for spacing h (it gets m^2 samples). */
-uint32_t ref_points_subdiv(const sss_mesh *mesh, uint32_t t, double h);
 /* Number of samples ref_points_generate makes for spacing h. */
 uint64_t ref_points_count(const sss_mesh *mesh, double h);
 

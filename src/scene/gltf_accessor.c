@@ -28,11 +28,10 @@ static int type_components(const char *type)
 static sss_result buffer_view(gltf_ctx *c, long index, const char *use, const unsigned char **start,
                               size_t *length, long *stride)
 {
-    const cJSON *views = gltf_get(c->root, "bufferViews");
-    int count = cJSON_IsArray(views) ? cJSON_GetArraySize(views) : 0;
-    if (index >= count)
-        return gltf_fail(c, SSS_ERROR_PARSE, "%s: bufferView %ld does not exist (%d buffer views)", use, index, count);
-    const cJSON *view = cJSON_GetArrayItem(views, (int)index);
+    const cJSON *view = gltf_item(c, GLTF_BUFFER_VIEWS, index);
+    if (!view)
+        return gltf_fail(c, SSS_ERROR_PARSE, "%s: bufferView %ld does not exist (%zu buffer views)", use, index,
+                         gltf_count(c, GLTF_BUFFER_VIEWS));
     char path[64];
     snprintf(path, sizeof path, "bufferViews[%ld]", index);
     sss_result res;
@@ -61,11 +60,10 @@ static sss_result buffer_view(gltf_ctx *c, long index, const char *use, const un
 sss_result gltf_accessor_get(gltf_ctx *c, long index, const char *use, int components, gltf_accessor *a)
 {
     memset(a, 0, sizeof *a);
-    const cJSON *accessors = gltf_get(c->root, "accessors");
-    int count = cJSON_IsArray(accessors) ? cJSON_GetArraySize(accessors) : 0;
-    if (index < 0 || index >= count)
-        return gltf_fail(c, SSS_ERROR_PARSE, "%s: accessor %ld does not exist (%d accessors)", use, index, count);
-    const cJSON *acc = cJSON_GetArrayItem(accessors, (int)index);
+    const cJSON *acc = gltf_item(c, GLTF_ACCESSORS, index);
+    if (!acc)
+        return gltf_fail(c, SSS_ERROR_PARSE, "%s: accessor %ld does not exist (%zu accessors)", use, index,
+                         gltf_count(c, GLTF_ACCESSORS));
     char path[64];
     snprintf(path, sizeof path, "accessors[%ld]", index);
     sss_result res;

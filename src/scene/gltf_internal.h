@@ -15,11 +15,26 @@ typedef struct gltf_buffer {
     int loaded;
 } gltf_buffer;
 
+/* The top-level arrays whose elements the asset refers to by index (glTF 2.0 spec, section 3.3). */
+enum {
+    GLTF_NODES, GLTF_SCENES, GLTF_MESHES, GLTF_ACCESSORS, GLTF_BUFFER_VIEWS, GLTF_BUFFERS, GLTF_MATERIALS,
+    GLTF_TEXTURES, GLTF_IMAGES, GLTF_CAMERAS, GLTF_LIGHTS, /* extensions.KHR_lights_punctual.lights */
+    GLTF_LIST_COUNT
+};
+
+/* One of them indexed once into a C array: cJSON keeps arrays as linked lists, and a walk per
+ * reference (cJSON_GetArrayItem) made the import quadratic (100,000 nodes: 35 s). */
+typedef struct gltf_list {
+    const cJSON **items;
+    size_t count;
+} gltf_list;
+
 typedef struct gltf_ctx {
     const char *name;     /* the asset's file name, for messages */
     const char *base_dir; /* folder of external URIs */
     sss_error *err;
     cJSON *root;
+    gltf_list lists[GLTF_LIST_COUNT];
     const unsigned char *glb_bin; /* the .glb's BIN chunk, or NULL */
     size_t glb_bin_size;
     gltf_buffer *buffers;
@@ -55,11 +70,14 @@ sss_result gltf_vec(gltf_ctx *c, const cJSON *obj, const char *path, const char 
                     double *out);
 /* obj must be a JSON object (or absent when optional). */
 sss_result gltf_object(gltf_ctx *c, const cJSON *obj, const char *path);
-/* The root array `key` (absent -> NULL and count 0); fails when it is not an array. */
-sss_result gltf_array(gltf_ctx *c, const char *key, const cJSON **arr, size_t *count);
+/* Element index of the top-level array list (GLTF_NODES, ...), or NULL when there is no such element. */
+const cJSON *gltf_item(const gltf_ctx *c, int list, long index);
+/* How many elements the top-level array list has (0 when absent). */
+size_t gltf_count(const gltf_ctx *c, int list);
 
 /* gltf_file.c: the container. Splits a .glb (or takes the text of a .gltf), parses the JSON into
- * c->root, checks asset.version and extensionsRequired. */
+ * c->root (through the scene reader's jr_parse, as every JSON), checks asset.version and
+ * extensionsRequired and indexes the top-level arrays (c->lists). */
 sss_result gltf_open(gltf_ctx *c, const unsigned char *data, size_t size);
 void gltf_close(gltf_ctx *c);
 /* base_dir + "/" + a percent-decoded relative URI (malloc'd), or NULL when the URI is absolute or
@@ -93,8 +111,17 @@ sss_result gltf_material(gltf_ctx *c, long index, sss_gltf_material *m);
 void gltf_material_free(sss_gltf_material *m);
 
 /* gltf_mesh.c: primitive `prim` of meshes[mesh_index] baked into world space with the row-major
- * matrix world (p' = world p). */
-sss_result gltf_primitive_mesh(gltf_ctx *c, long mesh_index, long prim, const cJSON *primitive,
+ * matrix world (p' = world p) of nodes[node]. */
+sss_result gltf_primitive_mesh(gltf_ctx *c, long node, long mesh_index, long prim, const cJSON *primitive,
                                const double world[16], sss_mesh *out, int *has_uvs);
+
+/* gltf_import.c: sss_gltf_load, with check 0 leaving out the scene loader's checks (scene_load_gltf,
+ * which loads the scene right after, makes them itself). */
+sss_result gltf_load(const char *path, const sss_gltf_desc *desc, int check, sss_gltf_scene *out, sss_error *err);
+
+/* scene_gltf.c: the scene loader's verdict on the imported scene g as sss_gltf_scene_json writes it,
+ * its meshes and images lent (left in g): whatever the loader refuses is refused at import, not by every
+ * command that reads the written scene. name: the asset (messages), dir: its folder. */
+sss_result scene_check_gltf(const char *name, const char *dir, sss_gltf_scene *g, sss_error *err);
 
 #endif

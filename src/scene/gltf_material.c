@@ -18,10 +18,10 @@
  * s^2 = (1 - alpha) / (1 - g alpha). rho (1 + 1.17 s) = (1 - s)(1 - 0.139 s) is the quadratic
  * 0.139 s^2 - (1.139 + 1.17 rho) s + (1 - rho) = 0, whose smaller root is the one in [0, 1]
  * (rho = 0 gives s = 1, rho = 1 gives s = 0); written as 2c / (b + sqrt(b^2 - 4ac)) to keep its
- * precision near rho = 1. Then alpha = (1 - s^2) / (1 - g s^2). */
+ * precision near rho = 1. Then alpha = (1 - s^2) / (1 - g s^2). rho in [0, 1] (checked by the caller:
+ * outside, s leaves [0, 1] and alpha [0, 1]). */
 static double single_scatter_albedo(double rho, double g)
 {
-    rho = rho < 0 ? 0 : rho > 1 ? 1 : rho;
     double a = 0.139, b = 1.139 + 1.17 * rho, cc = 1.0 - rho;
     double s = 2.0 * cc / (b + sqrt(b * b - 4.0 * a * cc));
     double s2 = s * s;
@@ -34,8 +34,7 @@ static sss_result embedded_image(gltf_ctx *c, const cJSON *image, long source)
 {
     char p[48];
     snprintf(p, sizeof p, "images[%ld]", source);
-    const cJSON *images = gltf_get(c->root, "images");
-    size_t count = (size_t)cJSON_GetArraySize(images);
+    size_t count = gltf_count(c, GLTF_IMAGES);
     if (!c->out->images) {
         if (!(c->out->images = calloc(count, sizeof *c->out->images)))
             return gltf_fail(c, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", p);
@@ -85,13 +84,12 @@ static sss_result base_color_texture(gltf_ctx *c, const cJSON *pbr, const char *
         (res = gltf_int(c, info, p, "texCoord", 0, 0, 0, 1L << 30, &texcoord)) != SSS_OK)
         return res;
     if (texcoord != 0) return SSS_OK; /* only TEXCOORD_0 is imported */
-    const cJSON *textures = gltf_get(c->root, "textures"), *images = gltf_get(c->root, "images");
-    const cJSON *t = cJSON_IsArray(textures) ? cJSON_GetArrayItem(textures, (int)tex) : NULL;
+    const cJSON *t = gltf_item(c, GLTF_TEXTURES, tex);
     if (!t) return gltf_fail(c, SSS_ERROR_PARSE, "%s.index: texture %ld does not exist", p, tex);
     snprintf(p, sizeof p, "textures[%ld]", tex);
     if ((res = gltf_int(c, t, p, "source", 0, -1, 0, 1L << 30, &source)) != SSS_OK) return res;
     if (source < 0) return SSS_OK;
-    const cJSON *img = cJSON_IsArray(images) ? cJSON_GetArrayItem(images, (int)source) : NULL;
+    const cJSON *img = gltf_item(c, GLTF_IMAGES, source);
     if (!img) return gltf_fail(c, SSS_ERROR_PARSE, "%s.source: image %ld does not exist", p, source);
     const cJSON *uri = gltf_get(img, "uri");
     if (!cJSON_IsString(uri) || strncmp(uri->valuestring, "data:", 5) == 0) {
@@ -132,7 +130,13 @@ static sss_result subsurface(gltf_ctx *c, const cJSON *ext, const char *path, ss
         (res = gltf_number(c, scatter, sp, "scatterAnisotropy", 0.0, &m->g)) != SSS_OK ||
         (res = gltf_number(c, ior, ip, "ior", 1.5, &m->eta)) != SSS_OK)
         return res;
-    if (!(d > 0)) return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.attenuationDistance: must be > 0", vp);
+    /* the albedo of the extension's schema is a colour in [0, 1]: refused outside, not clamped (which
+     * turned 1.5 into sigma_a = 0 and -0.1 into sigma_s = 0) */
+    const char *rho_key = gltf_get(scatter, "multiscatterColorFactor") ? "multiscatterColorFactor"
+                                                                        : "multiscatterColor";
+    for (int k = 0; k < 3; k++)
+        if (!(rho[k] >= 0 && rho[k] <= 1))
+            return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.%s[%d]: %g is outside [0, 1]", sp, rho_key, k, rho[k]);
     if (!(m->g > -1 && m->g < 1))
         return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.scatterAnisotropy: %g is outside (-1, 1)", sp, m->g);
     if (!(m->eta >= SSS_ETA_MIN && m->eta <= SSS_ETA_MAX))
@@ -162,8 +166,7 @@ sss_result gltf_material(gltf_ctx *c, long index, sss_gltf_material *m)
     snprintf(path, sizeof path, "materials[%ld]", index);
     for (int k = 0; k < 3; k++) m->albedo[k] = 1.0; /* the default material: white, diffuse */
     if (index < 0) return SSS_OK;
-    const cJSON *materials = gltf_get(c->root, "materials");
-    const cJSON *mat = cJSON_IsArray(materials) ? cJSON_GetArrayItem(materials, (int)index) : NULL;
+    const cJSON *mat = gltf_item(c, GLTF_MATERIALS, index);
     if (!mat) return gltf_fail(c, SSS_ERROR_PARSE, "%s: does not exist", path);
     const cJSON *pbr = gltf_get(mat, "pbrMetallicRoughness"), *ext = gltf_get(mat, "extensions");
     sss_result res;
@@ -173,10 +176,10 @@ sss_result gltf_material(gltf_ctx *c, long index, sss_gltf_material *m)
     if ((res = gltf_object(c, mat, path)) != SSS_OK || (res = gltf_object(c, pbr, pp)) != SSS_OK ||
         (res = gltf_vec(c, pbr, pp, "baseColorFactor", 4, white, base)) != SSS_OK)
         return res;
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < 4; k++) { /* alpha (k = 3) is not used, but as invalid */
         if (!(base[k] >= 0 && base[k] <= 1))
             return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.baseColorFactor[%d]: %g is outside [0, 1]", pp, k, base[k]);
-        m->albedo[k] = base[k];
+        if (k < 3) m->albedo[k] = base[k];
     }
     const cJSON *volume = gltf_get(ext, "KHR_materials_volume");
     double thickness = 0, distance = INFINITY;
@@ -184,6 +187,12 @@ sss_result gltf_material(gltf_ctx *c, long index, sss_gltf_material *m)
     if ((res = gltf_number(c, volume, pp, "thicknessFactor", 0.0, &thickness)) != SSS_OK ||
         (res = gltf_number(c, volume, pp, "attenuationDistance", INFINITY, &distance)) != SSS_OK)
         return res;
+    /* The schema's ranges (thicknessFactor >= 0, attenuationDistance > 0), also where the values end
+     * up unused: a negative thickness is not a thin wall. */
+    if (!(thickness >= 0))
+        return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.thicknessFactor: %g is negative", pp, thickness);
+    if (!(distance > 0))
+        return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.attenuationDistance: %g is not > 0", pp, distance);
     /* thicknessFactor 0 means a thin wall: "all volumetric effects are disabled". */
     if (!volume || !(thickness > 0) || isinf(distance) || !gltf_get(ext, "KHR_materials_volume_scatter"))
         return SSS_OK;

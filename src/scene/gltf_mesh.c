@@ -82,8 +82,8 @@ static double det3(const double m[16])
 
 /* POSITION, NORMAL, TEXCOORD_0 of the primitive into m (world space); *normals_ok = 0 when the file
  * has no normals or one of them vanishes (they are then computed from the triangles). */
-static sss_result read_vertices(gltf_ctx *c, const cJSON *attributes, const char *path, const double world[16],
-                                sss_mesh *m, int *normals_ok)
+static sss_result read_vertices(gltf_ctx *c, long node, const cJSON *attributes, const char *path,
+                                const double world[16], sss_mesh *m, int *normals_ok)
 {
     char use[192];
     long index = 0;
@@ -126,8 +126,13 @@ static sss_result read_vertices(gltf_ctx *c, const cJSON *attributes, const char
         for (int r = 0; r < 3; r++) {
             double p = world[4 * r + 3];
             for (int k = 0; k < 3; k++) p += world[4 * r + k] * gltf_accessor_float(&pos, i, k);
-            if (!isfinite((float)p))
-                return gltf_fail(c, SSS_ERROR_PARSE, "%s: vertex %zu is not finite in world space", path, i);
+            if (isnan(p)) return gltf_fail(c, SSS_ERROR_PARSE, "%s: vertex %zu is not a number", path, i);
+            /* the scene loader's world range (sss/scene.h), named here by the node that puts it there */
+            if (!(fabs(p) <= SSS_SCENE_MAX_WORLD_COORD))
+                return gltf_fail(c, SSS_ERROR_LIMIT,
+                                 "nodes[%ld] places %s vertex %zu at %g, beyond %g (the real-time renderer's "
+                                 "single-precision range; docs/limits.md)",
+                                 node, path, i, p, SSS_SCENE_MAX_WORLD_COORD);
             m->positions[3 * i + (size_t)r] = (float)p;
         }
         if (has_normals) {
@@ -151,7 +156,7 @@ static sss_result read_vertices(gltf_ctx *c, const cJSON *attributes, const char
     return SSS_OK;
 }
 
-sss_result gltf_primitive_mesh(gltf_ctx *c, long mesh_index, long prim, const cJSON *primitive,
+sss_result gltf_primitive_mesh(gltf_ctx *c, long node, long mesh_index, long prim, const cJSON *primitive,
                                const double world[16], sss_mesh *out, int *has_uvs)
 {
     char path[96];
@@ -166,7 +171,7 @@ sss_result gltf_primitive_mesh(gltf_ctx *c, long mesh_index, long prim, const cJ
     if (res == SSS_OK && !cJSON_IsObject(attributes))
         res = gltf_fail(c, SSS_ERROR_PARSE, "%s.attributes: expected an object", path);
     int normals_ok = 0;
-    if (res == SSS_OK) res = read_vertices(c, attributes, path, world, out, &normals_ok);
+    if (res == SSS_OK) res = read_vertices(c, node, attributes, path, world, out, &normals_ok);
     if (res == SSS_OK) res = read_indices(c, primitive, path, (int)mode, out->vertex_count, out);
     if (res == SSS_OK && det3(world) < 0) /* a mirroring transform turns counter-clockwise into clockwise */
         for (uint32_t t = 0; t < out->triangle_count; t++) {

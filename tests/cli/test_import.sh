@@ -51,7 +51,7 @@ sed 's/"mesh": 0/"mesh": 0, "scale": [1e20, 1e20, 1e20]/' "$data/external.gltf" 
 cp "$data/external data.bin" "$dir/"
 out=$("$SSS" reference "$dir/huge.gltf" -o "$dir/huge.png" --quality draft -q 2>&1); code=$?
 [ $code = 1 ] || err "reference of a .gltf beyond the world range: exit $code"
-case "$out" in *"huge.gltf: objects[0]"*"beyond 1e+18"*) ;; *) err "reference: message does not name the object: $out";; esac
+case "$out" in *"huge.gltf: nodes[0] places"*"beyond 1e+18"*) ;; *) err "reference: message does not name the node: $out";; esac
 # export gltf, then import: the default scene comes back with its subsurface material.
 "$SSS" export gltf "$ROOT/scenes/default.json" -o "$dir/d.glb" >/dev/null || err "export gltf failed"
 "$SSS" import "$dir/d.glb" -o "$dir/d.json" >/dev/null || err "import of the export failed"

@@ -477,6 +477,145 @@ static void test_bad_inputs(void)
     CHECK(failures == (int)n);
 }
 
+/* external.gltf's triangle (its buffer "external data.bin") with members added: node and root hold
+ * text after the node's and the root's first member, material the materials array ("" for none), uri
+ * the buffer's URI as JSON text. */
+static sss_result parse_variant(const char *name, const char *node, const char *root, const char *material,
+                                const char *uri, const sss_gltf_desc *desc, sss_gltf_scene *s, sss_error *err)
+{
+    char json[4096];
+    snprintf(json, sizeof json,
+             "{\"asset\": {\"version\": \"2.0\"}%s, \"scenes\": [{\"nodes\": [0]}], \"nodes\": [{\"mesh\": 0%s}],"
+             " \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0}%s}]}], %s%s"
+             "%s \"buffers\": [{\"uri\": \"%s\", \"byteLength\": 36}], \"bufferViews\": [{\"buffer\": 0, \"byteLength\": 36}],"
+             " \"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 3, \"type\": \"VEC3\"}]}",
+             root, node, material[0] ? ", \"material\": 0" : "", material[0] ? "\"materials\": " : "", material,
+             material[0] ? "," : "", uri);
+    return sss_gltf_parse(json, strlen(json), DATA, name, desc, s, err);
+}
+
+static const char external_uri[] = "external%20data.bin";
+
+/* Refused with code and a message holding needle (the file and the JSON path), nothing left in s. */
+static void check_variant_refused(const char *node, const char *root, const char *material, const char *uri,
+                                  const sss_gltf_desc *desc, sss_result code, const char *needle)
+{
+    sss_gltf_scene s;
+    sss_error err = {0};
+    sss_result res = parse_variant("v.gltf", node, root, material, uri, desc, &s, &err);
+    CHECK_MSG(res == code, "%s%s%s: %d %s", node, root, material, (int)res, err.message);
+    CHECK_MSG(strstr(err.message, "v.gltf: ") && strstr(err.message, needle), "'%s' lacks '%s'", err.message, needle);
+    CHECK(s.objects == NULL && s.object_count == 0);
+    if (res == SSS_OK) sss_gltf_scene_free(&s);
+}
+
+static void check_variant_loads(const char *node, const char *root, const char *material)
+{
+    sss_gltf_scene s;
+    sss_error err = {0};
+    CHECK_MSG(parse_variant("v.gltf", node, root, material, external_uri, NULL, &s, &err) == SSS_OK, "%s%s%s: %s",
+              node, root, material, err.message);
+    sss_gltf_scene_free(&s);
+}
+
+/* A NUL in a JSON string (the escape, or a raw byte in a .glb's JSON chunk) is refused with the string's
+ * path: cJSON's C strings would cut "external%20data.bin\u0000../../etc/passwd" to the buffer's file. */
+static void test_nul_strings(void)
+{
+    check_variant_refused("", "", "", "external%20data.bin\\u0000../../etc/passwd", NULL, SSS_ERROR_PARSE,
+                          "buffers[0].uri: a string holds a NUL character");
+    check_variant_refused("", ", \"extras\": {\"a\\u0000\": 1}", "", external_uri, NULL, SSS_ERROR_PARSE,
+                          "extras.a\\u0000: a string holds a NUL character");
+    /* a .glb: 12-byte header, then the JSON chunk (padded to 4 bytes), with the raw byte or without */
+    static const char json[] = "{\"asset\": {\"version\": \"2.0\", \"generator\": \"a#b\"}, \"scenes\": [{\"nodes\": []}]}";
+    for (int raw = 0; raw < 2; raw++) {
+        unsigned char glb[256] = {'g', 'l', 'T', 'F', 2};
+        size_t n = strlen(json), padded = (n + 3) & ~(size_t)3, total = 20 + padded;
+        memcpy(glb + 20, json, n);
+        memset(glb + 20 + n, raw ? 0 : ' ', padded - n); /* zeros: padding written by some exporters */
+        if (raw) *(char *)memchr(glb + 20, '#', n) = '\0';
+        glb[8] = (unsigned char)total, glb[12] = (unsigned char)padded;
+        memcpy(glb + 16, "JSON", 4);
+        sss_gltf_scene s;
+        sss_error err = {0};
+        sss_result res = sss_gltf_parse(glb, total, NULL, "nul.glb", NULL, &s, &err);
+        /* without the NUL, the asset parses and fails only for having nothing to render */
+        const char *expected = raw ? "nul.glb: asset.generator: a string holds a NUL character" : "no mesh primitive";
+        CHECK_MSG(res != SSS_OK && strstr(err.message, expected), "%s", err.message);
+    }
+}
+
+/* Values outside the ranges of their schema are refused with their JSON path, not clamped or taken as
+ * absent (multiscatterColor 1.5 used to become sigma_a = 0, -0.1 sigma_s = 0; aspectRatio 0 no ratio). */
+static void test_out_of_range(void)
+{
+    static const char volume[] = "[{\"extensions\": {\"KHR_materials_volume\": {\"thicknessFactor\": %s, "
+                                 "\"attenuationDistance\": 1, \"attenuationColor\": [0.5, 0.5, 0.5]}, "
+                                 "\"KHR_materials_volume_scatter\": {\"%s\": %s}}}]";
+#define MS "materials[0].extensions.KHR_materials_volume_scatter."
+    struct { const char *thickness, *key, *value, *needle; } cases[] = {
+        {"1", "multiscatterColor", "[1.5, 0.5, 0.5]", MS "multiscatterColor[0]: 1.5 is outside [0, 1]"},
+        {"1", "multiscatterColor", "[0.5, -0.1, 0.5]", MS "multiscatterColor[1]: -0.1 is outside [0, 1]"},
+        {"1", "multiscatterColorFactor", "[0.5, 0.5, 2]", MS "multiscatterColorFactor[2]: 2 is outside [0, 1]"},
+        {"-1", "multiscatterColor", "[0.5, 0.5, 0.5]",
+         "materials[0].extensions.KHR_materials_volume.thicknessFactor: -1 is negative"},
+    };
+#undef MS
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char material[512];
+        snprintf(material, sizeof material, volume, cases[i].thickness, cases[i].key, cases[i].value);
+        check_variant_refused("", "", material, external_uri, NULL, SSS_ERROR_INVALID_ARGUMENT, cases[i].needle);
+    }
+    char material[512];
+    snprintf(material, sizeof material, volume, "1", "multiscatterColor", "[0, 1, 0.5]"); /* the ends are valid */
+    check_variant_loads("", "", material);
+    check_variant_refused("", "", "[{\"pbrMetallicRoughness\": {\"baseColorFactor\": [1, 1, 1, 1.5]}}]", external_uri,
+                          NULL, SSS_ERROR_INVALID_ARGUMENT, "baseColorFactor[3]: 1.5 is outside [0, 1]");
+
+    /* a camera's aspectRatio: absent is unknown; 0 or negative is refused */
+    static const char camera[] = ", \"camera\": 0", cameras[] =
+        ", \"cameras\": [{\"type\": \"perspective\", \"perspective\": {\"yfov\": 0.5, \"znear\": 0.1%s}}]";
+    char root[256];
+    snprintf(root, sizeof root, cameras, "");
+    check_variant_loads(camera, root, "");
+    const char *const aspects[] = {", \"aspectRatio\": 0", ", \"aspectRatio\": -1.5"};
+    for (int i = 0; i < 2; i++) {
+        snprintf(root, sizeof root, cameras, aspects[i]);
+        check_variant_refused(camera, root, "", external_uri, NULL, SSS_ERROR_INVALID_ARGUMENT,
+                              i ? "cameras[0].perspective.aspectRatio: -1.5 is outside" :
+                                  "cameras[0].perspective.aspectRatio: 0 is outside");
+    }
+}
+
+/* What a renderer cannot carry in float is refused at import with its path: a node placing a vertex
+ * beyond the world range (the loader's limit, which `sss import` used to write into scenes every other
+ * command refused), a light beyond SSS_SCENE_MAX_LIGHT_VALUE, also through the import's light scale. */
+static void test_float_range(void)
+{
+    check_variant_refused(", \"scale\": [1e30, 1e30, 1e30]", "", "", external_uri, NULL, SSS_ERROR_LIMIT,
+                          "nodes[0] places meshes[0].primitives[0] vertex 1 at 1e+30, beyond 1e+18");
+    check_variant_loads(", \"scale\": [1e18, 1e18, 1e18]", "", ""); /* the triangle reaches 1e18 exactly */
+    static const char lights[] = ", \"extensions\": {\"KHR_lights_punctual\": {\"lights\": [{\"type\": \"point\", "
+                                 "\"intensity\": %s, \"color\": [1, 0.5, 1]}]}}";
+    static const char light_node[] = ", \"children\": [1]}, {\"extensions\": {\"KHR_lights_punctual\": {\"light\": 0}}";
+    char root[256];
+    snprintf(root, sizeof root, lights, "1e39");
+    check_variant_refused(light_node, root, "", external_uri, NULL, SSS_ERROR_INVALID_ARGUMENT,
+                          "extensions.KHR_lights_punctual.lights[0].intensity: 1e+39 x color[0] 1 x light scale 1 = "
+                          "1e+39, beyond the 1e+30");
+    snprintf(root, sizeof root, lights, "100");
+    sss_gltf_desc desc = {.light_scale = 1e29};
+    check_variant_refused(light_node, root, "", external_uri, &desc, SSS_ERROR_INVALID_ARGUMENT,
+                          "lights[0].intensity: 100 x color[0] 1 x light scale 1e+29 = 1e+31, beyond");
+    desc.light_scale = 1e27;
+    sss_gltf_scene s;
+    sss_error err = {0};
+    CHECK_MSG(parse_variant("v.gltf", light_node, root, "", external_uri, &desc, &s, &err) == SSS_OK, "%s", err.message);
+    CHECK(s.light_count == 1);
+    if (s.light_count == 1) CHECK_REL(s.lights[0].intensity[1], 5e28, 1e-15);
+    sss_gltf_scene_free(&s);
+}
+
 /* sss_scene_load of a .glb: the scene loader's materials and the imported meshes; a written import
  * loads to the same meshes. */
 static void test_scene_load(void)
@@ -528,6 +667,9 @@ int main(void)
     test_texture();
     test_embedded_textures();
     test_bad_inputs();
+    test_nul_strings();
+    test_out_of_range();
+    test_float_range();
     test_scene_load();
     return CHECK_DONE();
 }

@@ -24,7 +24,7 @@ void main()
     vec3 n = normalize(v_nrm);
     float id = float(u_object + 1);
     // |dp/dx x dp/dy|: the surface area behind one texel (large at grazing light, where E is small)
-    float area = length(cross(dFdx(v_pos), dFdy(v_pos)));
+    float area = robust_length(cross(dFdx(v_pos), dFdy(v_pos)));
     bool subsurface = m.albedo.w < 0.5;
     vec3 et = vec3(0.0);
     if (subsurface) {

@@ -49,6 +49,19 @@ layout(binding = 9) uniform samplerCubeArrayShadow u_shadow_cube;
 layout(binding = 10) uniform sampler2DArrayShadow u_shadow_2d;
 layout(binding = 11) uniform sampler2DArray u_albedo_tex;
 
+// ---- Lengths ------------------------------------------------------------------------------------
+
+// |v| also where the sum of squares overflows: a cross product of triangle edges holds squared lengths,
+// its squares fourth powers, Inf from edges of ~1.4e9 units on (the world range is 1e18). Rescaled only
+// then, so that every smaller length is the same bits as length(v).
+float robust_length(vec3 v)
+{
+    float len = length(v);
+    if (!isinf(len)) return len;
+    float m = max(abs(v.x), max(abs(v.y), abs(v.z)));
+    return m * length(v / m);
+}
+
 // ---- Fresnel (PBRT-v3 FrDielectric) -------------------------------------------------------------
 
 float fr_dielectric(float cos_i, float eta_i, float eta_t)

@@ -24,7 +24,7 @@ void main()
     // Opaque surfaces are shaded on the side they are seen from (PBRT's matte is two-sided).
     if (diffuse && !gl_FrontFacing) n = -n;
     // The surface area one pixel covers: |dp/dx x dp/dy| on the triangle's plane.
-    float area = length(cross(dFdx(v_pos), dFdy(v_pos)));
+    float area = robust_length(cross(dFdx(v_pos), dFdy(v_pos)));
     // Maisch & Ropinski 2020, section 6.2: at grazing angles (n . v < 0.2) the projected area diverges; such pixels
     // leave the screen-space sum (area 0) and are covered by the splats instead (Eq. 8).
     if (!subsurface || dot(n, v) < u_misc.y || isinf(area) || isnan(area)) area = 0.0;

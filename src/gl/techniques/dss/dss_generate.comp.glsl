@@ -93,7 +93,7 @@ void main()
     }
     vec3 e1 = p[1] - p[0], e2 = p[2] - p[0];
     vec3 cr = cross(e1, e2);
-    float len = length(cr);
+    float len = robust_length(cr);
     if (!(len > 0.0) || isinf(len)) return;
     vec3 n = cr / len;
     float area = 0.5 * len;

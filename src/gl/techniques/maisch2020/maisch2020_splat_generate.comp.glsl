@@ -100,7 +100,7 @@ void main()
         p[k] = (o.model * vec4(anim_deform(o, op, dn, u_camera_pos.w), 1.0)).xyz;
     }
     vec3 cr = cross(p[1] - p[0], p[2] - p[0]);
-    float len = length(cr);
+    float len = robust_length(cr);
     if (!(len > 0.0)) return;
     vec3 n = cr / len;
     float area = 0.5 * len;

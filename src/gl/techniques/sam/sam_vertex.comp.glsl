@@ -90,7 +90,7 @@ void main()
     for (uint e = topo[u_inc_off + v]; e < topo[u_inc_off + v + 1u]; e++) {
         uint t = topo[u_inc_list + e];
         vec3 p0 = pos(topo[u_idx + 3u * t]), p1 = pos(topo[u_idx + 3u * t + 1u]), p2 = pos(topo[u_idx + 3u * t + 2u]);
-        a += length(cross(p1 - p0, p2 - p0)) / 6.0; // Eq. 16
+        a += robust_length(cross(p1 - p0, p2 - p0)) / 6.0; // Eq. 16
     }
     geom[2u * v].w = a;
 #elif PASS == 2
