@@ -1,19 +1,15 @@
 #version 450 core
-// Resolve of the shell splatting (dss, chen2012; tech_dss_shells.h): every level of the receiver
+// Resolve of the shell splatting (dss, chen2012; shared/shells.h): every level of the receiver
 // pyramid upsampled bilinearly (normalised by the filtered validity in alpha, so silhouettes do not
-// darken) and summed, then reflected light + c_o sqrt(albedo) * sum, c_o = F_t(x_o, w_o) / (pi c)
-// (docs/physics.md §1). Level l's texels are u_base 2^l render pixels wide (u_base: the SSAA factor k).
+// darken) and summed (shared/resolve.glsl adds the reflected light and c_o sqrt(albedo)). Level l's texels are u_base 2^l render pixels wide (u_base: the SSAA factor k).
 // Level 0 holds the near field, the sharpest part of the transport, and is not interpolated: at k = 1
 // it is read per pixel; at k > 1 a render pixel takes the level-0 value of one receiver on its surface
 // (shell_level0.glsl). With u_fine the render-resolution level adds, per render pixel, its own transport
 // from the nearest splats in place of that receiver's (shell_splat.frag.glsl).
 #include "common.glsl"
+#include "resolve.glsl"
 #include "shell_level0.glsl"
 
-layout(binding = 0) uniform sampler2D g_pos;
-layout(binding = 1) uniform sampler2D g_nrm;
-layout(binding = 2) uniform sampler2D g_albedo;
-layout(binding = 3) uniform sampler2D t_refl;
 layout(binding = 4) uniform sampler2D t_level0;
 layout(binding = 5) uniform sampler2D t_level1;
 layout(binding = 6) uniform sampler2D t_level2;
@@ -25,8 +21,6 @@ layout(binding = 10) uniform sampler2D t_link; // its level-0 texel per render p
 uniform int u_levels;
 uniform int u_base;
 uniform int u_fine;
-
-layout(location = 0) out vec4 o_color;
 
 vec3 upsampled(sampler2D t, int level)
 {
@@ -49,19 +43,13 @@ vec3 level0(ivec2 px, vec3 P, vec3 N, float id)
     return q.x >= 0 ? texelFetch(t_level0, q, 0).rgb : upsampled(t_level0, 0);
 }
 
-void main()
+vec3 subsurface_light(ivec2 px)
 {
-    ivec2 px = ivec2(gl_FragCoord.xy);
-    vec3 refl = texelFetch(t_refl, px, 0).rgb;
-    o_color = vec4(refl, 1.0);
-    Material m;
-    vec3 weight;
-    if (!subsurface_exit(g_pos, g_nrm, g_albedo, px, m, weight)) return;
     vec4 N = texelFetch(g_nrm, px, 0);
     vec3 s = level0(px, texelFetch(g_pos, px, 0).xyz, normalize(N.xyz), N.w);
     if (u_fine != 0) s += texelFetch(t_fine, px, 0).rgb;
     if (u_levels > 1) s += upsampled(t_level1, 1);
     if (u_levels > 2) s += upsampled(t_level2, 2);
     if (u_levels > 3) s += upsampled(t_level3, 3);
-    o_color = vec4(refl + weight * s, 1.0);
+    return s;
 }

@@ -1,30 +1,19 @@
 #version 450 core
 // Mertens et al. 2003, sections 6.1 and 3: the interleaved pattern x pattern block is recombined by a box blur
 // over the pixels of the same object whose normals agree (a discontinuity-aware blur: the block's
-// pixels used disjoint strata of the sample sets), then L = reflected + c_o sqrt(albedo) B(x_o),
-// c_o = F_t(x_o, w_o) / (pi c) (Eq. 3 with docs/physics.md §1's normalisation).
+// pixels used disjoint strata of the sample sets), then L = reflected + c_o sqrt(albedo) B(x_o)
+// (Eq. 3 with docs/physics.md §1's normalisation; shared/resolve.glsl).
 #include "common.glsl"
+#include "resolve.glsl"
 
-layout(binding = 0) uniform sampler2D g_pos;
-layout(binding = 1) uniform sampler2D g_nrm;
-layout(binding = 2) uniform sampler2D g_albedo;
-layout(binding = 3) uniform sampler2D t_refl;
 layout(binding = 4) uniform sampler2D t_est;
 
 uniform int u_pattern;
 uniform int u_blur;
 uniform float u_blur_normal;
 
-layout(location = 0) out vec4 o_color;
-
-void main()
+vec3 subsurface_light(ivec2 px)
 {
-    ivec2 px = ivec2(gl_FragCoord.xy);
-    vec3 refl = texelFetch(t_refl, px, 0).rgb;
-    o_color = vec4(refl, 1.0);
-    Material m;
-    vec3 weight;
-    if (!subsurface_exit(g_pos, g_nrm, g_albedo, px, m, weight)) return;
     vec4 N = texelFetch(g_nrm, px, 0); // the blur keeps to this object and normal
     vec3 n = normalize(N.xyz);
     vec3 s = texelFetch(t_est, px, 0).rgb;
@@ -47,5 +36,5 @@ void main()
             }
         if (w > 0.0) s = acc / w;
     }
-    o_color = vec4(refl + weight * s, 1.0);
+    return s;
 }
