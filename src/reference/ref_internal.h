@@ -7,26 +7,10 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "core/vecmath.h"
 #include "sss/reference.h"
 
 #define REF_PI 3.14159265358979323846
-
-/* ---- small vector helpers (double[3]) -------------------------------------------------------- */
-
-static inline double v3_dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static inline void v3_cross(const double a[3], const double b[3], double o[3])
-{
-    double x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2], z = a[0] * b[1] - a[1] * b[0];
-    o[0] = x, o[1] = y, o[2] = z;
-}
-static inline double v3_len(const double a[3]) { return sqrt(v3_dot(a, a)); }
-/* Normalises in place; returns the old length (a zero vector stays zero). */
-static inline double v3_normalize(double a[3])
-{
-    double l = v3_len(a);
-    if (l > 0.0) a[0] /= l, a[1] /= l, a[2] /= l;
-    return l;
-}
 
 /* ---- random numbers: PCG32 streams seeded by a splitmix64 hash of (seed, stream ids) ---------- */
 

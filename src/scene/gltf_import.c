@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "core/file_util.h"
+#include "core/vecmath.h"
 #include "scene/gltf_internal.h"
 #include "scene/scene_internal.h"
 
@@ -22,18 +23,6 @@ typedef struct gltf_walk {
     long camera_node;   /* the chosen camera's node, -1 when none yet */
     double camera_world[16];
 } gltf_walk;
-
-static void mat_mul(const double a[16], const double b[16], double out[16])
-{
-    double r[16];
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++) {
-            double s = 0;
-            for (int k = 0; k < 4; k++) s += a[4 * i + k] * b[4 * k + j];
-            r[4 * i + j] = s;
-        }
-    memcpy(out, r, sizeof r);
-}
 
 /* The node's local matrix (row-major): `matrix` (column-major in glTF) or T R S. */
 static sss_result local_matrix(gltf_ctx *c, const cJSON *node, const char *path, double m[16])
@@ -146,7 +135,7 @@ static sss_result visit(gltf_walk *w, long node, const double parent[16], int de
     sss_result res = gltf_object(c, n, path);
     if (res == SSS_OK) res = local_matrix(c, n, path, local);
     if (res != SSS_OK) return res;
-    mat_mul(parent, local, world);
+    m4_mul_rows(parent, local, world);
     if ((res = gltf_int(c, n, path, "mesh", 0, -1, 0, 1L << 30, &mesh)) != SSS_OK ||
         (res = gltf_int(c, n, path, "camera", 0, -1, 0, 1L << 30, &camera)) != SSS_OK)
         return res;

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/vecmath.h"
 #include "gl/core/gl_core.h"
 
 size_t gl_format_bytes(GLenum format)
@@ -140,67 +141,6 @@ void gl_frame_free(gl_frame *f)
     memset(f, 0, sizeof *f);
 }
 
-static void to_col_major(const double m[16], float out[16])
-{
-    for (int r = 0; r < 4; r++)
-        for (int c = 0; c < 4; c++) out[4 * c + r] = (float)m[4 * r + c];
-}
-
-static void mat_mul_cm(const float a[16], const float b[16], float out[16])
-{
-    float t[16];
-    for (int c = 0; c < 4; c++)
-        for (int r = 0; r < 4; r++) {
-            float s = 0.0f;
-            for (int k = 0; k < 4; k++) s += a[4 * k + r] * b[4 * c + k];
-            t[4 * c + r] = s;
-        }
-    memcpy(out, t, sizeof t);
-}
-
-/* General 4x4 inverse (column-major); returns 0 when singular. */
-static int mat_inverse(const float m[16], float out[16])
-{
-    double inv[16], a[16];
-    for (int i = 0; i < 16; i++) a[i] = m[i];
-    inv[0] = a[5] * a[10] * a[15] - a[5] * a[11] * a[14] - a[9] * a[6] * a[15] + a[9] * a[7] * a[14] +
-             a[13] * a[6] * a[11] - a[13] * a[7] * a[10];
-    inv[4] = -a[4] * a[10] * a[15] + a[4] * a[11] * a[14] + a[8] * a[6] * a[15] - a[8] * a[7] * a[14] -
-             a[12] * a[6] * a[11] + a[12] * a[7] * a[10];
-    inv[8] = a[4] * a[9] * a[15] - a[4] * a[11] * a[13] - a[8] * a[5] * a[15] + a[8] * a[7] * a[13] +
-             a[12] * a[5] * a[11] - a[12] * a[7] * a[9];
-    inv[12] = -a[4] * a[9] * a[14] + a[4] * a[10] * a[13] + a[8] * a[5] * a[14] - a[8] * a[6] * a[13] -
-              a[12] * a[5] * a[10] + a[12] * a[6] * a[9];
-    inv[1] = -a[1] * a[10] * a[15] + a[1] * a[11] * a[14] + a[9] * a[2] * a[15] - a[9] * a[3] * a[14] -
-             a[13] * a[2] * a[11] + a[13] * a[3] * a[10];
-    inv[5] = a[0] * a[10] * a[15] - a[0] * a[11] * a[14] - a[8] * a[2] * a[15] + a[8] * a[3] * a[14] +
-             a[12] * a[2] * a[11] - a[12] * a[3] * a[10];
-    inv[9] = -a[0] * a[9] * a[15] + a[0] * a[11] * a[13] + a[8] * a[1] * a[15] - a[8] * a[3] * a[13] -
-             a[12] * a[1] * a[11] + a[12] * a[3] * a[9];
-    inv[13] = a[0] * a[9] * a[14] - a[0] * a[10] * a[13] - a[8] * a[1] * a[14] + a[8] * a[2] * a[13] +
-              a[12] * a[1] * a[10] - a[12] * a[2] * a[9];
-    inv[2] = a[1] * a[6] * a[15] - a[1] * a[7] * a[14] - a[5] * a[2] * a[15] + a[5] * a[3] * a[14] +
-             a[13] * a[2] * a[7] - a[13] * a[3] * a[6];
-    inv[6] = -a[0] * a[6] * a[15] + a[0] * a[7] * a[14] + a[4] * a[2] * a[15] - a[4] * a[3] * a[14] -
-             a[12] * a[2] * a[7] + a[12] * a[3] * a[6];
-    inv[10] = a[0] * a[5] * a[15] - a[0] * a[7] * a[13] - a[4] * a[1] * a[15] + a[4] * a[3] * a[13] +
-              a[12] * a[1] * a[7] - a[12] * a[3] * a[5];
-    inv[14] = -a[0] * a[5] * a[14] + a[0] * a[6] * a[13] + a[4] * a[1] * a[14] - a[4] * a[2] * a[13] -
-              a[12] * a[1] * a[6] + a[12] * a[2] * a[5];
-    inv[3] = -a[1] * a[6] * a[11] + a[1] * a[7] * a[10] + a[5] * a[2] * a[11] - a[5] * a[3] * a[10] -
-             a[9] * a[2] * a[7] + a[9] * a[3] * a[6];
-    inv[7] = a[0] * a[6] * a[11] - a[0] * a[7] * a[10] - a[4] * a[2] * a[11] + a[4] * a[3] * a[10] +
-             a[8] * a[2] * a[7] - a[8] * a[3] * a[6];
-    inv[11] = -a[0] * a[5] * a[11] + a[0] * a[7] * a[9] + a[4] * a[1] * a[11] - a[4] * a[3] * a[9] -
-              a[8] * a[1] * a[7] + a[8] * a[3] * a[5];
-    inv[15] = a[0] * a[5] * a[10] - a[0] * a[6] * a[9] - a[4] * a[1] * a[10] + a[4] * a[2] * a[9] +
-              a[8] * a[1] * a[6] - a[8] * a[2] * a[5];
-    double det = a[0] * inv[0] + a[1] * inv[4] + a[2] * inv[8] + a[3] * inv[12];
-    if (det == 0.0 || !isfinite(det)) return 0;
-    for (int i = 0; i < 16; i++) out[i] = (float)(inv[i] / det);
-    return 1;
-}
-
 void gl_core_scene_camera(gl_core *core, gl_camera *c)
 {
     sss_camera cam = core->scene->camera;
@@ -231,8 +171,8 @@ void gl_core_scene_camera(gl_core *core, gl_camera *c)
     p[10] = 0.0;
     p[11] = near_plane;
     memset(c, 0, sizeof *c);
-    to_col_major(v, c->view);
-    to_col_major(p, c->proj);
+    m4_from_rows(v, c->view);
+    m4_from_rows(p, c->proj);
     for (int k = 0; k < 3; k++) {
         c->position[k] = b.origin[k];
         c->forward[k] = b.forward[k];
@@ -279,8 +219,8 @@ void gl_frame_ubo_write(gl_core *core, const gl_camera *c, double time, double g
     memset(&u, 0, sizeof u);
     memcpy(u.view, c->view, sizeof u.view);
     memcpy(u.proj, c->proj, sizeof u.proj);
-    mat_mul_cm(u.proj, u.view, u.view_proj);
-    if (!mat_inverse(u.view_proj, u.inv_view_proj)) memset(u.inv_view_proj, 0, sizeof u.inv_view_proj);
+    m4_mul(u.proj, u.view, u.view_proj);
+    if (!m4_inverse(u.view_proj, u.inv_view_proj)) memset(u.inv_view_proj, 0, sizeof u.inv_view_proj);
     core->view.camera = *c;
     memcpy(core->view.view_proj, u.view_proj, sizeof core->view.view_proj);
     core->view.time = time;

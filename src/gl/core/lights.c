@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/vecmath.h"
 #include "gl/core/env_cut.h"
 #include "gl/core/gl_core.h"
 
@@ -42,50 +43,11 @@ static vec3d vnorm(vec3d a)
     return l > 0.0 ? vscale(a, 1.0 / l) : (vec3d){0, 1, 0};
 }
 
-/* Column-major look-at (right-handed, camera looks down -z) and projections. */
+/* A view matrix from vec3d points (core/vecmath.h's m4_look_at). */
 static void look_at(vec3d eye, vec3d target, vec3d up, float m[16])
 {
-    vec3d f = vnorm(vsub(target, eye));
-    if (fabs(vdot(f, vnorm(up))) > 0.999) up = fabs(f.y) < 0.9 ? (vec3d){0, 1, 0} : (vec3d){1, 0, 0};
-    vec3d s = vnorm(vcross(f, up));
-    vec3d u = vcross(s, f);
-    float r[16] = {(float)s.x, (float)u.x, (float)-f.x, 0, (float)s.y, (float)u.y, (float)-f.y, 0,
-                   (float)s.z, (float)u.z, (float)-f.z, 0, (float)-vdot(s, eye), (float)-vdot(u, eye),
-                   (float)vdot(f, eye), 1};
-    memcpy(m, r, sizeof r);
-}
-
-static void perspective(double fovy, double n, double f, float m[16])
-{
-    double t = 1.0 / tan(fovy / 2.0);
-    memset(m, 0, 16 * sizeof(float));
-    m[0] = (float)t;
-    m[5] = (float)t;
-    m[10] = (float)((f + n) / (n - f));
-    m[11] = -1.0f;
-    m[14] = (float)(2.0 * f * n / (n - f));
-}
-
-static void ortho(double half, double n, double f, float m[16])
-{
-    memset(m, 0, 16 * sizeof(float));
-    m[0] = (float)(1.0 / half);
-    m[5] = (float)(1.0 / half);
-    m[10] = (float)(-2.0 / (f - n));
-    m[14] = (float)(-(f + n) / (f - n));
-    m[15] = 1.0f;
-}
-
-static void mul_cm(const float a[16], const float b[16], float out[16])
-{
-    float t[16];
-    for (int c = 0; c < 4; c++)
-        for (int r = 0; r < 4; r++) {
-            float s = 0.0f;
-            for (int k = 0; k < 4; k++) s += a[4 * k + r] * b[4 * c + k];
-            t[4 * c + r] = s;
-        }
-    memcpy(out, t, sizeof t);
+    const double e[3] = {eye.x, eye.y, eye.z}, t[3] = {target.x, target.y, target.z}, u[3] = {up.x, up.y, up.z};
+    m4_look_at(e, t, u, m);
 }
 
 /* An environment map as read once per renderer: the file downsampled (box filter) to at most
@@ -380,8 +342,8 @@ static sss_result light_records(gl_core *core, light_set *ls, sss_error *err)
             double cone = acos(g->spot[0]);
             float V[16], P[16];
             look_at(p, vadd(p, (vec3d){g->direction[0], g->direction[1], g->direction[2]}), (vec3d){0, 1, 0}, V);
-            perspective(2.0 * cone * 1.02, far_d * 1e-4, far_d * 1.01, P);
-            mul_cm(P, V, g->shadow_matrix);
+            m4_perspective(2.0 * cone * 1.02, far_d * 1e-4, far_d * 1.01, P);
+            m4_mul(P, V, g->shadow_matrix);
             g->shadow[0] = (float)(far_d * 1e-4);
             g->shadow[1] = (float)(far_d * 1.01);
             g->shadow[2] = (float)(2.0 * tan(cone * 1.02) / ls->map_size);
@@ -390,8 +352,8 @@ static sss_result light_records(gl_core *core, light_set *ls, sss_error *err)
             vec3d eye = vsub(c, vscale(d, 2.0 * radius));
             float V[16], P[16];
             look_at(eye, c, (vec3d){0, 1, 0}, V);
-            ortho(radius * 1.01, radius * 0.9, radius * 3.1, P);
-            mul_cm(P, V, g->shadow_matrix);
+            m4_ortho(radius * 1.01, radius * 0.9, radius * 3.1, P);
+            m4_mul(P, V, g->shadow_matrix);
             g->shadow[0] = (float)(radius * 0.9);
             g->shadow[1] = (float)(radius * 3.1);
             g->shadow[2] = (float)(2.0 * radius * 1.01 / ls->map_size);
@@ -533,7 +495,7 @@ sss_result gl_shadows_render(gl_core *core, sss_error *err)
         if (kind == GL_SHADOW_CUBE) {
             vec3d p = {g->position[0], g->position[1], g->position[2]};
             float P[16];
-            perspective(M_PI / 2.0, g->shadow[0], g->shadow[1], P);
+            m4_perspective(M_PI / 2.0, g->shadow[0], g->shadow[1], P);
             glViewport(0, 0, gs->shadow_cube_size, gs->shadow_cube_size);
             glUniform1i(u_cube, 1);
             glUniform3f(u_lpos, g->position[0], g->position[1], g->position[2]);
@@ -542,7 +504,7 @@ sss_result gl_shadows_render(gl_core *core, sss_error *err)
             for (int f = 0; f < 6; f++) {
                 float V[16], VP[16];
                 look_at(p, vadd(p, v3(face_dir[f])), v3(face_up[f]), V);
-                mul_cm(P, V, VP);
+                m4_mul(P, V, VP);
                 glNamedFramebufferTextureLayer(gs->shadow_fbo, GL_DEPTH_ATTACHMENT, gs->shadow_cube, 0, 6 * layer + f);
                 glClearBufferfv(GL_DEPTH, 0, &one);
                 glUniformMatrix4fv(u_vp, 1, GL_FALSE, VP);

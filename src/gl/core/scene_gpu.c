@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/vecmath.h"
 #include "gl/core/gl_core.h"
 #include "sss/profile.h"
 
@@ -55,12 +56,6 @@ static int same_material(const sss_scene_material *a, const sss_scene_material *
            (a->texture == NULL) == (b->texture == NULL) && (!a->texture || strcmp(a->texture, b->texture) == 0) &&
            a->has_specular == b->has_specular && a->roughness == b->roughness &&
            (a->profile != SSS_SCENE_PROFILE_ARTIST || memcmp(&a->artist, &b->artist, sizeof a->artist) == 0);
-}
-
-static void col_major_from_rows(const double m[16], float out[16])
-{
-    for (int r = 0; r < 4; r++)
-        for (int c = 0; c < 4; c++) out[4 * c + r] = (float)m[4 * r + c];
 }
 
 /* Radius within which `fraction` of every channel's plane integral of R_d lies (0 when none is finite). */
@@ -279,7 +274,7 @@ static sss_result object_record(const sss_scene *s, size_t i, const gl_object *o
                                 gl_object_record *rec, bounds3 *b, sss_error *err)
 {
     const sss_scene_object *so = &s->objects[i];
-    col_major_from_rows(so->transform.matrix, rec->model);
+    m4_from_rows(so->transform.matrix, rec->model);
     for (int a = 0; a < 3; a++)
         for (int c = 0; c < 3; c++) rec->normal_matrix[4 * c + a] = (float)so->transform.normal_matrix[3 * a + c];
     rec->normal_matrix[15] = 1.0f;

@@ -2,6 +2,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/vecmath.h"
 #include "gl/shared/tsm.h"
 
 static void grow(double lo[3], double hi[3], const double p[3])
@@ -64,38 +65,13 @@ void tsm_bounds_compute(const gl_tech_ctx *c, tsm_bounds *out)
 
 /* ---- Matrices (column-major, right-handed, the camera looks down -z) ---------------------------- */
 
+/* The light's view: y up, or x when the view axis is within 8 degrees of y. */
 static void look_at(const double eye[3], const double target[3], float m[16])
 {
     double f[3] = {target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]};
-    double fl = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
-    for (int k = 0; k < 3; k++) f[k] /= fl;
     double up[3] = {0.0, 1.0, 0.0};
-    if (fabs(f[1]) > 0.99) {
-        up[1] = 0.0;
-        up[0] = 1.0;
-    }
-    double s[3] = {f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0]};
-    double sl = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
-    for (int k = 0; k < 3; k++) s[k] /= sl;
-    double u[3] = {s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2], s[0] * f[1] - s[1] * f[0]};
-    float r[16] = {(float)s[0], (float)u[0], (float)-f[0], 0, (float)s[1], (float)u[1], (float)-f[1], 0,
-                   (float)s[2], (float)u[2], (float)-f[2], 0,
-                   (float)-(s[0] * eye[0] + s[1] * eye[1] + s[2] * eye[2]),
-                   (float)-(u[0] * eye[0] + u[1] * eye[1] + u[2] * eye[2]),
-                   (float)(f[0] * eye[0] + f[1] * eye[1] + f[2] * eye[2]), 1};
-    memcpy(m, r, sizeof r);
-}
-
-static void mul(const float a[16], const float b[16], float out[16])
-{
-    float t[16];
-    for (int c = 0; c < 4; c++)
-        for (int rr = 0; rr < 4; rr++) {
-            float s = 0.0f;
-            for (int k = 0; k < 4; k++) s += a[4 * k + rr] * b[4 * c + k];
-            t[4 * c + rr] = s;
-        }
-    memcpy(out, t, sizeof t);
+    if (fabs(f[1]) > 0.99 * v3_len(f)) up[0] = 1.0, up[1] = 0.0;
+    m4_look_at(eye, target, up, m);
 }
 
 int tsm_light_matrix(const gl_tech_ctx *c, const tsm_bounds *b, int light, float vp[16])
@@ -154,7 +130,7 @@ int tsm_light_matrix(const gl_tech_ctx *c, const tsm_bounds *b, int light, float
         P[11] = -1.0f;
         P[14] = (float)(2.0 * f * n / (n - f));
     }
-    mul(P, V, vp);
+    m4_mul(P, V, vp);
     for (int i = 0; i < 16; i++)
         if (!isfinite(vp[i])) return 0;
     return 1;
