@@ -92,24 +92,30 @@ sss_result view_renderer_desc(viewer *v, const sss_gl_technique_info *info, sss_
     return SSS_OK;
 }
 
-sss_result view_create_renderer(viewer *v, const sss_gl_technique_info *info, sss_gl_renderer **out,
-                                sss_error *err)
+sss_result view_create_renderer(viewer *v, const sss_gl_technique_info *info, const sss_scene *scene,
+                                const sss_gl_tables *tables, sss_gl_renderer **out, sss_error *err)
 {
     sss_gl_renderer_desc d;
     sss_gl_param_value *params = NULL;
     sss_result res = view_renderer_desc(v, info, &d, &params, err);
-    d.tables = v->tables;
-    if (res == SSS_OK) res = sss_gl_renderer_create(v->ctx, v->scene, &d, out, err);
+    d.tables = tables;
+    if (res == SSS_OK) res = sss_gl_renderer_create(v->ctx, scene, &d, out, err);
     free(params);
     return res;
 }
 
 sss_result view_make_renderer(viewer *v, int tech, sss_error *err)
 {
+    return view_make_renderer_for(v, tech, v->scene, NULL, err);
+}
+
+sss_result view_make_renderer_for(viewer *v, int tech, const sss_scene *scene, const sss_gl_tables *tables,
+                                  sss_error *err)
+{
     const sss_gl_technique_info *info = sss_gl_technique_at(tech);
     if (!info) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "no technique %d", tech);
     sss_gl_renderer *r = NULL;
-    sss_result res = view_create_renderer(v, info, &r, err);
+    sss_result res = view_create_renderer(v, info, scene, tables, &r, err);
     if (res == SSS_OK) {
         sss_gl_timing_series_free(&v->timing_series);
         res = sss_gl_timing_series_init(&v->timing_series, SSS_GL_WARMUP_FRAMES, SSS_GL_TIMED_FRAMES, err);
@@ -228,7 +234,7 @@ void view_split_refresh(viewer *v)
     v->split_r = NULL;
     if (v->split != VIEW_SPLIT_TECHNIQUE) return;
     sss_error err = {0};
-    if (view_create_renderer(v, sss_gl_technique_at(v->split_tech), &v->split_r, &err) != SSS_OK) {
+    if (view_create_renderer(v, sss_gl_technique_at(v->split_tech), v->scene, NULL, &v->split_r, &err) != SSS_OK) {
         view_message(v, "split view: %s", err.message);
         v->split = VIEW_SPLIT_OFF;
     }

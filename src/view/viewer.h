@@ -108,7 +108,6 @@ struct viewer {
     char *live_text;              /* text, medium and scale of the scene on screen (restored on failure) */
     int live_medium;
     double live_scale;
-    const sss_gl_tables *tables;  /* handed to view_create_renderer while a build is applied */
     int build_frames;             /* frames drawn while the current build ran */
     double build_longest_ms;      /* the longest of them (render to swap, wall clock) */
     int build_dropped;            /* builds dropped for a newer edit since the last applied one */
@@ -197,10 +196,15 @@ double view_set_param_value(const viewer *v, const char *tech, const char *name)
 /* The desc of the viewer's renderers of a technique (--param, then the panel's values); free(*params). */
 sss_result view_renderer_desc(viewer *v, const sss_gl_technique_info *info, sss_gl_renderer_desc *d,
                               sss_gl_param_value **params, sss_error *err);
-/* A renderer of a technique with the viewer's scene, size, --param and panel parameters. */
-sss_result view_create_renderer(viewer *v, const sss_gl_technique_info *info, sss_gl_renderer **out,
-                                sss_error *err);
-/* The renderer of technique tech replaces v->r (the part switches applied); on failure v->r stays. */
+/* A renderer of a technique for `scene` (the viewer's, or an edit's being applied) with the viewer's
+ * size, --param and panel parameters, and `tables` (NULL: computed). */
+sss_result view_create_renderer(viewer *v, const sss_gl_technique_info *info, const sss_scene *scene,
+                                const sss_gl_tables *tables, sss_gl_renderer **out, sss_error *err);
+/* The renderer of technique tech for scene and tables (as view_create_renderer) replaces v->r (the part
+ * switches applied); on failure v->r stays. */
+sss_result view_make_renderer_for(viewer *v, int tech, const sss_scene *scene, const sss_gl_tables *tables,
+                                  sss_error *err);
+/* view_make_renderer_for of the viewer's own scene. */
 sss_result view_make_renderer(viewer *v, int tech, sss_error *err);
 /* view_make_renderer with the failure as a message ("technique NAME" too unless quiet). */
 void view_switch_technique(viewer *v, int tech, int quiet);
