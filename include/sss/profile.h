@@ -131,6 +131,23 @@ SSS_API double sss_profile_total(const sss_profile *p, int channel);            
  * (PBRT Sample_Sr), and fraction >= 1 gives the table's last radius. 0 for fraction <= 0 or a zero
  * profile. */
 SSS_API double sss_profile_radius_for_fraction(const sss_profile *p, int channel, double fraction);
+/* The reach of a profile: the largest radius over the three channels within which `fraction` of each
+ * channel's plane integral lies (sss_profile_radius_for_fraction), non-finite radii left out; 0 when none
+ * is finite and positive. */
+SSS_API double sss_profile_reach(const sss_profile *p, double fraction);
+
+/* A measured medium ready to evaluate (what `sss profile`, `sss lut` and `sss kernel` take): its
+ * coefficients at `scale` and `eta` (sss_material_from_medium), the PBD table for them (model PBD: built
+ * and owned here; NULL for the dipole) and the profile, which borrows the table. Release with
+ * sss_medium_profile_free (also after a failed init: out is then empty). */
+typedef struct sss_medium_profile {
+    sss_material material;
+    sss_pbd_table *table;
+    sss_profile profile;
+} sss_medium_profile;
+SSS_API sss_result sss_medium_profile_init(sss_medium_profile *out, const char *medium, double scale, double eta,
+                                           sss_profile_model model, sss_error *err);
+SSS_API void sss_medium_profile_free(sss_medium_profile *p);
 
 #ifdef __cplusplus
 }

@@ -235,6 +235,8 @@ typedef struct sss_scene_material {
     sss_material optical;              /* resolved: per scene unit, scale applied; eta, g */
     const sss_pbd_table *table;        /* borrowed from the scene's cache, built for (eta, g) */
     sss_scene_profile profile;
+    sss_profile rd;                    /* resolved by the loader: R_d(r) of `optical` under `profile`
+                                        * (sss_scene_material_profile_model) and `table`, which it borrows */
     sss_artist_params artist;          /* ARTIST: s in scene units */
     char *texture;                     /* resolved path of `texture` (checked readable), or NULL */
     const sss_image *texture_image;    /* its decoded pixels in sss_scene.textures; NULL without a

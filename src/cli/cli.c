@@ -213,29 +213,12 @@ int cli_medium_profile_init(const char *cmd, const char *medium, double scale, d
                             cli_medium_profile *out)
 {
     sss_error err = {0};
-    memset(out, 0, sizeof *out);
-    if (sss_material_from_medium(medium, scale, eta, &out->material, &err) != SSS_OK) return cli_fail(cmd, &err);
     sss_profile_model m = strcmp(model, "dipole") == 0 ? SSS_PROFILE_DIPOLE : SSS_PROFILE_PBD;
-    if (m == SSS_PROFILE_PBD) {
-        out->table = malloc(sizeof *out->table);
-        if (!out->table) return cli_failf(cmd, "out of memory for the PBD table");
-        if (sss_pbd_table_build(out->material.eta, out->material.g, out->table, &err) != SSS_OK) {
-            cli_medium_profile_free(out);
-            return cli_fail(cmd, &err);
-        }
-    }
-    if (sss_profile_init(&out->profile, m, &out->material, out->table, &err) != SSS_OK) {
-        cli_medium_profile_free(out);
-        return cli_fail(cmd, &err);
-    }
+    if (sss_medium_profile_init(out, medium, scale, eta, m, &err) != SSS_OK) return cli_fail(cmd, &err);
     return CLI_EXIT_OK;
 }
 
-void cli_medium_profile_free(cli_medium_profile *mp)
-{
-    free(mp->table);
-    mp->table = NULL;
-}
+void cli_medium_profile_free(cli_medium_profile *mp) { sss_medium_profile_free(mp); }
 
 /* ---- Option tables ------------------------------------------------------------------------------- */
 

@@ -231,11 +231,7 @@ int cli_require_extension(const char *cmd, const char *option, const char *path,
 /* The profile of a measured medium, for the commands that take MEDIUM [--scale S] [--eta E]
  * [--model pbd|dipole]; --eta's default, as PBRT-v3's subsurface material's (eta 1.33). */
 #define CLI_DEFAULT_ETA 1.33
-typedef struct cli_medium_profile {
-    sss_material material;
-    sss_pbd_table *table; /* heap-allocated for PBD, NULL for the dipole */
-    sss_profile profile;
-} cli_medium_profile;
+typedef sss_medium_profile cli_medium_profile; /* the library's (sss/profile.h) */
 
 /* model is "pbd" or "dipole" (validated by the caller). On failure prints the error as cmd's and
  * returns CLI_EXIT_ERROR (nothing to free); on success CLI_EXIT_OK. */

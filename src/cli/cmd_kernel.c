@@ -169,8 +169,7 @@ static int run_medium(const kernel_options *o)
     sss_result res = SSS_OK;
     if (strcmp(o->method, "svd") == 0) {
         double extent = o->extent;
-        if (!(extent > 0.0))
-            for (int c = 0; c < 3; c++) extent = fmax(extent, sss_profile_radius_for_fraction(p, c, 0.999));
+        if (!(extent > 0.0)) extent = sss_profile_reach(p, 0.999);
         sss_svd_kernel k;
         res = sss_kernel_svd(p, o->grid, extent, o->rank, &k, &err);
         if (res == SSS_OK) print_svd(&k);

@@ -117,8 +117,7 @@ static int profile_run(const profile_options *o)
     double r0 = o->r0, r1 = o->r1;
     if (!o->have_range) {
         r0 = 0.0;
-        r1 = 0.0;
-        for (int c = 0; c < 3; c++) r1 = fmax(r1, sss_profile_radius_for_fraction(p, c, 0.999));
+        r1 = sss_profile_reach(p, 0.999);
     }
     printf("r\tR\tG\tB\n");
     for (int k = 0; k < o->count; k++) {

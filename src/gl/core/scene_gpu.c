@@ -58,26 +58,6 @@ static int same_material(const sss_scene_material *a, const sss_scene_material *
            (a->profile != SSS_SCENE_PROFILE_ARTIST || memcmp(&a->artist, &b->artist, sizeof a->artist) == 0);
 }
 
-/* Radius within which `fraction` of every channel's plane integral of R_d lies (0 when none is finite). */
-static double profile_energy_radius(const sss_profile *prof, double fraction)
-{
-    double rm = 0.0;
-    for (int c = 0; c < 3; c++) {
-        double x = sss_profile_radius_for_fraction(prof, c, fraction);
-        if (isfinite(x) && x > rm) rm = x;
-    }
-    return rm;
-}
-
-/* The splats' reach of a material: the radius holding `fraction` of its R_d. */
-static double energy_radius(const sss_scene_material *m, double fraction)
-{
-    sss_profile prof;
-    if (sss_profile_init(&prof, sss_scene_material_profile_model(m), &m->optical, m->table, NULL) != SSS_OK)
-        return 0.0;
-    return profile_energy_radius(&prof, fraction);
-}
-
 /* The kernel LUT of a material as a cascade of `levels` tables (one array layer each): level l covers
  * r in [0, r_max / 16^l] and A in [0, pi (r_max / 16^l)^2]. One table spanning the longest channel's
  * r_max resolves areas only down to ~1e-4 A_max (sqrt axes, 512 texels): with r_max set by a weakly
@@ -87,9 +67,7 @@ static double energy_radius(const sss_scene_material *m, double fraction)
 static sss_result build_luts(const double *shared, const sss_scene_material *m, sss_lut *luts, int levels,
                              sss_error *err)
 {
-    sss_profile prof;
-    sss_result res = sss_profile_init(&prof, sss_scene_material_profile_model(m), &m->optical, m->table, err);
-    if (res != SSS_OK) return res;
+    const sss_profile *prof = &m->rd;
     sss_lut_desc d;
     memset(&d, 0, sizeof d);
     d.size = (int)shared[GL_P_LUT_SIZE];
@@ -102,14 +80,14 @@ static sss_result build_luts(const double *shared, const sss_scene_material *m, 
          * absorbing channels far inside their diffusion tail (Skimmilk red: r_max = 32 mm against an
          * e-folding length of 18 mm; the back-lit dragon lost 25% of its red). r_max is therefore the
          * larger of that rule and the radius holding `energy` of every channel's plane integral. */
-        double e = profile_energy_radius(&prof, energy);
+        double e = sss_profile_reach(prof, energy);
         if (e > rm) rm = e;
     }
     if (!(rm > 0.0) || !isfinite(rm))
         return sss_error_set(err, SSS_ERROR_NUMERIC, "no finite kernel radius for the material");
     for (int l = 0; l < levels; l++) {
         d.r_max = rm / pow(16.0, l);
-        res = sss_lut_build(&prof, &d, &luts[l], err);
+        sss_result res = sss_lut_build(prof, &d, &luts[l], err);
         if (res != SSS_OK) {
             for (int k = 0; k < l; k++) sss_lut_free(&luts[k]);
             return res;
@@ -249,7 +227,7 @@ static sss_result add_material(const gl_core *core, const sss_scene *s, gl_scene
     rec->spec[1] = (float)sm->roughness;
     rec->spec[2] = (float)c->levels;
     /* splat reach: r_max, or less when a smaller radius already holds splat_energy */
-    double reach = energy_radius(sm, core->shared[GL_P_SPLAT_ENERGY]);
+    double reach = sss_profile_reach(&sm->rd, core->shared[GL_P_SPLAT_ENERGY]);
     rec->spec[3] = (float)(reach > 0.0 && reach < gm->r_max ? reach : gm->r_max);
     for (size_t t = 0; sm->texture_image && t < s->texture_count; t++)
         if (&s->textures[t].image == sm->texture_image) rec->params[3] = (float)t; /* its layer */

@@ -63,9 +63,7 @@ static sss_result upload_tables(const gl_tech_ctx *c, mertens_state *s, sss_erro
         for (size_t i = 0; i < c->scene->object_count; i++) {
             if (c->gs->objects[i].material != mi) continue;
             const sss_scene_material *m = &c->scene->objects[i].material;
-            sss_profile prof;
-            res = sss_profile_init(&prof, sss_scene_material_profile_model(m), &m->optical, m->table, err);
-            if (res == SSS_OK) res = mertens_table_build(&prof, data + (size_t)mi * MERTENS_TABLE_FLOATS, err);
+            res = mertens_table_build(&m->rd, data + (size_t)mi * MERTENS_TABLE_FLOATS, err);
             break;
         }
     }

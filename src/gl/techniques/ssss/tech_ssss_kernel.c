@@ -39,16 +39,6 @@ void ssss_kernel_data_free(ssss_kernel_data *d)
     memset(d, 0, sizeof *d);
 }
 
-/* Largest radius holding `fraction` of a channel's plane integral. */
-static double profile_radius(const sss_profile *p, double fraction)
-{
-    double r = 0.0;
-    for (int c = 0; c < 3; c++) {
-        double x = sss_profile_radius_for_fraction(p, c, fraction);
-        if (isfinite(x) && x > r) r = x;
-    }
-    return r;
-}
 
 /* RMS width of a term's taps per channel (the sigma of the depth correction for kernels that are not
  * Gaussians): sqrt(sum |w| x^2 / sum |w|). */
@@ -71,8 +61,8 @@ static void rms_width(const float *offsets, const float *weights, int taps, doub
  * 2 pi rho R_d(rho) on rho = s_end (i / T_STEPS)^2 (dense where the PBD profile peaks). */
 static sss_result trans_from_profile(const sss_profile *p, float *row, double *s_max, sss_error *err)
 {
-    double s_end = profile_radius(p, 1.0 - 1e-6);
-    *s_max = profile_radius(p, ENERGY_RANGE);
+    double s_end = sss_profile_reach(p, 1.0 - 1e-6);
+    *s_max = sss_profile_reach(p, ENERGY_RANGE);
     if (!(s_end > 0.0) || !(*s_max > 0.0))
         return sss_error_set(err, SSS_ERROR_NUMERIC, "transmittance: the profile has no finite radius");
     double *cum = malloc(sizeof(double) * 3 * (T_STEPS + 1)); /* integral from rho_i to s_end */
@@ -294,7 +284,7 @@ static sss_result build_separable(const sss_scene_material *sm, const sss_profil
         }
     } else {
         /* guided rank-1 (Appendix A): b is given in mm^-2, the grid is in scene units */
-        double extent = profile_radius(prof, ENERGY_RANGE), scale = sm->scale > 0.0 ? sm->scale : 1.0;
+        double extent = sss_profile_reach(prof, ENERGY_RANGE), scale = sm->scale > 0.0 ? sm->scale : 1.0;
         double *a = malloc(sizeof(double) * 3 * GUIDED_GRID);
         if (!a) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "ssss: out of memory");
         res = sss_kernel_guided(prof, GUIDED_GRID, extent, o->guide_k, o->guide_b_mm * scale * scale, a, err);
@@ -353,7 +343,7 @@ static sss_result build_gauss6(const sss_scene_material *sm, const ssss_kernel_o
 
 static sss_result build_svd(const sss_profile *prof, const ssss_kernel_opts *o, material_out *m, sss_error *err)
 {
-    double extent = profile_radius(prof, ENERGY_RANGE);
+    double extent = sss_profile_reach(prof, ENERGY_RANGE);
     sss_svd_kernel k;
     sss_result res = sss_kernel_svd(prof, o->grid, extent, o->rank, &k, err);
     if (res != SSS_OK) return res;
@@ -394,12 +384,10 @@ static sss_result build_svd(const sss_profile *prof, const ssss_kernel_opts *o, 
 static sss_result build_material(const sss_scene_material *sm, const ssss_kernel_opts *o, material_out *m,
                                  sss_error *err)
 {
-    sss_profile prof;
-    sss_result res = sss_profile_init(&prof, sss_scene_material_profile_model(sm), &sm->optical, sm->table, err);
-    if (res != SSS_OK) return res;
-    if (o->variant == SSSS_VARIANT_SEPARABLE) res = build_separable(sm, &prof, o, m, err);
+    sss_result res;
+    if (o->variant == SSSS_VARIANT_SEPARABLE) res = build_separable(sm, &sm->rd, o, m, err);
     else if (o->variant == SSSS_VARIANT_GAUSS6) res = build_gauss6(sm, o, m, err);
-    else res = build_svd(&prof, o, m, err);
+    else res = build_svd(&sm->rd, o, m, err);
     if (res != SSS_OK) return res;
     /* The T(s) table is relative to T(0), the model's total reflectance (t0); the passes multiply by
      * mult afterwards, so the transmitted irradiance enters with T(0) / mult. */
