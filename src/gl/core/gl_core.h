@@ -100,7 +100,7 @@ size_t gl_frame_ubo_size(void); /* bytes of the frame block (the UBO is created 
 /* Writes the frame block (common.glsl FrameBlock) for camera c at time and keeps them in core->view. */
 void gl_frame_ubo_write(gl_core *core, const gl_camera *c, double time, double grazing_cutoff);
 
-/* ---- GPU scene (scene_gpu.c, lights.c, textures.c, tables.c) -------------------------------------- */
+/* ---- GPU scene (scene_gpu.c, lut_cascade.c, lights.c, textures.c) -------------------------------------- */
 
 sss_result gl_scene_upload(gl_core *core, sss_error *err);
 /* The material part again (records, LUT cascades) for `scene`, whose objects have the meshes, subsurface
@@ -128,7 +128,7 @@ typedef struct gl_lut_cascade {
 sss_result gl_lut_cascade_build(const double *shared, const sss_scene_material *m, gl_lut_cascade *out,
                                 sss_error *err);
 void gl_lut_cascade_free(gl_lut_cascade *c);
-/* lut_set.c: cascades computed ahead (sss_gl_tables holds one set), found by what they depend on. */
+/* lut_cascade.c: cascades computed ahead (sss_gl_tables holds one set), found by what they depend on. */
 typedef struct gl_lut_key gl_lut_key;
 typedef struct gl_lut_set {
     int count;

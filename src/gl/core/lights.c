@@ -183,16 +183,12 @@ typedef struct light_set {
     gl_light_record *lights;
     int light_count, vpl_count;
     int cube_size, map_size, cube_count, map_count;
+    int cubes_vpl, maps_env; /* of the cube and 2D maps: those of area-light VPLs, environment lights */
 } light_set;
 
-/* Light records of the scene's lights as they are now (VPLs of area lights, median-cut directions of
- * environment maps, shadow-map slots and transforms). Uploads the environment map once. */
-static sss_result light_records(gl_core *core, light_set *ls, sss_error *err)
+/* Records for every light (area lights: n_area^2 VPLs; environment maps: n_env directions). */
+static sss_result records_alloc(const sss_scene *s, int n_area, int n_env, light_set *ls, sss_error *err)
 {
-    memset(ls, 0, sizeof *ls);
-    const sss_scene *s = core->scene;
-    gl_scene *gs = &core->gs;
-    int n_area = area_grid(core), n_env = env_light_count(core);
     size_t cap = 0;
     for (size_t i = 0; i < s->light_count; i++) {
         switch (s->lights[i].type) {
@@ -202,116 +198,106 @@ static sss_result light_records(gl_core *core, light_set *ls, sss_error *err)
         }
     }
     ls->lights = calloc(cap ? cap : 1, sizeof *ls->lights);
-    if (!ls->lights) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (lights)");
-    int n = 0, cubes = 0, maps = 0, cubes_vpl = 0, maps_env = 0;
-    vec3d c = {0.5 * (gs->bounds_min[0] + gs->bounds_max[0]), 0.5 * (gs->bounds_min[1] + gs->bounds_max[1]),
-               0.5 * (gs->bounds_min[2] + gs->bounds_max[2])};
-    vec3d ext = {gs->bounds_max[0] - gs->bounds_min[0], gs->bounds_max[1] - gs->bounds_min[1],
-                 gs->bounds_max[2] - gs->bounds_min[2]};
-    double radius = 0.5 * vlen(ext);
-    if (!(radius > 0.0)) radius = 1.0;
-    for (size_t i = 0; i < s->light_count; i++) {
-        const sss_light *L = &s->lights[i];
-        if (L->type == SSS_LIGHT_AREA) {
-            vec3d u = v3(L->u), v = v3(L->v), ce = v3(L->center);
-            vec3d nrm = vnorm(vcross(u, v));
-            double area = 4.0 * vlen(vcross(u, v));
-            for (int a = 0; a < n_area; a++)
-                for (int b = 0; b < n_area; b++) {
-                    gl_light_record *g = &ls->lights[n++];
-                    double su = 2.0 * (a + 0.5) / n_area - 1.0, sv = 2.0 * (b + 0.5) / n_area - 1.0;
-                    vec3d p = vadd(ce, vadd(vscale(u, su), vscale(v, sv)));
-                    g->position[0] = (float)p.x;
-                    g->position[1] = (float)p.y;
-                    g->position[2] = (float)p.z;
-                    g->position[3] = GL_LIGHT_VPL;
-                    g->direction[0] = (float)nrm.x;
-                    g->direction[1] = (float)nrm.y;
-                    g->direction[2] = (float)nrm.z;
-                    g->direction[3] = L->two_sided ? 1.0f : 0.0f;
-                    for (int k = 0; k < 3; k++) g->color[k] = (float)(L->radiance[k] * area / (n_area * n_area));
-                    g->spot[2] = GL_SHADOW_CUBE;
-                    g->spot[3] = (float)cubes++;
-                    cubes_vpl++;
-                }
-            ls->vpl_count += n_area * n_area;
-            continue;
-        }
-        if (L->type == SSS_LIGHT_ENVIRONMENT) {
-            const struct gl_env_cache *cache = NULL;
-            sss_result res = env_cached(core, L, &cache, err);
-            /* the background shows the first map (cached first, uploaded); its rotation and scale may
-             * change after the upload (sss_gl_renderer_update_lights) */
-            if (res == SSS_OK && strcmp(gs->env_cache[0].file, L->file) == 0) {
-                gs->env_rotate_y = (float)L->rotate_y;
-                for (int k = 0; k < 3; k++) gs->env_scale[k] = (float)L->scale[k];
-            }
-            int cut = 0;
-            gl_env_light *env = res == SSS_OK ? calloc((size_t)n_env, sizeof *env) : NULL;
-            if (res == SSS_OK && !env)
-                res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (environment lights)");
-            if (res == SSS_OK)
-                res = gl_env_median_cut(cache->rgb, cache->w, cache->h, L->scale, L->rotate_y, n_env, env, &cut, err);
-            if (res != SSS_OK) {
-                free(env);
-                return res;
-            }
-            for (int k = 0; k < cut; k++) {
-                gl_light_record *g = &ls->lights[n++];
-                g->position[3] = GL_LIGHT_DIRECTIONAL;
-                g->direction[3] = GL_LIGHT_FROM_ENVIRONMENT; /* its specular comes from the map itself */
-                for (int ch = 0; ch < 3; ch++) {
-                    g->direction[ch] = (float)-env[k].to_light[ch];
-                    g->color[ch] = (float)env[k].rgb[ch];
-                }
-                g->spot[2] = GL_SHADOW_2D;
-                g->spot[3] = (float)maps++;
-                maps_env++;
-                ls->vpl_count++;
-            }
-            free(env);
-            continue;
-        }
-        gl_light_record *g = &ls->lights[n++];
-        for (int k = 0; k < 3; k++) {
-            g->position[k] = (float)L->position[k];
-            g->color[k] = (float)(L->type == SSS_LIGHT_DIRECTIONAL ? L->radiance[k] : L->intensity[k]);
-        }
-        if (L->type == SSS_LIGHT_POINT) {
-            g->position[3] = GL_LIGHT_POINT;
+    return ls->lights ? SSS_OK : sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (lights)");
+}
+
+/* An area light as n x n cosine-emitting VPLs at the cell centres, each with a cube map. */
+static void area_vpls(const sss_light *L, int n_area, light_set *ls)
+{
+    vec3d u = v3(L->u), v = v3(L->v), ce = v3(L->center);
+    vec3d nrm = vnorm(vcross(u, v));
+    double area = 4.0 * vlen(vcross(u, v));
+    for (int a = 0; a < n_area; a++)
+        for (int b = 0; b < n_area; b++) {
+            gl_light_record *g = &ls->lights[ls->light_count++];
+            double su = 2.0 * (a + 0.5) / n_area - 1.0, sv = 2.0 * (b + 0.5) / n_area - 1.0;
+            vec3d p = vadd(ce, vadd(vscale(u, su), vscale(v, sv)));
+            g->position[0] = (float)p.x;
+            g->position[1] = (float)p.y;
+            g->position[2] = (float)p.z;
+            g->position[3] = GL_LIGHT_VPL;
+            g->direction[0] = (float)nrm.x;
+            g->direction[1] = (float)nrm.y;
+            g->direction[2] = (float)nrm.z;
+            g->direction[3] = L->two_sided ? 1.0f : 0.0f;
+            for (int k = 0; k < 3; k++) g->color[k] = (float)(L->radiance[k] * area / (n_area * n_area));
             g->spot[2] = GL_SHADOW_CUBE;
-            g->spot[3] = (float)cubes++;
-        } else if (L->type == SSS_LIGHT_SPOT) {
-            g->position[3] = GL_LIGHT_SPOT;
-            vec3d axis = vnorm(vsub(v3(L->look_at), v3(L->position)));
-            g->direction[0] = (float)axis.x;
-            g->direction[1] = (float)axis.y;
-            g->direction[2] = (float)axis.z;
-            g->spot[0] = (float)cos(L->cone_angle * M_PI / 180.0);
-            g->spot[1] = (float)cos((L->cone_angle - L->cone_delta) * M_PI / 180.0);
-            /* wide cones do not fit one perspective map: use a cube */
-            if (L->cone_angle > 75.0) {
-                g->spot[2] = GL_SHADOW_CUBE;
-                g->spot[3] = (float)cubes++;
-            } else {
-                g->spot[2] = GL_SHADOW_2D;
-                g->spot[3] = (float)maps++;
-            }
-        } else {
-            g->position[3] = GL_LIGHT_DIRECTIONAL;
-            vec3d d = vnorm(v3(L->direction));
-            g->direction[0] = (float)d.x;
-            g->direction[1] = (float)d.y;
-            g->direction[2] = (float)d.z;
-            g->spot[2] = GL_SHADOW_2D;
-            g->spot[3] = (float)maps++;
+            g->spot[3] = (float)ls->cube_count++;
+            ls->cubes_vpl++;
         }
+    ls->vpl_count += n_area * n_area;
+}
+
+/* An environment map as up to n_env directional lights by median cut, each with a 2D map. */
+static sss_result environment_lights(gl_core *core, const sss_light *L, int n_env, light_set *ls, sss_error *err)
+{
+    gl_scene *gs = &core->gs;
+    const struct gl_env_cache *cache = NULL;
+    sss_result res = env_cached(core, L, &cache, err);
+    /* the background shows the first map (cached first, uploaded); its rotation and scale may
+     * change after the upload (sss_gl_renderer_update_lights) */
+    if (res == SSS_OK && strcmp(gs->env_cache[0].file, L->file) == 0) {
+        gs->env_rotate_y = (float)L->rotate_y;
+        for (int k = 0; k < 3; k++) gs->env_scale[k] = (float)L->scale[k];
     }
-    ls->light_count = n;
-    /* One size per array: full-size maps when any light needs them, else the VPL size. */
-    ls->cube_size = cubes > cubes_vpl ? (int)core->shared[GL_P_SHADOW_CUBE_SIZE] : (int)core->shared[GL_P_SHADOW_VPL_SIZE];
-    ls->map_size = maps > maps_env ? (int)core->shared[GL_P_SHADOW_2D_SIZE] : (int)core->shared[GL_P_SHADOW_VPL_SIZE];
-    /* Shadow maps must fit: array layers and memory (area lights multiply the cube maps). */
+    int cut = 0;
+    gl_env_light *env = res == SSS_OK ? calloc((size_t)n_env, sizeof *env) : NULL;
+    if (res == SSS_OK && !env) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (environment lights)");
+    if (res == SSS_OK) res = gl_env_median_cut(cache->rgb, cache->w, cache->h, L->scale, L->rotate_y, n_env, env, &cut, err);
+    for (int k = 0; res == SSS_OK && k < cut; k++) {
+        gl_light_record *g = &ls->lights[ls->light_count++];
+        g->position[3] = GL_LIGHT_DIRECTIONAL;
+        g->direction[3] = GL_LIGHT_FROM_ENVIRONMENT; /* its specular comes from the map itself */
+        for (int ch = 0; ch < 3; ch++) {
+            g->direction[ch] = (float)-env[k].to_light[ch];
+            g->color[ch] = (float)env[k].rgb[ch];
+        }
+        g->spot[2] = GL_SHADOW_2D;
+        g->spot[3] = (float)ls->map_count++;
+        ls->maps_env++;
+        ls->vpl_count++;
+    }
+    free(env);
+    return res;
+}
+
+/* A point (cube map), spot (2D map, or a cube when wider than 75 degrees) or directional light (2D). */
+static void delta_light(const sss_light *L, light_set *ls)
+{
+    gl_light_record *g = &ls->lights[ls->light_count++];
+    for (int k = 0; k < 3; k++) {
+        g->position[k] = (float)L->position[k];
+        g->color[k] = (float)(L->type == SSS_LIGHT_DIRECTIONAL ? L->radiance[k] : L->intensity[k]);
+    }
+    int cube = L->type == SSS_LIGHT_POINT || (L->type == SSS_LIGHT_SPOT && L->cone_angle > 75.0);
+    if (L->type == SSS_LIGHT_POINT) {
+        g->position[3] = GL_LIGHT_POINT;
+    } else if (L->type == SSS_LIGHT_SPOT) {
+        g->position[3] = GL_LIGHT_SPOT;
+        vec3d axis = vnorm(vsub(v3(L->look_at), v3(L->position)));
+        g->direction[0] = (float)axis.x;
+        g->direction[1] = (float)axis.y;
+        g->direction[2] = (float)axis.z;
+        g->spot[0] = (float)cos(L->cone_angle * M_PI / 180.0);
+        g->spot[1] = (float)cos((L->cone_angle - L->cone_delta) * M_PI / 180.0);
+    } else {
+        g->position[3] = GL_LIGHT_DIRECTIONAL;
+        vec3d d = vnorm(v3(L->direction));
+        g->direction[0] = (float)d.x;
+        g->direction[1] = (float)d.y;
+        g->direction[2] = (float)d.z;
+    }
+    g->spot[2] = cube ? GL_SHADOW_CUBE : GL_SHADOW_2D;
+    g->spot[3] = (float)(cube ? ls->cube_count++ : ls->map_count++);
+}
+
+/* One size per array (full-size maps when any light needs them, else the VPL size); the maps must fit
+ * the GL's array layers and 2 GB. */
+static sss_result shadow_sizes(const gl_core *core, light_set *ls, sss_error *err)
+{
+    int cubes = ls->cube_count, maps = ls->map_count;
+    ls->cube_size = (int)core->shared[cubes > ls->cubes_vpl ? GL_P_SHADOW_CUBE_SIZE : GL_P_SHADOW_VPL_SIZE];
+    ls->map_size = (int)core->shared[maps > ls->maps_env ? GL_P_SHADOW_2D_SIZE : GL_P_SHADOW_VPL_SIZE];
     GLint max_layers = 0;
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
     double shadow_mb = ((double)ls->cube_size * ls->cube_size * 24.0 * cubes +
@@ -326,31 +312,39 @@ static sss_result light_records(gl_core *core, light_set *ls, sss_error *err)
                              "the shadow maps would take %.0f MB (limit 2048 MB): lower shadow_cube_size, "
                              "shadow_size, shadow_vpl_size, area_samples or env_lights",
                              shadow_mb);
-    ls->cube_count = cubes;
-    ls->map_count = maps;
-    /* Shadow transforms */
-    for (int i = 0; i < n; i++) {
+    return SSS_OK;
+}
+
+/* Each record's shadow transform: depth range of its cube map, or the projection of its 2D map (spot:
+ * perspective along the axis; directional: orthographic over the scene's bounding sphere). */
+static void shadow_transforms(const gl_scene *gs, light_set *ls)
+{
+    vec3d c = {0.5 * (gs->bounds_min[0] + gs->bounds_max[0]), 0.5 * (gs->bounds_min[1] + gs->bounds_max[1]),
+               0.5 * (gs->bounds_min[2] + gs->bounds_max[2])};
+    vec3d ext = {gs->bounds_max[0] - gs->bounds_min[0], gs->bounds_max[1] - gs->bounds_min[1],
+                 gs->bounds_max[2] - gs->bounds_min[2]};
+    double radius = 0.5 * vlen(ext);
+    if (!(radius > 0.0)) radius = 1.0;
+    for (int i = 0; i < ls->light_count; i++) {
         gl_light_record *g = &ls->lights[i];
-        int type = (int)g->position[3];
         vec3d p = {g->position[0], g->position[1], g->position[2]};
         double far_d = vlen(vsub(p, c)) + radius;
+        float V[16], P[16];
         if (g->spot[2] == GL_SHADOW_CUBE) {
             g->shadow[0] = (float)(far_d * 1e-4);
             g->shadow[1] = (float)(far_d * 1.01);
             g->shadow[2] = (float)(2.0 / ls->cube_size);
-        } else if (type == GL_LIGHT_SPOT) {
+        } else if ((int)g->position[3] == GL_LIGHT_SPOT) {
             double cone = acos(g->spot[0]);
-            float V[16], P[16];
             look_at(p, vadd(p, (vec3d){g->direction[0], g->direction[1], g->direction[2]}), (vec3d){0, 1, 0}, V);
             m4_perspective(2.0 * cone * 1.02, far_d * 1e-4, far_d * 1.01, P);
             m4_mul(P, V, g->shadow_matrix);
             g->shadow[0] = (float)(far_d * 1e-4);
             g->shadow[1] = (float)(far_d * 1.01);
             g->shadow[2] = (float)(2.0 * tan(cone * 1.02) / ls->map_size);
-        } else { /* directional: orthographic over the scene's bounding sphere */
+        } else {
             vec3d d = {g->direction[0], g->direction[1], g->direction[2]};
             vec3d eye = vsub(c, vscale(d, 2.0 * radius));
-            float V[16], P[16];
             look_at(eye, c, (vec3d){0, 1, 0}, V);
             m4_ortho(radius * 1.01, radius * 0.9, radius * 3.1, P);
             m4_mul(P, V, g->shadow_matrix);
@@ -360,7 +354,25 @@ static sss_result light_records(gl_core *core, light_set *ls, sss_error *err)
             g->shadow[3] = 1.0f;
         }
     }
-    return SSS_OK;
+}
+
+/* Light records of the scene's lights as they are now (VPLs of area lights, median-cut directions of
+ * environment maps, shadow-map slots and transforms). Uploads the environment map once. */
+static sss_result light_records(gl_core *core, light_set *ls, sss_error *err)
+{
+    memset(ls, 0, sizeof *ls);
+    const sss_scene *s = core->scene;
+    int n_area = area_grid(core), n_env = env_light_count(core);
+    sss_result res = records_alloc(s, n_area, n_env, ls, err);
+    for (size_t i = 0; i < s->light_count && res == SSS_OK; i++) {
+        const sss_light *L = &s->lights[i];
+        if (L->type == SSS_LIGHT_AREA) area_vpls(L, n_area, ls);
+        else if (L->type == SSS_LIGHT_ENVIRONMENT) res = environment_lights(core, L, n_env, ls, err);
+        else delta_light(L, ls);
+    }
+    if (res == SSS_OK) res = shadow_sizes(core, ls, err);
+    if (res == SSS_OK) shadow_transforms(&core->gs, ls);
+    return res;
 }
 
 sss_result gl_lights_build(gl_core *core, sss_error *err)
