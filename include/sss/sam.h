@@ -12,7 +12,7 @@
  * 3.4), and the versioned .sam file (docs/sam_format.md). Optionally the links point to the vertices
  * of a lower-tessellation back-side mesh (section 4.4 and the paper's appendix; desc->backside,
  * desc->backside_triangles), which the map then carries (file version 2).
- * Does not: lighting, GL (the `sam` technique, src/gl/sam/tech_sam.c, evaluates Eq. 12 on the GPU).
+ * Does not: lighting, GL (the `sam` technique, src/gl/techniques/sam/tech_sam.c, evaluates Eq. 12 on the GPU).
  *
  * Units: positions in scene units; form factors K are dimensionless (an area times R_d): the
  * translucency of Eq. 12 is sum_k L_d(v_k) K_k with L_d = F_t E, so the exit radiance is

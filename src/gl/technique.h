@@ -15,7 +15,7 @@
  * Callbacks get a gl_tech_ctx: the GL context, the scene and its GPU upload, the frame's targets, the
  * camera, the timer, the sizes and the technique's parameters. They see nothing else of the frame, and
  * own nothing but their state. A technique that reuses another runs it through this same interface
- * (gl_sub_technique). Pieces shared by several techniques live in src/gl/shared/.
+ * (gl_sub_technique). Pieces shared by several techniques live in src/gl/common/.
  *
  * Every pass is bracketed with gl_timer_begin/end on ctx->timer and ends with
  * gl_check(ctx->gl, "<technique>: <pass>", err). Shaders are src/gl/techniques/<name>/<name>_*.glsl with

@@ -1,4 +1,4 @@
-/* GPU memory accounting (src/gl/gpu_memory.c: counted where the GL allocates and frees storage, the
+/* GPU memory accounting (src/gl/core/gpu_memory.c: counted where the GL allocates and frees storage, the
  * size read back from the GL) against independent computations from the declared render targets:
  *  - ssss (Jimenez et al. 2015, two 1D passes): its own screen-sized targets are three RGBA32F
  *    textures (the prepared signal, the horizontal pass, the sum; tech_ssss.c make_targets), so from

@@ -1,4 +1,4 @@
-/* gl/embedded.h — the GLSL sources (src/gl/shaders, src/gl/<technique>, src/view/shaders), embedded
+/* gl/embedded.h — the GLSL sources (src/gl/core/shaders, src/gl/<technique>, src/view/shaders), embedded
  * into the binary at build time (cmake/embed_files.cmake). Looked up by file name, e.g.
  * "gbuffer.vert.glsl". */
 #ifndef SSS_GL_EMBEDDED_H

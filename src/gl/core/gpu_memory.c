@@ -1,6 +1,6 @@
 /* gl/gpu_memory.c — the GPU memory of textures and buffers, counted where the GL allocates and frees it.
  *
- * gl_internal.h routes glTextureStorage2D/3D, glNamedBufferStorage, glDeleteTextures and glDeleteBuffers of
+ * gl_base.h routes glTextureStorage2D/3D, glNamedBufferStorage, glDeleteTextures and glDeleteBuffers of
  * every file that includes it through the functions below, so no allocation of the renderer, its shared
  * passes or a technique escapes the count (there is no other place where the GL is given storage).
  * Counted: objects with immutable storage (the only kind the renderer makes). The size is read back from

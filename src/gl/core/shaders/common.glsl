@@ -1,5 +1,5 @@
 // common.glsl — declarations shared by every shader of the renderer: the frame uniform block, the
-// object / material / light records (mirrors gl_internal.h), Fresnel, the animation deformation of
+// object / material / light records (mirrors gl_base.h), Fresnel, the animation deformation of
 // sss/scene.h, the disc-integrated kernel LUT (Maisch & Ropinski 2020, Eq. 5) and light evaluation with shadows.
 
 const float PI = 3.14159265358979;

@@ -1,9 +1,9 @@
 /* gl/tech_chen2012.c — multiresolution splatting from a translucent shadow map (Chen, Peers, Zhang &
  * Tong 2012) as Maisch & Ropinski 2020 configure it for its comparisons (section 8): per light an irradiance buffer
  * of 2048 x 2048 texels rendered from the light's view (positions, normals, transmitted irradiance;
- * shared/tsm.h) with 3 mip levels; splats are selected from it, one per texel of the level
+ * common/tsm.h) with 3 mip levels; splats are selected from it, one per texel of the level
  * chosen by the splat's required radius (chen2012_select.comp.glsl), and splatted additively into the
- * camera view through the multi-resolution receiver pyramid shared with dss (shared/shells.h),
+ * camera view through the multi-resolution receiver pyramid shared with dss (common/shells.h),
  * with the profile at the splat centre (default, as the paper) or the disc-integrated R'_d(r, A).
  *
  * Several lights: one buffer, reused light after light (the splats of all lights are collected, then
@@ -24,8 +24,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "gl/shared/tsm.h"
-#include "gl/shared/shells.h"
+#include "gl/common/tsm.h"
+#include "gl/common/shells.h"
 
 /* eval_skin_env (384^2, 32 directions + a point light), DSSIM / ms per frame on llvmpipe in one run:
      * 128: 0.0213 / 18.8 s, 256: 0.0202 / 35.4 s, 512: 0.0198 / 91.9 s, 1024: 0.0200 / 101 s,
@@ -51,7 +51,7 @@ GL_PARAM_STRUCT(chen2012_params, CHEN2012_PARAMS);
 
 static const sss_gl_param_info params[] = {CHEN2012_PARAMS(GL_PARAM_INFO)};
 
-/* One light-view irradiance buffer (shared/tsm.h) with its mip levels. */
+/* One light-view irradiance buffer (common/tsm.h) with its mip levels. */
 typedef struct chen_tsm {
     GLuint tex_pos, tex_irr, tex_nrm, tex_depth, fbo;
     int size, levels;

@@ -2,7 +2,7 @@
  * configures it for its comparisons (sections 5 and 8): splats from every triangle of the
  * low-resolution splat mesh, tessellated by camera distance and area (a compute pass subdivides large
  * triangles into sub-surfels instead of the hardware tessellator), splatted additively into a
- * multi-resolution G-buffer with l_max = 3 levels and epsilon = 0.1 (tech_dss_shells.h), no view-based
+ * multi-resolution G-buffer with l_max = 3 levels and epsilon = 0.1 (common/shells.h), no view-based
  * culling, only irradiance culling. Surfels the camera sees are moved from the splat mesh's chords onto
  * the rendered surface (surface_snap, dss_generate.comp.glsl): DSS tessellates the rendered geometry,
  * and the chords of a coarse splat mesh lie farther from it than short kernels reach. A surfel's kernel
@@ -13,7 +13,7 @@
  * "receivers" (the pyramid), "splatting" (all levels), "resolve" (upsampling, sum, exit factor). */
 #include <string.h>
 
-#include "gl/shared/shells.h"
+#include "gl/common/shells.h"
 
 #define DSS_PARAMS(X) \
     X(levels, SSS_GL_PARAM_INT, 3, 1, SHELL_MAX_LEVELS, "levels of the multi-resolution G-buffer, l_max (Maisch & Ropinski 2020, section 8: 3)") \

@@ -2,7 +2,7 @@
 // Mertens et al. 2003, sections 6.1 and 3: the interleaved pattern x pattern block is recombined by a box blur
 // over the pixels of the same object whose normals agree (a discontinuity-aware blur: the block's
 // pixels used disjoint strata of the sample sets), then L = reflected + c_o sqrt(albedo) B(x_o)
-// (Eq. 3 with docs/physics.md §1's normalisation; shared/resolve.glsl).
+// (Eq. 3 with docs/physics.md §1's normalisation; common/resolve.glsl).
 #include "common.glsl"
 #include "resolve.glsl"
 

@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gl/shared/tsm.h"
+#include "gl/common/tsm.h"
 #include "gl/techniques/mertens2003/tech_mertens2003.h"
 
 #define MAX_VIEWS 4

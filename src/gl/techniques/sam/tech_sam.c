@@ -386,7 +386,7 @@ static sss_result pass_raster(const gl_tech_ctx *c, sam_state *s, sss_error *err
     glViewport(0, 0, s->w, s->h);
     const float zero[4] = {0, 0, 0, 0};
     glClearBufferfv(GL_COLOR, 0, zero);
-    glClearBufferfv(GL_DEPTH, 0, zero); /* reversed Z, as the G-buffer (gl_internal.h) */
+    glClearBufferfv(GL_DEPTH, 0, zero); /* reversed Z, as the G-buffer (core/gl_base.h) */
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_GREATER);

@@ -6,7 +6,7 @@
 #include "gl/technique.h"
 #include "sss/sam.h"
 
-/* Binding points of src/gl/sam/sam_vertex.comp.glsl (10..19; the shared ones are 0..9). */
+/* Binding points of src/gl/techniques/sam/sam_vertex.comp.glsl (10..19; the shared ones are 0..9). */
 enum {
     SAM_SSBO_TOPO = 10,
     SAM_SSBO_GEOM = 11,

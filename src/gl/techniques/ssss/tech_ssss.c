@@ -5,7 +5,7 @@
  *   ssss-svd     the rank-N SVD of the discretised profile (Jimenez et al. 2019, section 3): 2N 1D passes.
  * Passes after the shared G-buffer, shadows and illumination: (1) prepare: the transmitted irradiance
  * plus the transmittance through thin parts (Jimenez et al. 2010 from the shadow maps) and the object
- * mask; (2) per separable term a horizontal and a vertical pass (src/gl/ssss/ssss_blur.frag.glsl: screen
+ * mask; (2) per separable term a horizontal and a vertical pass (src/gl/techniques/ssss/ssss_blur.frag.glsl: screen
  * projection of world-space tap offsets, depth correction of Eq. 7, stochastic rotation of section 6),
  * the vertical ones summed additively; (3) combine: c_o sqrt(albedo) x total reflectance x the sum.
  * The kernels are built on the CPU once per parameter set (tech_ssss_kernel.c). */

@@ -2,7 +2,7 @@
  * tech_ssss.c (GL passes, technique entries ssss, ssss-gauss6, ssss-svd) and tech_ssss_kernel.c (the
  * per-material kernel data: 1D taps of every separable term, transmittance profiles T(s)).
  *
- * Kernel block (one SSBO of vec4, binding SSSS_SSBO_BINDING, read by src/gl/ssss/ssss_blur.frag.glsl
+ * Kernel block (one SSBO of vec4, binding SSSS_SSBO_BINDING, read by src/gl/techniques/ssss/ssss_blur.frag.glsl
  * and ssss_combine.frag.glsl):
  *   [0]                 (terms T, material count, 0, 0)
  *   material m, base b = 1 + m (SSSS_MAT_VEC4 + 2 T):

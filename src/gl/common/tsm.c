@@ -1,9 +1,9 @@
-/* gl/shared/tsm.c — light-view G-buffers (see tsm.h). */
+/* gl/common/tsm.c — light-view G-buffers (see tsm.h). */
 #include <math.h>
 #include <string.h>
 
 #include "core/vecmath.h"
-#include "gl/shared/tsm.h"
+#include "gl/common/tsm.h"
 
 static void grow(double lo[3], double hi[3], const double p[3])
 {

@@ -3,7 +3,7 @@
 // F_t E A R_d(|x_i - x_o|) (or the disc-integrated R'_d(r, A) of Maisch & Ropinski 2020, Eq. 5 with
 // u_preintegrated), for receivers on the splat's object whose distance lies in this level's shell.
 // Additive blending accumulates all splats (no depth test).
-// FINE, the render-resolution level (k > 1; tech_dss_shells.h): level 0 already holds every splat
+// FINE, the render-resolution level (k > 1; common/shells.h): level 0 already holds every splat
 // within its shell at the level-0 receiver R_o that stands for this pixel x (r_link), so a splat c
 // near x moves part of its transport from R_o to x itself: w(|x - c|) K(|x - c|) - w(|R_o - c|)
 // K(|R_o - c|), w = 1 - smoothstep(0, D, .) (v_shell.y = D). The output pixel's render pixels then

@@ -1,4 +1,4 @@
-/* gl/shared/tsm.h — light-view G-buffers ("translucent shadow maps", Dachsbacher & Stamminger
+/* gl/common/tsm.h — light-view G-buffers ("translucent shadow maps", Dachsbacher & Stamminger
  * 2003) shared by chen2012 (its irradiance buffer, Maisch & Ropinski 2020, section 8) and mertens2003 (the light-view
  * irradiance image of Mertens et al. 2003, section 7.1).
  *
@@ -10,8 +10,8 @@
  *   pos: RGBA32F xyz world position, w the surface area of the texel (0: not subsurface),
  *   irr: RGBA32F rgb F_t E of this one light with sqrt(albedo), w object id + 1,
  *   nrm: RGBA32F xyz shading normal, w object id + 1. */
-#ifndef SSS_GL_SHARED_TSM_H
-#define SSS_GL_SHARED_TSM_H
+#ifndef SSS_GL_COMMON_TSM_H
+#define SSS_GL_COMMON_TSM_H
 
 #include "gl/technique.h"
 

@@ -1,4 +1,4 @@
-// The last pass of a technique (shared/): frame.final = reflected light, plus at subsurface pixels
+// The last pass of a technique (common/): frame.final = reflected light, plus at subsurface pixels
 // c_o sqrt(albedo) times the technique's subsurface light, c_o = F_t(x_o, w_o) / (pi c) (docs/physics.md §1).
 // The including shader includes this file after common.glsl, then defines
 //     vec3 subsurface_light(ivec2 px)

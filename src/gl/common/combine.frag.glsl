@@ -1,6 +1,6 @@
 #version 450 core
 // Maisch & Ropinski 2020, pass 7 (maisch2020; sam without a surface technique): the screen-space sum plus
-// the upsampled translucency, each when used (shared/resolve.glsl adds the reflected light and c_o
+// the upsampled translucency, each when used (common/resolve.glsl adds the reflected light and c_o
 // sqrt(albedo)).
 #include "common.glsl"
 #include "resolve.glsl"

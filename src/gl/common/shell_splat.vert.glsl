@@ -5,7 +5,7 @@
 // D_l = 2^l p / epsilon (p: the world size of an output pixel, u_base = k render pixels, at the
 // splat's depth: the pyramid counts output pixels, so supersampling keeps the shells), the last shell
 // reaching the kernel's reach (materials' spec.w); u_shell holds the radii in output pixels
-// (tech_dss_shells.c, which also sets the render-resolution level's [0, fine_radius)). No view-based
+// (common/shells.c, which also sets the render-resolution level's [0, fine_radius)). No view-based
 // culling.
 #include "common.glsl"
 
@@ -16,7 +16,7 @@ struct Splat {
 };
 layout(std430, binding = 4) readonly buffer SplatBlock { Splat splats[]; };
 
-uniform vec2 u_shell; // inner and outer radius in output pixels (tech_dss_shells.c: shell_splat)
+uniform vec2 u_shell; // inner and outer radius in output pixels (common/shells.c: shell_splat)
 uniform int u_last;   // the last shell: the outer radius is the kernel's reach
 uniform float u_outer0; // level 0's outer radius in output pixels (for the fine level), < 0: the reach
 uniform float u_margin; // the fine level: its quad reaches this many output pixels beyond D (shell_splat.frag.glsl)

@@ -1,7 +1,7 @@
 #version 450 core
-// Resolve of the shell splatting (dss, chen2012; shared/shells.h): every level of the receiver
+// Resolve of the shell splatting (dss, chen2012; common/shells.h): every level of the receiver
 // pyramid upsampled bilinearly (normalised by the filtered validity in alpha, so silhouettes do not
-// darken) and summed (shared/resolve.glsl adds the reflected light and c_o sqrt(albedo)). Level l's texels are u_base 2^l render pixels wide (u_base: the SSAA factor k).
+// darken) and summed (common/resolve.glsl adds the reflected light and c_o sqrt(albedo)). Level l's texels are u_base 2^l render pixels wide (u_base: the SSAA factor k).
 // Level 0 holds the near field, the sharpest part of the transport, and is not interpolated: at k = 1
 // it is read per pixel; at k > 1 a render pixel takes the level-0 value of one receiver on its surface
 // (shell_level0.glsl). With u_fine the render-resolution level adds, per render pixel, its own transport

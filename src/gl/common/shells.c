@@ -1,8 +1,8 @@
-/* gl/shared/shells.c — multi-resolution shell splatting (see shells.h). */
+/* gl/common/shells.c — multi-resolution shell splatting (see shells.h). */
 #include <math.h>
 #include <string.h>
 
-#include "gl/shared/shells.h"
+#include "gl/common/shells.h"
 
 sss_result shell_create(shell_targets *s, sss_error *err)
 {

@@ -1,4 +1,4 @@
-// Level 0 of the shell pyramid (tech_dss_shells.h) at k = u_base > 1 render pixels per texel: which
+// Level 0 of the shell pyramid (common/shells.h) at k = u_base > 1 render pixels per texel: which
 // level-0 receiver stands for render pixel px (position P, normal N, object id + 1). Its own output
 // pixel's when that receiver lies on the pixel's surface, else the nearest of the 3 x 3 output pixels
 // around whose receiver does (same object, within an output pixel of the pixel's tangent plane), so an

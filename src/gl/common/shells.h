@@ -1,4 +1,4 @@
-/* gl/shared/shells.h — multi-resolution additive splatting into the camera view ("shell
+/* gl/common/shells.h — multi-resolution additive splatting into the camera view ("shell
  * splatting", Nalbach et al. 2014), shared by dss and chen2012.
  *
  * The camera's receivers live in a pyramid of `levels` G-buffers: level l is (W / 2^l) x (H / 2^l) of
@@ -33,8 +33,8 @@
  *
  * Splat records are maisch2020's (48 bytes): centre + area, normal + object id + 1, F_t E + disc
  * radius (chen2012) or the surfel lattice's spacing h (dss, whose footprint it sizes); the draw count is the instance count of a DrawArraysIndirect command (4, n, 0, 0). */
-#ifndef SSS_GL_SHARED_SHELLS_H
-#define SSS_GL_SHARED_SHELLS_H
+#ifndef SSS_GL_COMMON_SHELLS_H
+#define SSS_GL_COMMON_SHELLS_H
 
 #include "gl/technique.h"
 

@@ -1,5 +1,5 @@
 #version 450 core
-// Receivers of the shell-splatting pyramid (dss, chen2012; tech_dss_shells.h). A texel of level l
+// Receivers of the shell-splatting pyramid (dss, chen2012; common/shells.h). A texel of level l
 // stands for 2^l x 2^l output pixels, u_divisor = k 2^l render pixels (k = u_base, the SSAA factor).
 // Its receiver is the one the k = 1 pyramid takes, the surface point seen at the centre of the output
 // pixel at the middle of its block (maisch2020_receivers.frag.glsl: the block's centre pixel), so
