@@ -400,8 +400,10 @@ sss_result view_check_outputs(const viewer *v, const char *const *paths, size_t 
     return res;
 }
 
-sss_result view_save_screenshot(const viewer *v, const char *path, sss_error *err)
+sss_result view_save_screenshot(const viewer *v, const char *path, int whole_window, sss_error *err)
 {
     sss_result res = view_check_outputs(v, &path, 1, err);
-    return res == SSS_OK ? view_gl_screenshot(v->width, v->height, path, err) : res;
+    if (res != SSS_OK) return res;
+    return whole_window ? view_gl_screenshot(v->win_width, v->win_height, path, err)
+                        : view_gl_screenshot(v->width, v->height, path, err);
 }

@@ -175,11 +175,38 @@ sss_result view_cmd_split(viewer *v, const char *what, double position, sss_erro
     return SSS_OK;
 }
 
-void view_cmd_errormap(viewer *v, int on)
+void view_cmd_errormap(viewer *v, int on, double range)
 {
     v->errormap = on;
+    if (range > 0.0) v->error_range = range;
     v->composed_gen = 0;
+    v->error_reported = 0;
     if (on && !v->ref && !v->job) view_request_reference(v, v->desc->reference_draft);
+}
+
+sss_result view_cmd_panel(viewer *v, const char *op, int section, double width, sss_error *err)
+{
+    if (strcmp(op, "on") == 0 || strcmp(op, "off") == 0) {
+        v->overlay = strcmp(op, "on") == 0;
+        return SSS_OK;
+    }
+    if (!v->panel)
+        return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "panel %s: the panel did not start (the text overlay "
+                             "stands in; it has no sections)", op);
+    if (strcmp(op, "width") == 0) {
+        if (!(width >= VIEW_PANEL_MIN_WIDTH && width <= VIEW_PANEL_MAX_WIDTH))
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "panel width %g: not in %d..%d", width,
+                                 VIEW_PANEL_MIN_WIDTH, VIEW_PANEL_MAX_WIDTH);
+        v->panel_want = width; /* the loop lays the window out again (viewer.c) */
+        return SSS_OK;
+    }
+    int code = strcmp(op, "open") == 0 ? VIEW_SECTION_OPEN : strcmp(op, "close") == 0 ? VIEW_SECTION_CLOSE
+             : strcmp(op, "scroll") == 0 ? VIEW_SECTION_SCROLL : 0;
+    if (!code || section < 0 || section >= VIEW_PANEL_SECTION_COUNT)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "panel: no action '%s' on section %d", op, section);
+    v->panel_section = section;
+    v->panel_op = code;
+    return SSS_OK;
 }
 
 void view_cmd_reference(viewer *v, int draft) { view_request_reference(v, draft || v->desc->reference_draft); }
@@ -198,8 +225,8 @@ sss_result view_cmd_run(viewer *v, const view_command *c, sss_error *err)
     case VIEW_CMD_LIGHT: return view_cmd_light(v, c->index, c->name, c->values, c->value_count, err);
     case VIEW_CMD_BUFFER: return view_cmd_buffer(v, c->index, err);
     case VIEW_CMD_SPLIT: return view_cmd_split(v, c->name, c->values[0], err);
-    case VIEW_CMD_ERRORMAP: view_cmd_errormap(v, c->index); return SSS_OK;
-    case VIEW_CMD_PANEL: v->overlay = c->index; return SSS_OK;
+    case VIEW_CMD_ERRORMAP: view_cmd_errormap(v, c->index, c->value_count ? c->values[0] : 0.0); return SSS_OK;
+    case VIEW_CMD_PANEL: return view_cmd_panel(v, c->name, c->index, c->values[0], err);
     case VIEW_CMD_REFERENCE: view_cmd_reference(v, c->index); return SSS_OK;
     case VIEW_CMD_KEY: /* input events: the loop hands them to input.c, which comes back here */
     case VIEW_CMD_FRAMES:

@@ -109,7 +109,7 @@ static void on_cursor(GLFWwindow *w, double x, double y)
     /* cursor positions are in window coordinates; pan needs framebuffer pixels */
     int ww = 1, wh = 1;
     glfwGetWindowSize(w, &ww, &wh);
-    double sx = ww > 0 ? (double)v->width / ww : 1.0, sy = wh > 0 ? (double)v->height / wh : 1.0;
+    double sx = ww > 0 ? (double)v->win_width / ww : 1.0, sy = wh > 0 ? (double)v->win_height / wh : 1.0;
     double dx = (x - v->mouse_x) * sx, dy = (y - v->mouse_y) * sy;
     v->mouse_x = x;
     v->mouse_y = y;

@@ -1,6 +1,8 @@
 /* view/overlay_text.c — the overlay's text as quads on the CPU with stb_easy_font (a bitmap font made
  * of rectangles: no texture, 6 x 12 pixels per character), behind them one darkened rectangle so the
- * text stays readable on any image. Drawn by overlay.c with a tiny shader. */
+ * text stays readable on any image. Drawn by view_gl.c with a tiny shader, or painted into an image
+ * (the split view's labels and divider, the error map's ticks: compose.c). */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -83,6 +85,51 @@ sss_result view_text_build(view_text *t, const char *text, float x, float y, flo
     free(buf);
     free(clean);
     return res;
+}
+
+float view_text_block_width(const char *text)
+{
+    char *clean = view_dup_str(text);
+    if (!clean) return 0.0f;
+    for (char *c = clean; *c; c++)
+        if ((unsigned char)*c < 32 || (unsigned char)*c > 126) *c = '?';
+    float w = (float)stb_easy_font_width(clean) + 2.0f * PAD;
+    free(clean);
+    return w;
+}
+
+sss_result view_text_rect(view_text *t, float x0, float y0, float x1, float y1, const unsigned char rgba[4],
+                          sss_error *err)
+{
+    sss_result res = reserve(t, 1, err);
+    if (res == SSS_OK) put_quad(t, x0, y0, x1, y1, rgba);
+    return res;
+}
+
+/* The pixels whose centres lie in [a, b), clipped to [0, n). */
+static void covered(float a, float b, int n, int *first, int *end)
+{
+    double f = ceil((double)a - 0.5), e = ceil((double)b - 0.5);
+    *first = f < 0.0 ? 0 : f > n ? n : (int)f;
+    *end = e < 0.0 ? 0 : e > n ? n : (int)e;
+}
+
+void view_text_paint(const view_text *t, sss_image *img, double exposure)
+{
+    double unit = exp2(-exposure); /* linear value that the tone map shows as 1 */
+    for (int q = 0; q < t->quads; q++) {
+        const view_text_vertex *v = &t->vertices[4 * q];
+        int x0, x1, y0, y1;
+        covered(fminf(v[0].x, v[2].x), fmaxf(v[0].x, v[2].x), img->width, &x0, &x1);
+        covered(fminf(v[0].y, v[2].y), fmaxf(v[0].y, v[2].y), img->height, &y0, &y1);
+        float a = v[0].rgba[3] / 255.0f, c[3];
+        for (int k = 0; k < 3; k++) c[k] = (float)(sss_srgb_decode(v[0].rgba[k] / 255.0) * unit);
+        for (int y = y0; y < y1; y++)
+            for (int x = x0; x < x1; x++) {
+                float *p = img->pixels + 3 * ((size_t)y * (size_t)img->width + (size_t)x);
+                for (int k = 0; k < 3; k++) p[k] = (1.0f - a) * p[k] + a * c[k];
+            }
+    }
 }
 
 void view_text_free(view_text *t)

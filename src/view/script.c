@@ -22,6 +22,20 @@
 const char *const view_material_fields[VIEW_MATERIAL_FIELD_COUNT] = {"medium", "scale", "eta",     "g",
                                                                     "sigma_a", "sigma_s", "reflectance", "mfp"};
 
+const char *const view_panel_sections[VIEW_PANEL_SECTION_COUNT] = {"Technique", "View",       "Parameters", "Materials",
+                                                                   "Lights",    "Frame time", "Keys"};
+
+int view_panel_section_find(const char *s)
+{
+    for (int i = 0; i < VIEW_PANEL_SECTION_COUNT; i++) {
+        const char *n = view_panel_sections[i], *p = s;
+        while (*n && *p && (tolower((unsigned char)*n) == tolower((unsigned char)*p) || (*n == ' ' && (*p == '_' || *p == '-'))))
+            n++, p++;
+        if (!*n && !*p) return i;
+    }
+    return -1;
+}
+
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 4)))
 #endif
@@ -149,6 +163,43 @@ static int parse_switch(char **w, int n, view_command *c, char *why, size_t cap)
 {
     if (n != 2 || (strcmp(w[1], "on") && strcmp(w[1], "off"))) return bad(why, cap, "%s: expected 'on' or 'off'", w[0]);
     c->index = strcmp(w[1], "on") == 0;
+    snprintf(c->name, sizeof c->name, "%s", w[1]);
+    return 1;
+}
+
+/* errormap on [RANGE] | off */
+static int parse_errormap(char **w, int n, view_command *c, char *why, size_t cap)
+{
+    if (n == 3 && strcmp(w[1], "on") == 0) {
+        if (!parse_number(w[2], &c->values[0]) || !(c->values[0] > 0.0 && c->values[0] <= 1.0))
+            return bad(why, cap, "errormap on: range '%s' must be a DSSIM in (0, 1]", w[2]);
+        c->index = 1;
+        c->value_count = 1;
+        return 1;
+    }
+    if (n != 2) return bad(why, cap, "errormap: expected 'errormap on [RANGE]' or 'errormap off'");
+    return parse_switch(w, n, c, why, cap);
+}
+
+/* panel on | off | open SECTION | close SECTION | scroll SECTION | width PIXELS */
+static int parse_panel(char **w, int n, view_command *c, char *why, size_t cap)
+{
+    if (n == 2) return parse_switch(w, n, c, why, cap);
+    if (n != 3) return bad(why, cap, "panel: expected 'panel on|off', 'panel open|close|scroll SECTION' or 'panel width PIXELS'");
+    snprintf(c->name, sizeof c->name, "%s", w[1]);
+    if (strcmp(w[1], "width") == 0) {
+        if (!parse_index(w[2], &c->index) || c->index < VIEW_PANEL_MIN_WIDTH || c->index > VIEW_PANEL_MAX_WIDTH)
+            return bad(why, cap, "panel width: '%s' must be a whole number of pixels in %d..%d", w[2],
+                       VIEW_PANEL_MIN_WIDTH, VIEW_PANEL_MAX_WIDTH);
+        c->values[0] = c->index;
+        c->value_count = 1;
+        return 1;
+    }
+    if (strcmp(w[1], "open") && strcmp(w[1], "close") && strcmp(w[1], "scroll"))
+        return bad(why, cap, "panel: unknown action '%s' (on, off, open, close, scroll, width)", w[1]);
+    if ((c->index = view_panel_section_find(w[2])) < 0)
+        return bad(why, cap, "panel %s: unknown section '%s' (Technique, View, Parameters, Materials, Lights, "
+                   "Frame_time, Keys)", w[1], w[2]);
     return 1;
 }
 
@@ -203,8 +254,8 @@ static int parse_words(char **w, int n, view_command *c, char *why, size_t cap)
     if (strcmp(verb, "material") == 0) return c->kind = VIEW_CMD_MATERIAL, parse_material(w, n, c, why, cap);
     if (strcmp(verb, "light") == 0) return c->kind = VIEW_CMD_LIGHT, parse_light(w, n, c, why, cap);
     if (strcmp(verb, "split") == 0) return c->kind = VIEW_CMD_SPLIT, parse_split(w, n, c, why, cap);
-    if (strcmp(verb, "errormap") == 0) return c->kind = VIEW_CMD_ERRORMAP, parse_switch(w, n, c, why, cap);
-    if (strcmp(verb, "panel") == 0) return c->kind = VIEW_CMD_PANEL, parse_switch(w, n, c, why, cap);
+    if (strcmp(verb, "errormap") == 0) return c->kind = VIEW_CMD_ERRORMAP, parse_errormap(w, n, c, why, cap);
+    if (strcmp(verb, "panel") == 0) return c->kind = VIEW_CMD_PANEL, parse_panel(w, n, c, why, cap);
     if (strcmp(verb, "buffer") == 0) return c->kind = VIEW_CMD_BUFFER, parse_buffer(w, n, c, why, cap);
     if (strcmp(verb, "reference") == 0) {
         c->kind = VIEW_CMD_REFERENCE;

@@ -18,8 +18,9 @@ typedef enum view_command_kind {
     VIEW_CMD_LIGHT,      /* index: lights[index], name: position | intensity | colour, values */
     VIEW_CMD_BUFFER,     /* name: one of view_buffer_names */
     VIEW_CMD_SPLIT,      /* name: "off", "reference" or a technique; values[0]: wipe position (0, 1) */
-    VIEW_CMD_ERRORMAP,   /* index: 1 on, 0 off */
-    VIEW_CMD_PANEL,      /* index: 1 shown, 0 hidden */
+    VIEW_CMD_ERRORMAP,   /* index: 1 on, 0 off; values[0]: the colour bar's range (0: unchanged) */
+    VIEW_CMD_PANEL,      /* name: "on" | "off" (index 1 | 0), "open" | "close" | "scroll" (index: the
+                            section in view_panel_sections), "width" (values[0]: pixels) */
     VIEW_CMD_REFERENCE,  /* index: 1 draft, 0 final */
     VIEW_CMD_KEY,        /* name: an input event of --input (keys, orbit:DX:DY, pan:DX:DY, zoom:STEPS) */
     VIEW_CMD_FRAMES,     /* index: frames to render */
@@ -47,6 +48,14 @@ typedef struct view_script {
 /* The material fields a script or the panel may set (VIEW_CMD_MATERIAL name). */
 #define VIEW_MATERIAL_FIELD_COUNT 8
 extern const char *const view_material_fields[VIEW_MATERIAL_FIELD_COUNT];
+
+/* The panel's sections, top to bottom (`panel open|close|scroll SECTION`: names match without regard
+ * to case, '_' or '-' standing for a blank). */
+#define VIEW_PANEL_SECTION_COUNT 7
+extern const char *const view_panel_sections[VIEW_PANEL_SECTION_COUNT];
+/* The section named s (as above), or -1. */
+int view_panel_section_find(const char *s);
+#define VIEW_PANEL_MAX_WIDTH 4096 /* `panel width` (pixels; the window's layout may give it less) */
 
 /* One line (no newline). Returns 1 with *out filled, 0 for a blank or comment line (# ...), -1 when
  * the line is wrong: why receives the problem (without the file and line). */

@@ -131,18 +131,51 @@ void view_ref_cache_free(view_ref_cache *c);
 
 /* ---- Split view and error map (compose.c) ------------------------------------------------------ */
 
-/* A wipe: columns x < round(position * width) from left, the others from right (same size, linear RGB);
- * out is (re)allocated. */
-sss_result view_compose_split(const sss_image *left, const sss_image *right, double position, sss_image *out,
-                              sss_error *err);
+/* A wipe: columns x < cut = round(position * width) from left, the others from right (same size,
+ * linear RGB), with a divider (VIEW_DIVIDER_WIDTH columns centred on the cut: white, edged in black so
+ * it shows on white and black) and each side's label in a shaded box in its top corner (left label
+ * top left, right label top right; shortened to fit its side, left out below 3 characters or on
+ * images under 32 rows). Drawn to show white after the viewer's tone map at exposure. out is
+ * (re)allocated. */
+#define VIEW_DIVIDER_WIDTH 4
+sss_result view_compose_split(const sss_image *left, const sss_image *right, double position, const char *left_label,
+                              const char *right_label, double exposure, sss_image *out, sss_error *err);
 /* The colour of value in [0, 1] on the error map's scale (inferno, sRGB control points, returned
  * linear); values outside are clamped, NaN is black. */
 void view_error_colour(double value, float rgb[3]);
-/* A per-pixel error map (the mean of dssim_map's channels) in colours, the range [0, *range] chosen
- * as the smallest 1-2-5 step >= the largest value (at least 0.01), and a colour bar along the bottom
- * (VIEW_COLOUR_BAR_HEIGHT rows above a 1-row black rule; low values left). out is (re)allocated. */
+/* A per-pixel error map (the mean of dssim_map's channels) in colours over the fixed range [0, range]
+ * (values above show the top colour), and a colour bar along the bottom: VIEW_COLOUR_BAR_HEIGHT rows
+ * (low values left) under a 1-row black rule, with ticks (white marks VIEW_TICK_HEIGHT rows up from
+ * the rule) at 5, 3 or 2 evenly spaced values, the most whose labels fit side by side, and, on images
+ * of VIEW_TICK_LABEL_MIN_HEIGHT rows or more, the values as text above them (the last one followed
+ * by " DSSIM" when it fits). out is (re)allocated. */
 #define VIEW_COLOUR_BAR_HEIGHT 8
-sss_result view_error_map(const sss_image *dssim_map, sss_image *out, double *range, sss_error *err);
+#define VIEW_TICK_HEIGHT 4
+#define VIEW_TICK_LABEL_MIN_HEIGHT 96
+#define VIEW_ERROR_RANGE_DEFAULT 0.2
+sss_result view_error_map(const sss_image *dssim_map, double range, sss_image *out, sss_error *err);
+/* The ticks of a colour bar `width` pixels wide over [0, range]: their count (5, 3 or 2), each one's
+ * column (x[k] = round(k / (count - 1) * (width - 1))) and label ("%g" of its value; the last one
+ * with " DSSIM" when unit is set and it fits). Labels of text width (view_text_block_width) must not
+ * overlap: the first is left-aligned at 0, the last right-aligned at width, the others centred. */
+#define VIEW_MAX_TICKS 5
+typedef struct view_ticks {
+    int count;
+    int x[VIEW_MAX_TICKS];
+    char label[VIEW_MAX_TICKS][24];
+    float label_x[VIEW_MAX_TICKS]; /* left edge of each label's box */
+} view_ticks;
+void view_colour_bar_ticks(int width, double range, int unit, view_ticks *out);
+
+/* ---- The window's layout (layout.c) ----------------------------------------------------------- */
+
+/* The panel is docked at the right of the window, beside the image (never over it): the image is
+ * the window minus the panel, and the renderer renders at the image's size. */
+#define VIEW_PANEL_MIN_WIDTH 160 /* framebuffer pixels */
+#define VIEW_IMAGE_MIN_WIDTH 64
+/* The panel's width in a window win_width pixels wide: 0 when it is not shown, else want clamped to
+ * [VIEW_PANEL_MIN_WIDTH, win_width - VIEW_IMAGE_MIN_WIDTH] (the image keeps its minimum first). */
+int view_dock_width(int win_width, double want, int shown);
 
 /* ---- Overlay text geometry (overlay_text.c) --------------------------------------------------- */
 
@@ -160,6 +193,16 @@ typedef struct view_text {
 /* Appends the quads of a multi-line text at (x, y) pixels, with a darkened background rectangle behind
  * the block; scale multiplies the 6 x 12 pixel font of stb_easy_font. */
 sss_result view_text_build(view_text *t, const char *text, float x, float y, float scale, sss_error *err);
+/* The width of view_text_build's block of a one-line text at scale 1 (the text and its padding). */
+float view_text_block_width(const char *text);
+#define VIEW_TEXT_BLOCK_HEIGHT 20.0f /* of one line at scale 1: 12 rows of text and the padding */
+/* Appends one filled rectangle [x0, x1) x [y0, y1) in pixels of colour rgba (sRGB 8-bit, alpha). */
+sss_result view_text_rect(view_text *t, float x0, float y0, float x1, float y1, const unsigned char rgba[4],
+                          sss_error *err);
+/* Paints the quads, in order, into a linear-RGB image (the pixels whose centres they cover; alpha
+ * blended in linear light), their colours divided by 2^exposure so that the viewer's tone map at that
+ * exposure shows them as given. */
+void view_text_paint(const view_text *t, sss_image *img, double exposure);
 void view_text_free(view_text *t);
 
 #endif

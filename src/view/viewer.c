@@ -1,6 +1,7 @@
 /* view/viewer.c — sss_view_run: the window, the frame loop (render when something changed or the
  * animation plays, show the final image or a buffer, screenshot from the back buffer, then the overlay,
  * then swap) and the fixed-frame mode for tests. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,22 +26,39 @@ static void sleep_ms(int ms)
     nanosleep(&ts, NULL);
 }
 
-static void check_size(viewer *v)
+/* The window's layout: the image is the window minus the panel docked at its right (when shown);
+ * returns 0 while the window is minimised. */
+static int layout(viewer *v, int *image_w, int *image_h)
 {
     int fw = 0, fh = 0;
     sss_gl_window_size(v->ctx, &fw, &fh);
-    if (fw < 1 || fh < 1 || (fw == v->width && fh == v->height)) return; /* minimised or unchanged */
+    if (fw < 1 || fh < 1) return 0;
+    v->win_width = fw;
+    v->win_height = fh;
+    v->dock_width = view_dock_width(fw, v->panel_want, v->overlay && v->panel);
+    *image_w = fw - v->dock_width;
+    *image_h = fh;
+    return 1;
+}
+
+/* The renderer (and the camera's aspect) follow the image's size: a resized window, the panel shown,
+ * hidden or made wider or narrower. */
+static void check_size(viewer *v)
+{
+    int iw = 0, ih = 0;
+    if (!layout(v, &iw, &ih) || (iw == v->width && ih == v->height)) return;
     sss_error err = {0};
-    if (sss_gl_renderer_resize(v->r, fw, fh, &err) != SSS_OK) {
+    if (sss_gl_renderer_resize(v->r, iw, ih, &err) != SSS_OK) {
         view_message(v, "resize: %s", err.message);
         return;
     }
-    v->width = fw;
-    v->height = fh;
-    v->scene->camera.width = fw;
-    v->scene->camera.height = fh;
+    v->width = iw;
+    v->height = ih;
+    v->scene->camera.width = iw;
+    v->scene->camera.height = ih;
     if (v->split_r) view_split_refresh(v);
     view_camera_changed(v);
+    view_message(v, "image %dx%d, panel %d px (window %dx%d)", iw, ih, v->dock_width, v->win_width, v->win_height);
 }
 
 /* The split view or the error map, composed on the CPU from the final image; 0 when neither is on or
@@ -65,10 +83,11 @@ static int show_composed(viewer *v, sss_error *err, sss_result *res)
         sss_image_metrics m;
         sss_image_free(&v->map_img);
         *res = sss_image_compare(&v->frame_img, v->ref, v->scene->render.exposure, &m, &v->map_img, err);
-        double before = v->error_range;
-        if (*res == SSS_OK) *res = view_error_map(&v->map_img, &v->composed_img, &v->error_range, err);
-        if (*res == SSS_OK && v->error_range != before) /* the scale of the colour bar, also without the panel */
+        if (*res == SSS_OK) *res = view_error_map(&v->map_img, v->error_range, &v->composed_img, err);
+        if (*res == SSS_OK && (!v->error_reported || v->composed_ref != v->ref)) { /* also without the panel */
             view_message(v, "error map: DSSIM %.6f, colour bar from 0 (left) to %g (right)", m.dssim, v->error_range);
+            v->error_reported = 1;
+        }
         shown = &v->composed_img;
     } else {
         const sss_image *other = v->ref;
@@ -80,7 +99,12 @@ static int show_composed(viewer *v, sss_error *err, sss_result *res)
             if (*res == SSS_OK) *res = sss_gl_renderer_read(v->split_r, &v->other_img, err);
             other = &v->other_img;
         }
-        if (*res == SSS_OK) *res = view_compose_split(&v->frame_img, other, v->split_pos, &v->composed_img, err);
+        const char *right = v->split == VIEW_SPLIT_TECHNIQUE ? sss_gl_technique_at(v->split_tech)->name
+                            : v->ref_draft                   ? "reference (draft)"
+                                                             : "reference";
+        if (*res == SSS_OK)
+            *res = view_compose_split(&v->frame_img, other, v->split_pos, sss_gl_technique_at(v->tech)->name, right,
+                                      exposure, &v->composed_img, err);
         shown = &v->composed_img;
     }
     if (*res == SSS_OK) *res = view_gl_draw_image(&v->gl, shown, exposure, v->width, v->height, err);
@@ -89,12 +113,35 @@ static int show_composed(viewer *v, sss_error *err, sss_result *res)
     return 1;
 }
 
+/* The final image beside a docked panel: sss_gl_renderer_present fills the whole window, so the
+ * frame is read back and drawn into the image's part of it (the left). */
+static sss_result show_final_docked(viewer *v, double exposure, sss_error *err)
+{
+    static const char final_name[] = "final";
+    if (v->shown_gen == v->image_gen && v->shown_name == final_name)
+        return view_gl_redraw_image(&v->gl, exposure, v->width, v->height, err);
+    if (v->frame_img.width != v->width || v->frame_img.height != v->height) {
+        sss_image_free(&v->frame_img);
+        sss_result res = sss_image_create(&v->frame_img, v->width, v->height, err);
+        if (res != SSS_OK) return res;
+    }
+    sss_result res = sss_gl_renderer_read(v->r, &v->frame_img, err);
+    if (res == SSS_OK) res = view_gl_draw_image(&v->gl, &v->frame_img, exposure, v->width, v->height, err);
+    v->shown_gen = v->image_gen;
+    v->shown_name = final_name;
+    return res;
+}
+
 /* The image under the overlay: the technique's final frame, or a buffer (a part alone, the B key). */
 static sss_result show_image(viewer *v, sss_error *err)
 {
     const char *want = v->part_buffer ? v->part_buffer : v->buffer ? view_buffer_names[v->buffer] : NULL;
     double exposure = v->scene->render.exposure;
     sss_result composed = SSS_OK;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0); /* the columns no image covers (the panel's, while it moves) */
+    glViewport(0, 0, v->win_width, v->win_height);
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
     if (!want && !v->need_render && show_composed(v, err, &composed)) return composed;
     if (want && v->shown_gen == v->image_gen && v->shown_name == want)
         return view_gl_redraw_image(&v->gl, exposure, v->width, v->height, err);
@@ -108,12 +155,8 @@ static sss_result show_image(viewer *v, sss_error *err)
             return res;
         }
     }
-    if (v->need_render) { /* a fresh renderer (technique switched just now) has no frame yet */
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-        glClear(GL_COLOR_BUFFER_BIT);
-        return SSS_OK;
-    }
+    if (v->need_render) return SSS_OK; /* a fresh renderer (technique switched just now) has no frame yet */
+    if (v->width != v->win_width || v->height != v->win_height) return show_final_docked(v, exposure, err);
     return sss_gl_renderer_present(v->r, err);
 }
 
@@ -123,9 +166,9 @@ static sss_result draw_overlay(viewer *v, sss_error *err)
     if (!text) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (overlay)");
     view_overlay_text(v, text, OVERLAY_TEXT_SIZE);
     view_text t = {0};
-    float scale = v->width >= 1600 ? 2.0f : 1.0f;
+    float scale = v->win_width >= 1600 ? 2.0f : 1.0f;
     sss_result res = view_text_build(&t, text, 4.0f, 4.0f, scale, err);
-    if (res == SSS_OK) res = view_gl_draw_text(&v->gl, &t, v->width, v->height, err);
+    if (res == SSS_OK) res = view_gl_draw_text(&v->gl, &t, v->win_width, v->win_height, err);
     view_text_free(&t);
     free(text);
     return res;
@@ -169,7 +212,7 @@ static void key_screenshot(viewer *v)
     char name[64];
     sss_error serr = {0};
     if (!view_next_screenshot_name(name, sizeof name)) view_message(v, "screenshot: sss-view-0000..9999.png all exist");
-    else if (view_save_screenshot(v, name, &serr) != SSS_OK) view_message(v, "%s", serr.message);
+    else if (view_save_screenshot(v, name, 0, &serr) != SSS_OK) view_message(v, "%s", serr.message);
     else view_message(v, "saved %s", name);
 }
 
@@ -216,11 +259,11 @@ static sss_result frame(viewer *v, int fixed, const char *screenshot, sss_error 
         if (fixed) return res;
         view_message(v, "%s", err->message);
     }
-    if (screenshot && (res = view_save_screenshot(v, screenshot, err)) != SSS_OK) return res;
+    if (screenshot && (res = view_save_screenshot(v, screenshot, 0, err)) != SSS_OK) return res;
     if (v->act_screenshot) key_screenshot(v);
     if ((res = draw_ui(v, fixed, err)) != SSS_OK) return res;
     if (v->shot_path) { /* a script's screenshot: the window as shown, the panel included */
-        res = view_save_screenshot(v, v->shot_path, err);
+        res = view_save_screenshot(v, v->shot_path, 1, err);
         v->shot_path = NULL;
         if (res != SSS_OK) return res;
     }
@@ -359,6 +402,19 @@ static sss_result script_frames(viewer *v, const view_command *c, sss_error *err
     return res;
 }
 
+/* After a script's panel line: frames until the panel applied a section request (a scroll needs the
+ * frame after its section opened), with no render unless something changed. A hidden panel applies
+ * it when shown. */
+static sss_result settle_panel(viewer *v, sss_error *err)
+{
+    for (int k = 0; k < 4 && v->panel_section >= 0 && v->overlay; k++) {
+        glfwPollEvents();
+        sss_result res = frame(v, 0, NULL, err);
+        if (res != SSS_OK) return res;
+    }
+    return SSS_OK;
+}
+
 /* One line of a script: frames and waits run here (they draw), input events go to input.c, the
  * other actions to commands.c. */
 static sss_result script_line(viewer *v, const view_command *c, sss_error *err)
@@ -381,6 +437,7 @@ static sss_result script_line(viewer *v, const view_command *c, sss_error *err)
         v->script_line = c->line;
         res = view_cmd_run(v, c, err);
         v->script_line = 0;
+        if (res == SSS_OK && c->kind == VIEW_CMD_PANEL) res = settle_panel(v, err);
     }
     return res;
 }
@@ -480,7 +537,26 @@ static sss_result load_inputs(viewer *v, view_script *script, sss_error *err)
     return check_files(v, script, err);
 }
 
-/* The window (its GL context) at the asked size, the first renderer, the overlay's GL objects. */
+/* The panel (ImGui; the text overlay when it cannot start), docked at the right: the window grows by
+ * its width, so the image keeps the size asked for. A window manager may resize later: check_size
+ * follows. */
+static void start_panel(viewer *v)
+{
+    sss_error perr = {0};
+    if (view_panel_create(v, &perr) != SSS_OK) {
+        view_message(v, "panel: %s (the text overlay instead)", perr.message);
+        return;
+    }
+    int ww = 0, wh = 0, fw = 0, fh = 0;
+    glfwGetWindowSize(v->window, &ww, &wh);
+    sss_gl_window_size(v->ctx, &fw, &fh);
+    if (!v->overlay || ww < 1 || fw < 1) return;
+    int dock = view_dock_width(fw + (int)v->panel_want, v->panel_want, 1);
+    glfwSetWindowSize(v->window, ww + (int)lround(dock * (double)ww / fw), wh);
+}
+
+/* The window (its GL context) with the image at the asked size and the panel beside it, the first
+ * renderer, the overlay's GL objects. */
 static sss_result open_window(viewer *v, sss_error *err)
 {
     const sss_view_desc *desc = v->desc;
@@ -495,8 +571,9 @@ static sss_result open_window(viewer *v, sss_error *err)
     sss_result res = sss_gl_context_create(&cd, &v->ctx, err);
     if (res != SSS_OK) return res;
     v->window = glfwGetCurrentContext(); /* the context's window: it was just made current */
-    sss_gl_window_size(v->ctx, &v->width, &v->height);
-    if (v->width < 1 || v->height < 1) v->width = cd.window_width, v->height = cd.window_height;
+    if ((res = view_gl_init(&v->gl, err)) != SSS_OK) return res;
+    start_panel(v);
+    if (!layout(v, &v->width, &v->height)) v->width = cd.window_width, v->height = cd.window_height;
     v->scene->camera.width = v->width;
     v->scene->camera.height = v->height;
     view_camera_changed(v);
@@ -505,7 +582,9 @@ static sss_result open_window(viewer *v, sss_error *err)
     v->live_medium = v->medium;
     v->live_scale = v->scale_factor;
     if (res == SSS_OK && !v->live_text) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene text)");
-    if (res == SSS_OK) res = view_gl_init(&v->gl, err);
+    if (res == SSS_OK && v->dock_width > 0)
+        view_message(v, "image %dx%d, panel %d px (window %dx%d)", v->width, v->height, v->dock_width, v->win_width,
+                     v->win_height);
     return res;
 }
 
@@ -548,6 +627,8 @@ sss_result sss_view_run(const sss_view_desc *desc, sss_error *err)
     v.drag_button = -1;
     v.part_saved_tech = -1;
     v.split_pos = 0.5;
+    v.error_range = VIEW_ERROR_RANGE_DEFAULT;
+    v.panel_section = -1;
     v.overlay = !desc->no_overlay;
     v.t = desc->time;
     v.playing = desc->animate;
@@ -557,8 +638,6 @@ sss_result sss_view_run(const sss_view_desc *desc, sss_error *err)
     sss_result res = load_inputs(&v, &script, err);
     if (res == SSS_OK) res = open_window(&v, err);
     if (res == SSS_OK) {
-        sss_error perr = {0};
-        if (view_panel_create(&v, &perr) != SSS_OK) view_message(&v, "panel: %s (the text overlay instead)", perr.message);
         if (desc->script) res = run_script(&v, &script, err);
         else if (desc->frames > 0) res = run_fixed(&v, err);
         else run_interactive(&v);

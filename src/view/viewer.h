@@ -16,6 +16,7 @@ enum { PART_ALL = 0, PART_TRANSLUCENCY, PART_SCREEN };
 
 #define VIEW_MAX_SET_PARAMS 64
 enum { VIEW_SPLIT_OFF = 0, VIEW_SPLIT_REFERENCE, VIEW_SPLIT_TECHNIQUE };
+enum { VIEW_SECTION_OPEN = 1, VIEW_SECTION_CLOSE, VIEW_SECTION_SCROLL }; /* viewer.panel_op */
 struct view_command;
 
 typedef struct view_rebuild_request {
@@ -52,7 +53,9 @@ struct viewer {
     int part_saved_tech;   /* technique before PART_SCREEN switched to "screen", or -1 */
     const char *part_buffer; /* buffer standing for the part when the technique has no switches */
     int buffer;            /* index in view_buffer_names (0 final) */
-    int width, height;     /* renderer = framebuffer size */
+    int width, height;     /* the image = the renderer's size: the window minus the docked panel */
+    int win_width, win_height; /* the window's framebuffer */
+    int dock_width;        /* framebuffer columns the panel takes at the right of the image (0: none) */
     /* time */
     double t, wall_last;
     int playing;
@@ -76,6 +79,9 @@ struct viewer {
     char message[256];
     double message_until;
     int overlay, help;
+    double panel_want;     /* the panel's width as dragged or set (framebuffer pixels; view_dock_width
+                            * fits it to the window) */
+    int panel_section, panel_op; /* a section request for the panel (VIEW_SECTION_*), -1: none */
     double title_at;
     /* reference and DSSIM */
     view_ref_job *job;
@@ -97,7 +103,8 @@ struct viewer {
     double split_pos;             /* wipe position, fraction of the width */
     sss_gl_renderer *split_r;     /* its renderer */
     int errormap;                 /* show the per-pixel DSSIM against the reference */
-    double error_range;           /* the colour bar's top value */
+    double error_range;           /* the colour bar's top value (fixed: VIEW_ERROR_RANGE_DEFAULT or set) */
+    int error_reported;           /* the map's DSSIM and range were reported for this reference */
     unsigned composed_gen;        /* image_gen of the split / error-map image on screen (0: none) */
     const sss_image *composed_ref;
     sss_image other_img, composed_img, map_img;
@@ -161,7 +168,11 @@ sss_result view_cmd_light(viewer *v, int light, const char *field, const double 
 sss_result view_cmd_buffer(viewer *v, int buffer, sss_error *err);
 /* what: "off", "reference" or a technique name; position in (0, 1). */
 sss_result view_cmd_split(viewer *v, const char *what, double position, sss_error *err);
-void view_cmd_errormap(viewer *v, int on);
+/* range > 0: the colour bar's top value from now on (0 keeps it). */
+void view_cmd_errormap(viewer *v, int on, double range);
+/* op: "on", "off" (show, hide), "open", "close", "scroll" (section: view_panel_sections; the panel
+ * applies it when it next draws, scroll = open and bring its header to the top), "width" (pixels). */
+sss_result view_cmd_panel(viewer *v, const char *op, int section, double width, sss_error *err);
 /* The reference of the current view in the background (draft, or final unless --draft-reference). */
 void view_cmd_reference(viewer *v, int draft);
 /* Any script command but frames, wait, screenshot and key (the loop runs those). */
@@ -228,7 +239,8 @@ int view_next_screenshot_name(char *buf, size_t cap);
 /* The output rules of every command (sss_io_check) for the viewer's outputs: refuses one that is the
  * same file as an input (v->files) or as another of paths. */
 sss_result view_check_outputs(const viewer *v, const char *const *paths, size_t count, sss_error *err);
-/* Writes the window's back buffer to path as PNG, after view_check_outputs. */
-sss_result view_save_screenshot(const viewer *v, const char *path, sss_error *err);
+/* Writes the back buffer to path as PNG, after view_check_outputs: the whole window, or the image
+ * alone (the S key, --screenshot). */
+sss_result view_save_screenshot(const viewer *v, const char *path, int whole_window, sss_error *err);
 
 #endif

@@ -2,7 +2,8 @@
  * parse into the actions they name and every wrong line is refused with a reason (the file and line in
  * the message); material edits that switch a material's form give the same optical coefficients back
  * through the scene loader; light edits land on the light's own field; the split view takes whole
- * columns from each side; the error map's colours rise in luminance and its range covers the data. */
+ * columns from each side (its divider and labels: test_view_compose.c); the error map's colours rise
+ * in luminance over its fixed range. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -44,7 +45,14 @@ static void test_good_lines(void)
     CHECK(parse("split ssss 0.25", &c) == 1 && strcmp(c.name, "ssss") == 0 && c.values[0] == 0.25);
     CHECK(parse("split off", &c) == 1);
     CHECK(parse("errormap on", &c) == 1 && c.kind == VIEW_CMD_ERRORMAP && c.index == 1);
-    CHECK(parse("panel off", &c) == 1 && c.kind == VIEW_CMD_PANEL && c.index == 0);
+    CHECK(parse("errormap on 0.1", &c) == 1 && c.index == 1 && c.value_count == 1 && c.values[0] == 0.1);
+    CHECK(parse("panel off", &c) == 1 && c.kind == VIEW_CMD_PANEL && c.index == 0 && strcmp(c.name, "off") == 0);
+    CHECK(parse("panel open Lights", &c) == 1 && strcmp(c.name, "open") == 0 &&
+          strcmp(view_panel_sections[c.index], "Lights") == 0);
+    CHECK(parse("panel scroll frame_time", &c) == 1 && strcmp(c.name, "scroll") == 0 &&
+          strcmp(view_panel_sections[c.index], "Frame time") == 0);
+    CHECK(parse("panel close VIEW", &c) == 1 && strcmp(view_panel_sections[c.index], "View") == 0);
+    CHECK(parse("panel width 300", &c) == 1 && strcmp(c.name, "width") == 0 && c.values[0] == 300.0);
     CHECK(parse("reference draft", &c) == 1 && c.kind == VIEW_CMD_REFERENCE && c.index == 1);
     CHECK(parse("key shift+tab", &c) == 1 && c.kind == VIEW_CMD_KEY && strcmp(c.name, "shift+tab") == 0);
     CHECK(parse("frames 3", &c) == 1 && c.kind == VIEW_CMD_FRAMES && c.index == 3);
@@ -62,6 +70,9 @@ static void test_bad_lines(void)
         "light 0 position 1",  "light 0 intensity 1 2 3", "light 0 spin 1",       "buffer nosuch",
         "split",               "split nosuch",       "split ssss 1",             "split reference 0",
         "errormap maybe",      "panel",              "reference final",          "frames 0",
+        "errormap on 0",       "errormap on 1.5",    "errormap off 0.1",         "errormap on x",
+        "panel open",          "panel open nosuch",  "panel fold Lights",        "panel on Lights",
+        "panel width 10",      "panel width 5000",   "panel width 200.5",        "panel open Lights View",
         "frames 1.5",          "frames 100001",      "screenshot",               "screenshot a.exr",
         "key",                 "a b c d e f g h i",
     };
@@ -202,12 +213,14 @@ static void test_split_and_error_map(void)
     sss_error err = {0};
     CHECK(sss_image_create(&a, 10, 4, &err) == SSS_OK && sss_image_create(&b, 10, 4, &err) == SSS_OK);
     for (size_t i = 0; i < 10 * 4 * 3; i++) a.pixels[i] = 1.0f, b.pixels[i] = 2.0f;
-    CHECK(view_compose_split(&a, &b, 0.3, &out, &err) == SSS_OK);
-    for (int y = 0; y < 4; y++)
-        for (int x = 0; x < 10; x++) CHECK(out.pixels[3 * (y * 10 + x) + 1] == (x < 3 ? 1.0f : 2.0f));
+    CHECK(view_compose_split(&a, &b, 0.3, "a", "b", 0.0, &out, &err) == SSS_OK);
+    for (int y = 0; y < 4; y++) /* away from the divider (columns 1..4 around the cut at 3) */
+        for (int x = 0; x < 10; x++)
+            if (x < 3 - VIEW_DIVIDER_WIDTH / 2 || x >= 3 + VIEW_DIVIDER_WIDTH / 2)
+                CHECK(out.pixels[3 * (y * 10 + x) + 1] == (x < 3 ? 1.0f : 2.0f));
     sss_image c = {0};
     CHECK(sss_image_create(&c, 9, 4, &err) == SSS_OK);
-    CHECK(view_compose_split(&a, &c, 0.5, &out, &err) != SSS_OK);
+    CHECK(view_compose_split(&a, &c, 0.5, "a", "c", 0.0, &out, &err) != SSS_OK);
     /* luminance of the colour scale rises from 0 to 1 (readable without colour vision) */
     double last = -1.0;
     for (int k = 0; k <= 20; k++) {
@@ -222,18 +235,17 @@ static void test_split_and_error_map(void)
     CHECK(nan_rgb[0] == 0.0f && nan_rgb[1] == 0.0f && nan_rgb[2] == 0.0f);
     CHECK(sss_image_create(&map, 40, 40, &err) == SSS_OK);
     map.pixels[3 * 5] = 0.027f; /* one pixel of mean 0.009, the rest 0 */
-    double range = 0.0;
-    CHECK(view_error_map(&map, &colours, &range, &err) == SSS_OK);
-    CHECK(range == 0.01);
-    map.pixels[3 * 5] = 0.27f; /* mean 0.09 */
-    CHECK(view_error_map(&map, &colours, &range, &err) == SSS_OK);
-    CHECK_NEAR(range, 0.1, 1e-12);
+    CHECK(view_error_map(&map, 0.1, &colours, &err) == SSS_OK);
+    float want[3];
+    view_error_colour(0.09, want); /* the fixed range, not the data's largest value */
+    CHECK_NEAR(colours.pixels[3 * 5 + 1], want[1], 1e-6);
+    CHECK(view_error_map(&map, 0.0, &colours, &err) != SSS_OK && view_error_map(&map, NAN, &colours, &err) != SSS_OK);
     float lo[3], hi[3];
     view_error_colour(0.0, lo);
     view_error_colour(1.0, hi);
     const float *first = colours.pixels + 3 * (39 * 40), *last_px = colours.pixels + 3 * (39 * 40 + 39);
     CHECK(first[0] == lo[0] && first[1] == lo[1] && last_px[1] == hi[1]); /* the bar: low left, high right */
-    const float *rule = colours.pixels + 3 * ((39 - VIEW_COLOUR_BAR_HEIGHT) * 40 + 20);
+    const float *rule = colours.pixels + 3 * ((39 - VIEW_COLOUR_BAR_HEIGHT) * 40 + 20); /* no tick at 20 */
     CHECK(rule[0] == 0.0f && rule[1] == 0.0f && rule[2] == 0.0f);
     CHECK(colours.pixels[3 * 5 + 1] > colours.pixels[3 * 6 + 1]); /* the error brighter than no error */
     sss_image_free(&a);
