@@ -25,20 +25,22 @@ extern "C" {
 typedef struct sss_view_desc {
     const char *scene_path;           /* required */
     const char *technique;            /* NULL -> the scene's render.technique */
-    int width, height;                /* window size; 0 -> the scene camera's */
+    int width, height;                /* image size; 0 -> the scene camera's (the window is wider by the
+                                         panel's column while the panel is shown) */
     const sss_gl_param_value *params; /* technique or shared parameters by name (kept when the technique
                                          changes, for the techniques that know them) */
     int param_count;
     double time;                      /* animation time of the first frame (seconds) */
     int animate;                      /* start with the animation playing */
     int frames;                       /* > 0: render this many frames without input, then return */
-    const char *screenshot;           /* with frames: the last frame as PNG (the window's back buffer,
-                                         read before the overlay is drawn and before the swap) */
+    const char *screenshot;           /* with frames: the last frame as PNG (the image's part of the back
+                                         buffer, read before the panel is drawn and before the swap) */
     /* With frames: input events, comma-separated, one per frame from the first (for tests): keys as
      * named in sss_view_help_text ("tab", "shift+tab", "1", "m", "+", "l", "space", ...),
      * "orbit:DX:DY" / "pan:DX:DY" (a left / right drag by DX, DY pixels, y down), "zoom:STEPS". */
     const char *input;
-    int no_overlay;                   /* start with the panel (or the text overlay) hidden */
+    int no_overlay;                   /* start with the panel (or the text overlay) hidden: the window is
+                                         then the image's size */
     /* A file of panel actions, one per line (docs/viewer.md): runs them without input, then returns
      * (instead of frames / input / screenshot). */
     const char *script;

@@ -19,8 +19,9 @@ enum {
 static const cli_option options[] = {
     {OPT_TECHNIQUE, "--technique", NULL, CLI_ARG_TECHNIQUE, "NAME", "first technique", NULL,
      "the scene's render.technique"},
-    {OPT_WIDTH, "--width", NULL, CLI_ARG_NUMBER, "W", "window width", NULL, "the scene camera's"},
-    {OPT_HEIGHT, "--height", NULL, CLI_ARG_NUMBER, "H", "window height", NULL, "the scene camera's"},
+    {OPT_WIDTH, "--width", NULL, CLI_ARG_NUMBER, "W", "image width (the window adds the panel's column)", NULL,
+     "the scene camera's"},
+    {OPT_HEIGHT, "--height", NULL, CLI_ARG_NUMBER, "H", "image and window height", NULL, "the scene camera's"},
     {OPT_PARAM, "--param", NULL, CLI_ARG_TEXT, "NAME=VALUE",
      "a technique or shared parameter, repeatable (kept across technique\n"
      "switches for the techniques that have it)",
@@ -30,8 +31,8 @@ static const cli_option options[] = {
      NULL, NULL},
     {OPT_FRAMES, "--frames", NULL, CLI_ARG_NUMBER, "N", "render N frames without input, then exit", NULL, NULL},
     {OPT_SCREENSHOT, "--screenshot", NULL, CLI_ARG_FILE, "FILE",
-     "with --frames: write the last frame as PNG (the window's image without\n"
-     "the overlay, the same image as `sss render` of that view)",
+     "with --frames: write the last frame as PNG (the image without the\n"
+     "panel, the same image as `sss render` of that view)",
      NULL, NULL},
     {OPT_SCREENSHOT, "--output", "-o", CLI_ARG_FILE, "FILE", "the same as --screenshot", NULL, NULL},
     {OPT_NO_OVERLAY, "--no-overlay", NULL, CLI_ARG_NONE, NULL, "start with the panel hidden (O toggles it)", NULL, NULL},
@@ -39,8 +40,9 @@ static const cli_option options[] = {
      "run the panel actions of FILE, one per line, then exit (docs/viewer.md):\n"
      "technique NAME, param [TECH.]NAME VALUE, material OBJ FIELD VALUE...,\n"
      "light I position|intensity|colour VALUE..., buffer NAME,\n"
-     "split off|reference|TECH [POS], errormap on|off, panel on|off,\n"
-     "reference [draft], key EVENT, frames N, screenshot FILE.png",
+     "split off|reference|TECH [POS], errormap on [RANGE]|off, panel on|off,\n"
+     "panel open|close|scroll SECTION, panel width PIXELS, reference [draft],\n"
+     "key EVENT, frames N, screenshot FILE.png",
      NULL, NULL},
     {OPT_REFERENCE, "--reference", NULL, CLI_ARG_NONE, NULL,
      "render the CPU reference of the first view in the background at once;\n"
@@ -65,9 +67,9 @@ static void print_keys(FILE *f) { fprintf(f, "\nkeys and mouse:\n%s", sss_view_h
 const cli_command_spec cli_spec_view = {
     CMD, options, CLI_COUNT(options), CLI_ARG_FILE, NULL, "SCENE.json",
     "Shows SCENE.json in a window with a real-time technique (needs a display; without one use\n"
-    "`sss render`, or run under `xvfb-run -a`). A panel (Dear ImGui) lists the techniques and\n"
-    "their parameters, materials, lights, frame time per pass, buffers, the split view and the\n"
-    "error map; the window title shows the frame time. The viewer's messages go to stdout (none\n"
+    "`sss render`, or run under `xvfb-run -a`). A panel (Dear ImGui) docked beside the image lists\n"
+    "the techniques and their parameters, materials, lights, frame time per pass, buffers, the\n"
+    "split view and the error map; the window title shows the frame time. The viewer's messages go to stdout (none\n"
     "with --quiet).\n",
     "Exit status: 0 success, 1 error (scene, no display, GL, screenshot), 2 usage error.\n", print_keys};
 

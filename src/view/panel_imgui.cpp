@@ -530,7 +530,7 @@ static void begin_docked(viewer *v)
     ImGui::SetNextWindowBgAlpha(1.0f);
     ImGui::Begin("sss view", NULL,
                  ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
-                     ImGuiWindowFlags_NoSavedSettings);
+                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoScrollbar);
     float now = ImGui::GetWindowWidth();
     if (fabsf(now - w) >= 1.0f) v->panel_want = now * scale; /* dragged */
 }
@@ -545,11 +545,13 @@ sss_result view_panel_draw(viewer *v, sss_error *err)
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
     begin_docked(v);
+    if (v->message[0] && sss_time_seconds() < v->message_until) ImGui::TextWrapped("%s", v->message);
+    /* the sections scroll below the message, so that a message coming or going does not move them */
+    ImGui::BeginChild("sections");
     const ImGuiStyle &st = ImGui::GetStyle();
     float room = ImGui::GetContentRegionAvail().x - p->label_width - st.ItemInnerSpacing.x - st.IndentSpacing;
     p->stacked = room < ITEM_MIN;
     ImGui::PushItemWidth(p->stacked ? -FLT_MIN : -(p->label_width + st.ItemInnerSpacing.x)); /* names in full */
-    if (v->message[0] && sss_time_seconds() < v->message_until) ImGui::TextWrapped("%s", v->message);
     technique_section(v, p);
     view_section(v, p);
     params_section(v, p);
@@ -559,6 +561,7 @@ sss_result view_panel_draw(viewer *v, sss_error *err)
     if (section(v, p, SEC_KEYS)) ImGui::TextUnformatted(sss_view_help_text());
     ImGui::PopItemWidth();
     float height = ImGui::GetWindowHeight();
+    ImGui::EndChild();
     ImGui::End();
     section_request_done(v, p, height);
     ImGui::Render();

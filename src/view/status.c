@@ -23,7 +23,7 @@ static const char help_text[] =
     "+ / -             scattering scale x2 / /2 (coefficients; mean free path /2 / x2)\n"
     "L / Shift+L       turn the first light +15 / -15 degrees about the vertical through look_at\n"
     "Space             start / stop the animation\n"
-    "S or F12          screenshot sss-view-NNNN.png (the image without the overlay)\n"
+    "S or F12          screenshot sss-view-NNNN.png (the image without the panel)\n"
     "C                 camera back to the scene's\n"
     "O                 panel on / off        H or F1  this help on / off (text overlay)\n"
     "Esc or Q          quit\n";

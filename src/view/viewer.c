@@ -41,24 +41,39 @@ static int layout(viewer *v, int *image_w, int *image_h)
     return 1;
 }
 
+/* The layout in the message when it changed, once the mouse button that drags the panel's edge is
+ * released (not at every step of a drag). */
+static void report_layout(viewer *v)
+{
+    int told[3] = {v->width, v->dock_width, v->win_width};
+    if (memcmp(told, v->layout_told, sizeof told) == 0 || v->dock_width == 0 ||
+        glfwGetMouseButton(v->window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS)
+        return;
+    memcpy(v->layout_told, told, sizeof told);
+    view_message(v, "image %dx%d, panel %d px (window %dx%d)", v->width, v->height, v->dock_width, v->win_width,
+                 v->win_height);
+}
+
 /* The renderer (and the camera's aspect) follow the image's size: a resized window, the panel shown,
  * hidden or made wider or narrower. */
 static void check_size(viewer *v)
 {
     int iw = 0, ih = 0;
-    if (!layout(v, &iw, &ih) || (iw == v->width && ih == v->height)) return;
-    sss_error err = {0};
-    if (sss_gl_renderer_resize(v->r, iw, ih, &err) != SSS_OK) {
-        view_message(v, "resize: %s", err.message);
-        return;
+    if (!layout(v, &iw, &ih)) return;
+    if (iw != v->width || ih != v->height) {
+        sss_error err = {0};
+        if (sss_gl_renderer_resize(v->r, iw, ih, &err) != SSS_OK) {
+            view_message(v, "resize: %s", err.message);
+            return;
+        }
+        v->width = iw;
+        v->height = ih;
+        v->scene->camera.width = iw;
+        v->scene->camera.height = ih;
+        if (v->split_r) view_split_refresh(v);
+        view_camera_changed(v);
     }
-    v->width = iw;
-    v->height = ih;
-    v->scene->camera.width = iw;
-    v->scene->camera.height = ih;
-    if (v->split_r) view_split_refresh(v);
-    view_camera_changed(v);
-    view_message(v, "image %dx%d, panel %d px (window %dx%d)", iw, ih, v->dock_width, v->win_width, v->win_height);
+    report_layout(v);
 }
 
 /* The split view or the error map, composed on the CPU from the final image; 0 when neither is on or
@@ -582,9 +597,7 @@ static sss_result open_window(viewer *v, sss_error *err)
     v->live_medium = v->medium;
     v->live_scale = v->scale_factor;
     if (res == SSS_OK && !v->live_text) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene text)");
-    if (res == SSS_OK && v->dock_width > 0)
-        view_message(v, "image %dx%d, panel %d px (window %dx%d)", v->width, v->height, v->dock_width, v->win_width,
-                     v->win_height);
+    if (res == SSS_OK) report_layout(v);
     return res;
 }
 

@@ -56,6 +56,7 @@ struct viewer {
     int width, height;     /* the image = the renderer's size: the window minus the docked panel */
     int win_width, win_height; /* the window's framebuffer */
     int dock_width;        /* framebuffer columns the panel takes at the right of the image (0: none) */
+    int layout_told[3];    /* image width, panel and window width last reported in a message */
     /* time */
     double t, wall_last;
     int playing;
