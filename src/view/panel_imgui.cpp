@@ -503,15 +503,10 @@ static void section_request_done(viewer *v, view_panel *p, float panel_height)
     if (++p->request_frames <= (v->panel_op == VIEW_SECTION_SCROLL ? 2 : 1)) return;
     int k = v->panel_section;
     bool in_view = p->header_top[k] >= 0.0f && p->header_bottom[k] <= panel_height;
-    char open_list[160] = "";
-    for (int i = 0; i < VIEW_PANEL_SECTION_COUNT; i++)
-        if (p->header_open[i])
-            snprintf(open_list + strlen(open_list), sizeof open_list - strlen(open_list), "%s%s", open_list[0] ? ", " : "",
-                     view_panel_sections[i]);
     static const char *const ops[] = {"", "open", "close", "scroll"};
-    view_message(v, "panel %s %s: %s, header at y %.0f of %.0f (%s); open: %s", ops[v->panel_op], view_panel_sections[k],
+    view_message(v, "panel %s %s: %s, header at y %.0f of %.0f (%s)", ops[v->panel_op], view_panel_sections[k],
                  p->header_open[k] ? "open" : "closed", p->header_top[k], panel_height,
-                 in_view ? "in view" : "out of view", open_list);
+                 in_view ? "in view" : "out of view");
     v->panel_section = -1;
     p->request_frames = 0;
 }
