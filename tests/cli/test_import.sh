@@ -78,6 +78,12 @@ rm -rf "$dir"/rt_* "$dir/ev" "$dir/ev.txt" "$dir/view.txt"
 cp "$data/external.gltf" "$data/external data.bin" "$dir/"
 "$SSS" import "$dir/external.gltf" -o "$dir/external.gltf" >/dev/null 2>&1; [ $? = 1 ] || err "import onto its input not refused"
 cmp -s "$dir/external.gltf" "$data/external.gltf" || err "import overwrote its input"
+# -o into folders that do not exist: created (the import used to fail: "cannot write: No such file or
+# directory"); a refused import creates none.
+"$SSS" import "$data/scatter.glb" -o "$dir/new/sub/s.json" >/dev/null 2>"$dir/stderr" || err "import into a new folder: $(cat "$dir/stderr")"
+[ -s "$dir/new/sub/s.json" ] && [ -s "$dir/new/sub/s_obj5.ply" ] || err "import into a new folder wrote $(ls -R "$dir/new")"
+"$SSS" import "$data/bad/index_range.gltf" -o "$dir/none/s.json" >/dev/null 2>&1; [ $? = 1 ] || err "bad import into a new folder"
+[ -e "$dir/none" ] && err "a refused import left the folder it would have written into"
 # Usage errors: exit 2.
 "$SSS" import "$data/scatter.glb" >/dev/null 2>&1; [ $? = 2 ] || err "missing -o is not a usage error"
 "$SSS" import "$data/scatter.glb" -o "$dir/x.json" --light-scale 0 >/dev/null 2>&1; [ $? = 2 ] || err "--light-scale 0 is not a usage error"
