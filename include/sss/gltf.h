@@ -14,17 +14,21 @@
  * before allocation). Messages name the file and the JSON path ("a.gltf: accessors[3].count: ...").
  * Memory: sss_gltf_load fills an sss_gltf_scene; release it with sss_gltf_scene_free.
  *
- * Material mapping (world units; c = attenuationColor, d = attenuationDistance of
- * KHR_materials_volume; rho = multiscatterColor, g = scatterAnisotropy of
- * KHR_materials_volume_scatter; per channel):
+ * Material mapping (world units; c = attenuationColor, d = attenuationDistance, t = thicknessFactor of
+ * KHR_materials_volume; per channel; docs/gltf.md "Materials"):
  *     sigma_t = -ln(c) / d                                   (KHR_materials_volume, "attenuation")
- *     rho = (1 - s)(1 - 0.139 s) / (1 + 1.17 s),  s^2 = (1 - alpha) / (1 - g alpha)
- *         solved for s (the root in [0, 1]), then alpha = (1 - s^2) / (1 - g s^2)
- *                                                           (KHR_materials_volume_scatter, albedo)
- *     sigma_s = alpha sigma_t,  sigma_a = sigma_t - sigma_s,  eta = KHR_materials_ior.ior (1.5).
+ *     rho: the multiple-scattering albedo: KHR_materials_volume_scatter's multiscatterColor;
+ *          KHR_materials_scatter's scatterStrengthFactor x multiscatterColorFactor; without either,
+ *          KHR_materials_diffuse_transmission's (1 - f) baseColor + f diffuseTransmissionColor exp(-sigma_t t)
+ *     s: the root in [0, 1] of rho = (1 - s)(1 - 0.139 s) / (1 + 1.17 s) (Kulla & Conty 2017)
+ *     alpha = 1 - s^2 (volume_scatter, diffuse transmission) or (1 - s^2) / (1 - g s^2) (scatter)
+ *     sigma_s = alpha sigma_t,  sigma_a = sigma_t - sigma_s,  g = scatterAnisotropy (0 for diffuse
+ *     transmission),  eta = KHR_materials_ior.ior (1.5).
  * A material is subsurface when it has KHR_materials_volume with thicknessFactor > 0 and a finite
- * attenuationDistance AND KHR_materials_volume_scatter; a volume without scattering is clear,
- * absorbing glass in glTF, which no sss renderer draws: it becomes diffuse like any other material.
+ * attenuationDistance and one of those three extensions with a weight > 0 (KHR_materials_scatter
+ * preferred, then volume_scatter); a volume without scattering is clear, absorbing glass in glTF,
+ * which no sss renderer draws: it becomes diffuse like any other material. A scattering extension
+ * without such a volume is imported as diffuse and says so in sss_gltf_material.note.
  * Lights: intensity taken 1:1 (point, spot: candela as W/sr; directional: lux as irradiance) times
  * color times light_scale; spot cone_angle = outerConeAngle, cone_delta = outer - inner (degrees);
  * `range` is ignored (sss lights fall off with 1 / r^2 only).
@@ -60,12 +64,16 @@ typedef struct sss_gltf_material {
     double g, eta;
     char *texture;           /* subsurface: baseColorTexture's image file (resolved path) or NULL */
     int image;               /* subsurface: its embedded image, an index into sss_gltf_scene.images; or -1 */
+    const char *note;        /* NULL, or what the mapping approximated or left out (a static string:
+                              * a volume with diffuse transmission mapped to subsurface, a scattering
+                              * extension without a volume imported as diffuse); `sss import` prints it */
 } sss_gltf_material;
 
 typedef struct sss_gltf_object {
     sss_mesh mesh;           /* WORLD space (the node's transform applied) */
     sss_gltf_material material;
     int node, mesh_index, primitive; /* where it came from, for messages */
+    int material_index;      /* materials[material_index] of the asset; -1: the glTF default material */
 } sss_gltf_object;
 
 typedef struct sss_gltf_scene {

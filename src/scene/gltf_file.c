@@ -173,8 +173,8 @@ static sss_result split_glb(gltf_ctx *c, const unsigned char *data, size_t size,
 static int extension_supported(const char *name)
 {
     static const char *const known[] = {"KHR_materials_volume", "KHR_materials_volume_scatter",
-                                        "KHR_materials_ior", "KHR_materials_diffuse_transmission",
-                                        "KHR_lights_punctual"};
+                                        "KHR_materials_scatter", "KHR_materials_ior",
+                                        "KHR_materials_diffuse_transmission", "KHR_lights_punctual"};
     for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
         if (strcmp(name, known[i]) == 0) return 1;
     return 0;
