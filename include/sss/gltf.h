@@ -47,6 +47,11 @@ extern "C" {
 
 #define SSS_GLTF_MAX_FILE_SIZE (1u << 30)      /* a .gltf, .glb or .bin file */
 #define SSS_GLTF_MAX_JSON_SIZE (64u << 20)     /* the JSON of a .gltf or a .glb's JSON chunk */
+/* Compressed mesh data decoded per asset: the bytes of EXT_meshopt_compression buffer views plus, per
+ * KHR_draco_mesh_compression triangle, SSS_GLTF_DRACO_BYTES_PER_TRIANGLE (the Draco decoder's working
+ * memory, bounded by the triangle count its header gives before it allocates). */
+#define SSS_GLTF_MAX_DECODED_SIZE (1u << 30)
+#define SSS_GLTF_DRACO_BYTES_PER_TRIANGLE 256
 #define SSS_GLTF_DEFAULT_WIDTH 960
 #define SSS_GLTF_DEFAULT_HEIGHT 540
 
