@@ -7,6 +7,8 @@
  * KHR_materials_volume_scatter [+ KHR_materials_ior, KHR_materials_diffuse_transmission] ->
  * subsurface coefficients per world unit; everything else -> diffuse from baseColorFactor), the
  * camera (a perspective camera node, or a framing camera) and KHR_lights_punctual lights.
+ * Decodes compressed meshes: KHR_draco_mesh_compression (Draco), EXT_meshopt_compression
+ * (meshoptimizer) and KHR_mesh_quantization, within SSS_GLTF_MAX_DECODED_SIZE per asset.
  * Does not: animations, skins, morph targets (the rest pose is imported), sparse accessors, points
  * and lines, orthographic cameras, texture transforms. A baseColorTexture is kept as an external file's
  * path, or decoded (PNG or JPEG) when the image is embedded (a bufferView or a data: URI).
