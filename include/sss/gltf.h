@@ -119,7 +119,8 @@ SSS_API sss_result sss_gltf_scene_json(const sss_gltf_scene *scene, const char *
  * (<stem>_objN.ply, world space, referenced by file name) and one PNG per embedded image that a
  * material uses (<stem>_imgK.png: 8-bit sRGB, the decoded pixels exactly). Before writing anything it
  * refuses (SSS_ERROR_INVALID_ARGUMENT) an output that is the same file as one of scene->files or as
- * another output. All the files are written or none (one output transaction, core/file_util.h). */
+ * another output. All the files are written or none (one output transaction, core/file_util.h); the
+ * folder of scene_path is created when missing (and removed again if the write fails). */
 SSS_API sss_result sss_gltf_write_scene(const sss_gltf_scene *scene, const char *scene_path, sss_error *err);
 
 #ifdef __cplusplus

@@ -76,7 +76,8 @@ static int import_parse(int argc, char **argv, import_options *o)
 static void print_notes(const char *asset, const sss_gltf_scene *s)
 {
     int top = 0;
-    for (size_t i = 0; i < s->object_count; i++) top = s->objects[i].material_index > top ? s->objects[i].material_index : top;
+    for (size_t i = 0; i < s->object_count; i++)
+        if (s->objects[i].material_index > top) top = s->objects[i].material_index;
     unsigned char *said = calloc((size_t)top + 2, 1); /* by material index + 1 (-1: the default material) */
     for (size_t i = 0; i < s->object_count; i++) {
         const sss_gltf_object *o = &s->objects[i];

@@ -154,24 +154,19 @@ static sss_result make_folders(sss_outputs *t, char *dir, const char *path, sss_
     }
 }
 
-/* The folder of an output: missing ones are created inside a transaction (the transaction's, removed
- * when it aborts) and refused outside one, where nobody would remove them after a failure. */
-static sss_result output_folder(const char *path, sss_error *err)
+/* The missing folder of an output (its open failed with ENOENT): created, level by level, when the
+ * active transaction asks for it (its folders, removed when it aborts); else an error naming it. */
+static sss_result missing_folder(const char *path, sss_error *err)
 {
     const char *slash = strrchr(path, '/');
-    if (!slash || slash == path) return SSS_OK; /* the working folder or the root */
+    if (!slash || slash == path) return sss_error_set(err, SSS_ERROR_IO, "%s: cannot write: %s", path, strerror(ENOENT));
     char *dir = malloc((size_t)(slash - path) + 1);
     if (!dir) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     memcpy(dir, path, (size_t)(slash - path));
     dir[slash - path] = '\0';
-    struct stat st;
-    sss_result r = SSS_OK;
-    if (stat(dir, &st) == 0)
-        r = S_ISDIR(st.st_mode) ? SSS_OK : sss_error_set(err, SSS_ERROR_IO, "%s: cannot write: %s is not a folder", path, dir);
-    else if (!active_outputs)
-        r = sss_error_set(err, SSS_ERROR_IO, "%s: cannot write: the folder %s does not exist", path, dir);
-    else
-        r = make_folders(active_outputs, dir, path, err);
+    sss_result r = active_outputs && active_outputs->create_folders
+                       ? make_folders(active_outputs, dir, path, err)
+                       : sss_error_set(err, SSS_ERROR_IO, "%s: cannot write: the folder %s does not exist", path, dir);
     free(dir);
     return r;
 }
@@ -183,9 +178,9 @@ FILE *sss_atomic_open(const char *path, char *tmp, size_t cap, sss_error *err)
         sss_error_set(err, SSS_ERROR_IO, "%s: cannot write: is a folder", path);
         return NULL;
     }
-    if (output_folder(path, err) != SSS_OK) return NULL;
     const char *slash = strrchr(path, '/');
     size_t dir_len = slash ? (size_t)(slash - path) + 1 : 0;
+    int folder_made = 0;
     for (int attempt = 0; attempt < 64; attempt++) {
         char suffix[13];
         random_suffix(suffix);
@@ -196,6 +191,12 @@ FILE *sss_atomic_open(const char *path, char *tmp, size_t cap, sss_error *err)
         }
         int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
         if (fd < 0 && errno == EEXIST) continue;
+        if (fd < 0 && errno == ENOENT && !folder_made) { /* a folder of the path is missing */
+            if (missing_folder(path, err) != SSS_OK) return NULL;
+            folder_made = 1;
+            attempt--;
+            continue;
+        }
         if (fd < 0) {
             sss_error_set(err, SSS_ERROR_IO, "%s: cannot write: %s", path, strerror(errno));
             return NULL;

@@ -107,8 +107,8 @@ sss_result gltf_accessor_get(gltf_ctx *c, long index, const char *use, int compo
     /* Without a buffer view an accessor is all zeros (spec 3.6.2.3), only useful with sparse data:
      * refused, also because its count is backed by no bytes of the file. */
     if (view < 0)
-        return gltf_fail(c, SSS_ERROR_UNSUPPORTED, "accessors[%ld]: no bufferView (zero-filled accessors are not supported)",
-                         index);
+        return gltf_fail(c, SSS_ERROR_UNSUPPORTED,
+                         "accessors[%ld]: no bufferView (zero-filled accessors are not supported)", index);
     const unsigned char *start = NULL;
     size_t length = 0;
     long stride = 0;

@@ -159,12 +159,19 @@ static sss_result check_unit(gltf_ctx *c, const char *path, const char *key, con
 static sss_result read_scatter_ext(gltf_ctx *c, const cJSON *obj, scatter_ext *e)
 {
     static const double white[3] = {1, 1, 1}, black[3] = {0, 0, 0};
-    static const struct { const char *weight, *weight_alias, *color, *color_alias, *g; double weight_def; const double *color_def; } keys[] = {
+    static const struct {
+        const char *weight, *weight_alias, *color, *color_alias, *g;
+        double weight_def;
+        const double *color_def;
+    } keys[] = {
         /* the draft's README names the weight scatterStrengthFactor, its schema file scatterFactor */
-        [SCATTER_KHR] = {"scatterStrengthFactor", "scatterFactor", "multiscatterColorFactor", NULL, "scatterAnisotropy", 0, white},
+        [SCATTER_KHR] = {"scatterStrengthFactor", "scatterFactor", "multiscatterColorFactor", NULL,
+                         "scatterAnisotropy", 0, white},
         /* an earlier draft (and some sample assets) name the colour multiscatterColorFactor */
-        [SCATTER_VOLUME] = {NULL, NULL, "multiscatterColor", "multiscatterColorFactor", "scatterAnisotropy", 1, black},
-        [SCATTER_DIFFUSE_TRANSMISSION] = {"diffuseTransmissionFactor", NULL, "diffuseTransmissionColorFactor", NULL, NULL, 0, white},
+        [SCATTER_VOLUME] = {NULL, NULL, "multiscatterColor", "multiscatterColorFactor", "scatterAnisotropy", 1,
+                            black},
+        [SCATTER_DIFFUSE_TRANSMISSION] = {"diffuseTransmissionFactor", NULL, "diffuseTransmissionColorFactor", NULL,
+                                          NULL, 0, white},
     };
     const char *weight = keys[e->kind].weight, *color = keys[e->kind].color;
     if (weight && !gltf_get(obj, weight) && keys[e->kind].weight_alias && gltf_get(obj, keys[e->kind].weight_alias))

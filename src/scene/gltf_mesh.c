@@ -207,7 +207,8 @@ sss_result gltf_primitive_mesh(gltf_ctx *c, long node, long mesh_index, long pri
         res = gltf_fail(c, SSS_ERROR_UNSUPPORTED, "%s: mode %ld with Draco (only triangle lists are supported)", dp, mode);
     gltf_source src = {.idx_accessor = -1};
     if (res == SSS_OK)
-        res = draco ? gltf_draco_source(c, primitive, draco, path, &src) : plain_source(c, primitive, attributes, path, &src);
+        res = draco ? gltf_draco_source(c, primitive, draco, path, &src)
+                    : plain_source(c, primitive, attributes, path, &src);
     int normals_ok = 0;
     if (res == SSS_OK) res = read_vertices(c, node, &src, path, world, out, &normals_ok);
     if (res == SSS_OK) res = read_indices(c, &src, path, (int)mode, out->vertex_count, out);

@@ -654,7 +654,8 @@ static void test_scatter_extension(void)
     CHECK(!m.subsurface && m.note && strstr(m.note, "KHR_materials_scatter without an attenuating volume"));
     /* out of its schema's ranges: refused with the path */
     static const struct { const char *more, *needle; } bad[] = {
-        {"\"KHR_materials_scatter\": {\"scatterStrengthFactor\": 1.5}, ", "KHR_materials_scatter.scatterStrengthFactor: 1.5 is outside [0, 1]"},
+        {"\"KHR_materials_scatter\": {\"scatterStrengthFactor\": 1.5}, ",
+         "KHR_materials_scatter.scatterStrengthFactor: 1.5 is outside [0, 1]"},
         {"\"KHR_materials_scatter\": {\"scatterStrengthFactor\": 1, \"multiscatterColorFactor\": [1, 2, 1]}, ",
          "KHR_materials_scatter.multiscatterColorFactor[1]: 2 is outside [0, 1]"},
         {"\"KHR_materials_scatter\": {\"scatterStrengthFactor\": 1, \"scatterAnisotropy\": 1}, ",
