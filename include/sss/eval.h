@@ -101,6 +101,8 @@ typedef struct sss_eval_entry {
     int sam_n;                        /* SAM_SWEEP: back-side samples; 0 otherwise */
     int ok;                           /* 0: failed, error holds why */
     char error[SSS_ERROR_MESSAGE_SIZE];
+    char warning[SSS_ERROR_MESSAGE_SIZE]; /* materials whose kernel the technique cuts (sss_gl_kernel_cut_warnings,
+                                         one per line), or empty */
     int has_metrics;                  /* compared with a reference */
     sss_image_metrics metrics;
     int frames;                       /* frames rendered */

@@ -161,6 +161,23 @@ typedef struct sss_gl_renderer_desc {
 
 #define SSS_GL_MAX_SUPERSAMPLE 4
 
+/* Truncated kernels. Some techniques carry light only over a bounded distance from where it enters (the
+ * ssss family and sam's front side: the visible surface of one object, about its mean chord 4 V / A;
+ * ssss-gauss6 also the skin fit's widest Gaussian; local: one pixel); a material that spreads its
+ * light farther loses the colour of the long distances there. sss_gl_kernel_cut compares, for
+ * subsurface object `object` of scene and desc's technique and parameters (desc's size, 0: the
+ * camera's), the material's reach (sss_profile_reach at SSS_GL_KERNEL_CUT_FRACTION: the radius
+ * holding half of every channel's light) with the technique's support (INFINITY for techniques that
+ * carry light across the whole object). Returns 1 when the reach is larger, 0 when not, -1 when the
+ * object is not subsurface or desc names no known technique. Needs no GL context. */
+#define SSS_GL_KERNEL_CUT_FRACTION 0.5
+SSS_API int sss_gl_kernel_cut(const struct sss_scene *scene, const sss_gl_renderer_desc *desc, int object, double *reach,
+                              double *support);
+/* One line per object whose kernel is cut, naming the object, its material and the technique, into out
+ * (cap bytes, cut to fit; may be NULL); returns the number of such objects. */
+SSS_API int sss_gl_kernel_cut_warnings(const struct sss_scene *scene, const sss_gl_renderer_desc *desc, char *out,
+                                       size_t cap);
+
 /* The CPU-only tables sss_gl_renderer_create would compute for `scene` under `desc` (its technique and
  * parameters; sizes are ignored): the kernel LUT cascade of every distinct subsurface material
  * (Maisch & Ropinski 2020, section 7.1), most of the cost of a renderer on software GL, and for sam the

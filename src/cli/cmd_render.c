@@ -268,6 +268,15 @@ typedef struct render_job {
     int total, done_frames;   /* for the progress: every frame rendered, warm-up too */
 } render_job;
 
+/* Materials whose kernel reaches beyond the technique's support (sss_gl_kernel_cut), one line each. */
+static void warn_kernel_cut(const sss_scene *scene, const sss_gl_renderer_desc *desc, const char *path)
+{
+    char text[4096];
+    if (sss_gl_kernel_cut_warnings(scene, desc, text, sizeof text) == 0) return;
+    for (char *line = strtok(text, "\n"); line; line = strtok(NULL, "\n"))
+        fprintf(stderr, "sss render: warning: %s: %s\n", path, line);
+}
+
 /* The context (a window with --window) and the renderer of o's technique, size and parameters. */
 static sss_result open_renderer(render_job *j, sss_error *err)
 {
@@ -296,6 +305,7 @@ static sss_result open_renderer(render_job *j, sss_error *err)
     j->total = o->frames + (j->timed ? o->warmup : 0);
     if (j->timed && (res = sss_gl_timing_series_init(&j->series, o->warmup, o->frames, err)) != SSS_OK) return res;
     if ((res = sss_gl_renderer_create(j->ctx, &j->scene, &rdesc, &j->r, err)) != SSS_OK) return res;
+    if (!o->common.quiet) warn_kernel_cut(&j->scene, &rdesc, o->scene_path);
     sss_gl_renderer_size(j->r, &j->w, &j->h);
     return sss_image_create(&j->img, j->w, j->h, err);
 }

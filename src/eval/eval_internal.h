@@ -143,6 +143,10 @@ sss_result eval_finish_canvas(cairo_surface_t *s, cairo_t *cr, const char *path,
 /* Surface + context of a white canvas; 0 on failure (both set to NULL). */
 int eval_canvas(int width, int height, cairo_surface_t **s, cairo_t **cr);
 
+/* Some technique was timed at two sizes or more in some scene: plot_resolution.png has a line to draw
+ * (with one size per scene it would show one dot per technique and is not written). */
+int eval_resolutions_plotted(const sss_eval_results *res);
+
 /* Nice axis ticks from lo to hi (about `target` of them): step and first tick. */
 void eval_ticks(double lo, double hi, int target, double *first, double *step, int *count);
 /* Number formatting for labels: short, no exponent for usual ranges. */

@@ -268,7 +268,7 @@ sss_result sss_eval_plot_passes(const sss_eval_results *res, const char *path, s
     double lw = legend_width(mc, "passes", names, np);
     double tl = 0;
     for (int k = 0; k < ns; k++) tl = fmin(160, fmax(tl, eval_text_width(mc, FONT - 2, 0, res->labels[k])));
-    const char *title = "Milliseconds per frame by pass (median of the frames; each scene its own scale)";
+    const char *title = "Milliseconds per frame by pass (segments: pass medians; labels: median frame; own scales)";
     double pw_px = fmax(220, 80 + ns * bw + 20), ph_px = 300 + tl * 0.8 + 30;
     int cols = ng < 4 ? (ng > 0 ? ng : 1) : 4, rows = (ng + cols - 1) / cols;
     int W = canvas_width(mc, (int)(cols * pw_px + 30 + lw), title);
@@ -335,8 +335,10 @@ sss_result sss_eval_plot_passes(const sss_eval_results *res, const char *path, s
                     cairo_move_to(cr, x + 1, y + 5);
                     cairo_line_to(cr, x + bw - 1, y + 1);
                     cairo_stroke(cr);
-                    /* the real total, written downwards inside the bar below the break */
-                    snprintf(buf, sizeof buf, "%.0f ms", acc);
+                    /* the frame's total written downwards inside the bar below the break: the median
+                     * frame time, as the tables give it (not the sum of the passes' medians, which
+                     * differs by the frames' spread) */
+                    snprintf(buf, sizeof buf, "%.1f ms", e->total_ms);
                     double tw = eval_text_width(cr, FONT - 3, 0, buf);
                     cairo_set_source_rgb(cr, 1, 1, 1);
                     cairo_rectangle(cr, x + 3, y + 6, bw - 6, tw + 6);
@@ -469,6 +471,21 @@ sss_result sss_eval_plot_sam(const sss_eval_results *res, const char *path, sss_
     free(sv);
     free(labels);
     return r;
+}
+
+int eval_resolutions_plotted(const sss_eval_results *res)
+{
+    for (int i = 0; i < res->entry_count; i++) {
+        const sss_eval_entry *a = &res->entries[i];
+        if (a->kind == SSS_EVAL_SAM_SWEEP || !a->ok) continue;
+        for (int j = i + 1; j < res->entry_count; j++) {
+            const sss_eval_entry *b = &res->entries[j];
+            if (b->kind != SSS_EVAL_SAM_SWEEP && b->ok && b->scene == a->scene && strcmp(b->label, a->label) == 0 &&
+                (b->width != a->width || b->height != a->height))
+                return 1;
+        }
+    }
+    return 0;
 }
 
 /* One panel per scene (its sizes differ from the others', and so do its costs): frame time against

@@ -180,7 +180,7 @@ static const char *CSS =
     "th{background:#f0f0f0}.l{text-align:left}.small{font-size:11px;max-width:560px}"
     ".ok{color:#176e1a}.fail{color:#b00000;font-weight:bold}.best{font-weight:bold;background:#e6f4e6}"
     "img{max-width:100%;height:auto;border:1px solid #ddd;margin:6px 0}"
-    ".meta td{text-align:left}.note{color:#555;font-size:13px}";
+    ".meta td{text-align:left}.note{color:#555;font-size:13px}.warn{color:#8a5300;font-size:13px}";
 
 static double metric(const sss_eval_entry *e, int flip) { return flip ? e->metrics.flip : e->metrics.dssim; }
 
@@ -228,35 +228,50 @@ static int sam_plotted(const sss_eval_results *res)
     return 0;
 }
 
-/* The zoomed crops of each compared technique of scene s, one image per row. */
-static void crops_table(sbuf *b, const sss_eval_results *res, int s, const char *dir)
+/* Light between surfaces: the full-transport reference carries it, no technique here does, so part of
+ * every technique's error is the same (docs/eval.md, 'Two truths'). */
+static void between_surfaces_note(sbuf *b, const sss_eval_results *res)
 {
-    int w, h;
-    eval_primary_size(res, s, &w, &h);
-    int crop = eval_crop_size(w, h);
-    eval_window sil = eval_silhouette_window(&res->scenes[s].object_ids, w, h, crop);
-    sb_printf(b, "<h3>Zoomed crops (%d&times;%d-pixel windows)</h3>\n", crop, crop);
-    if (sil.valid) sb_printf(b, "<p class=\"note\">silhouette window at (%d, %d)</p>\n", sil.x, sil.y);
+    sb_puts(b, "<p class=\"note\" id=\"between-surfaces\"><b>Light between surfaces.</b> Part of every "
+               "technique's error is light that travels from one surface to another: the floor lit by the object's "
+               "glow, the object lit by the floor, a shadow filled by light from the surfaces around it. The "
+               "real-time techniques compute light from the lights only, so this error is the same for all of them "
+               "and sits in the same places (on <code>default</code> the floor's shadow is every technique's worst "
+               "window). Score against both truths to tell it apart from a technique's own error: ");
+    if (res->reference_bounces == 1)
+        sb_puts(b, "this report uses the single-event truth (<code>--reference-bounces 1</code>, light from the "
+                   "lights only, what the techniques model); run without it for the full transport, what a viewer "
+                   "sees.</p>\n");
     else
-        sb_puts(b, "<p class=\"note\">no silhouette window: no G-buffer object ids were read, or no subsurface "
-                   "object has an outline in the image</p>\n");
-    sb_puts(b, "<table class=\"crops\"><tr><th class=\"l\">technique</th><th class=\"l\">worst window (largest "
-               "mean FLIP)</th><th class=\"l\">reference | technique</th></tr>\n");
+        sb_puts(b, "this report uses the full transport (what a viewer sees); <code>sss eval "
+                   "--reference-bounces 1</code> scores against the single-event truth (light from the lights only, "
+                   "what the techniques model), where what remains is each technique's own error.</p>\n");
+}
+
+/* The techniques that cut a material's kernel in scene s (at its first size), once each. */
+static void kernel_cut_note(sbuf *b, const sss_eval_results *res, int s)
+{
+    int w, h, any = 0;
+    eval_primary_size(res, s, &w, &h);
     for (int k = 0; k < res->label_count; k++) {
         const sss_eval_entry *e = eval_find(res, s, SSS_EVAL_QUALITY, res->labels[k], w, h);
-        if (!e || !e->has_metrics || !e->image.pixels) continue;
-        eval_window worst = eval_worst_window(&e->flip_map, crop);
-        sb_puts(b, "<tr><td class=\"l\">");
-        sb_esc(b, e->label);
-        if (worst.valid) sb_printf(b, "</td><td class=\"l\">(%d, %d)</td><td class=\"l\">", worst.x, worst.y);
-        else sb_puts(b, "</td><td class=\"l\">none (no error)</td><td class=\"l\">");
-        char file[300], alt[SSS_EVAL_LABEL_SIZE + 32];
-        eval_crops_file(&res->scenes[s], k, file, sizeof file);
-        snprintf(alt, sizeof alt, "crops of %s", e->label);
-        sb_image(b, dir, file, alt);
-        sb_puts(b, "</td></tr>\n");
+        if (!e || !e->warning[0]) continue;
+        if (!any++)
+            sb_puts(b, "<p class=\"warn\" id=\"kernel-cut\"><b>Truncated kernels.</b> These techniques carry light "
+                       "over a shorter distance than the material spreads half of it (the colour of the long distances "
+                       "is lost; sss_gl_kernel_cut, docs/eval.md):");
+        char line[sizeof e->warning];
+        for (const char *at = e->warning; *at;) { /* one line per object */
+            size_t n = strcspn(at, "\n");
+            snprintf(line, sizeof line, "%.*s", (int)n, at);
+            sb_puts(b, "<br>");
+            sb_esc(b, e->label);
+            sb_puts(b, ": ");
+            sb_esc(b, line);
+            at += n + (at[n] == '\n');
+        }
     }
-    sb_puts(b, "</table>\n");
+    if (any) sb_puts(b, "</p>\n");
 }
 
 static sss_result build_report(const sss_eval_results *res, const char *dir, sbuf *b)
@@ -305,6 +320,7 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
                "shorter side) with the largest mean FLIP; the <span style=\"color:#0090c0\">silhouette window</span> "
                "of a scene is the square holding the most pixels where the G-buffer object id of a subsurface "
                "object changes (its outline against the background, the ground or another object).</p>\n");
+    between_surfaces_note(b, res);
 
     summary_table(b, res, 0);
     summary_table(b, res, 1);
@@ -313,6 +329,10 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
     sb_image(b, dir, "plot_dssim.png", "DSSIM per technique and scene");
     sb_image(b, dir, "plot_flip.png", "FLIP per technique and scene");
     sb_image(b, dir, "plot_passes.png", "milliseconds per pass");
+    sb_printf(b, "<p class=\"note\" id=\"frame-time\">Frame time, everywhere in this report (tables, sheets, the "
+                 "labels of cut bars): the median of the %d timed frames' totals. A bar's segments are each pass's "
+                 "own median, so the stack can differ from the frame time by the frames' spread.</p>\n",
+              res->frames);
     if (sam_plotted(res)) sb_image(b, dir, "plot_sam_rmse.png", "SAM RMSE against back-side samples");
     else {
         sb_puts(b, "<p class=\"note\">No SAM plot (plot_sam_rmse.png is not written): ");
@@ -321,7 +341,11 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
                                      : "the SAM sweep did not run (evaluate the sam technique or pass --sam-sweep)");
         sb_puts(b, ".</p>\n");
     }
-    sb_image(b, dir, "plot_resolution.png", "frame time against resolution, per scene");
+    if (eval_resolutions_plotted(res)) sb_image(b, dir, "plot_resolution.png", "frame time against resolution, per scene");
+    else
+        sb_puts(b, "<p class=\"note\">No resolution plot (plot_resolution.png is not written): every technique was "
+                   "timed at one size per scene, which would draw one dot per technique and no trend "
+                   "(--timing-resolutions adds sizes).</p>\n");
 
     for (int s = 0; s < res->scene_count; s++) {
         const sss_eval_scene *es = &res->scenes[s];
@@ -352,7 +376,7 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
         char file[300];
         eval_sheet_file(es, file, sizeof file);
         sb_image(b, dir, file, es->name);
-        crops_table(b, res, s, dir);
+        kernel_cut_note(b, res, s);
         table_head(b);
         double best[2] = {INFINITY, INFINITY};
         for (int i = 0; i < res->entry_count; i++) {
@@ -370,12 +394,8 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
         sb_puts(b, "</table>\n");
     }
 
-    sb_puts(b, "<h2>SAM: RMSE against back-side samples (Maisch & Ropinski 2017, Fig. 10)</h2>\n");
-    if (!res->sam_swept) {
-        sb_puts(b, res->sam_available ? "<p class=\"note\">" : "<p class=\"note\">sam not available: ");
-        sb_esc(b, res->sam_note[0] ? res->sam_note : "not run");
-        sb_puts(b, "</p>\n");
-    } else {
+    if (res->sam_swept) { /* otherwise the Plots section said why there is no sweep */
+        sb_puts(b, "<h2>SAM: RMSE against back-side samples (Maisch & Ropinski 2017, Fig. 10)</h2>\n");
         table_head(b);
         for (int i = 0; i < res->entry_count; i++)
             if (res->entries[i].kind == SSS_EVAL_SAM_SWEEP) {
@@ -473,7 +493,7 @@ sss_result sss_eval_write_all(const sss_eval_results *res, const char *out_dir, 
         snprintf(path, sizeof path, "%s/plot_sam_rmse.png", out_dir);
         r = sss_eval_plot_sam(res, path, err);
     }
-    if (r == SSS_OK) {
+    if (r == SSS_OK && eval_resolutions_plotted(res)) {
         snprintf(path, sizeof path, "%s/plot_resolution.png", out_dir);
         r = sss_eval_plot_resolution(res, path, err);
     }

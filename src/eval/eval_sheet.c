@@ -62,7 +62,9 @@ static void crop_pair(cairo_t *cr, cairo_surface_t *ref, cairo_surface_t *img, e
         eval_draw_surface(cr, NULL, x, y, 2 * box + GAP, box);
         cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
         snprintf(buf, sizeof buf, "%s: no window", what);
-        eval_text(cr, x, y + box + 14, 11, 0, 0, buf);
+        char fit[160];
+        fit_text(cr, 11, 0, buf, 2 * box + GAP, fit, sizeof fit);
+        eval_text(cr, x, y + box + 14, 11, 0, 0, fit);
         return;
     }
     eval_draw_crop(cr, ref, win.x, win.y, win.size, x, y, box);
@@ -71,9 +73,14 @@ static void crop_pair(cairo_t *cr, cairo_surface_t *ref, cairo_surface_t *img, e
     cairo_set_line_width(cr, 3);
     cairo_rectangle(cr, x - 1.5, y - 1.5, 2 * box + GAP + 3, box + 3);
     cairo_stroke(cr);
+    /* two short lines within the pair's width: side by side, pairs' captions must not run into each other */
+    char fit[160];
     cairo_set_source_rgb(cr, 0, 0, 0);
-    snprintf(buf, sizeof buf, "%s (%d, %d) %dpx: reference | technique", what, win.x, win.y, win.size);
-    eval_text(cr, x, y + box + 14, 11, 0, 0, buf);
+    snprintf(buf, sizeof buf, "%s at (%d, %d), %d px", what, win.x, win.y, win.size);
+    fit_text(cr, 11, 0, buf, 2 * box + GAP, fit, sizeof fit);
+    eval_text(cr, x, y + box + 14, 11, 0, 0, fit);
+    eval_text(cr, x + box / 2, y + box + 28, 11, 0, 0.5, "reference");
+    eval_text(cr, x + box + GAP + box / 2, y + box + 28, 11, 0, 0.5, "technique");
 }
 
 static void caption(cairo_t *cr, const sss_eval_entry *e, const char *label, double x, double y, double width)
@@ -203,7 +210,7 @@ sss_result eval_write_crops(const sss_eval_results *res, int scene, int k, const
     const double box = 192;
     int crop = eval_crop_size(w, h);
     eval_window worst = eval_worst_window(&e->flip_map, crop), sil = eval_silhouette_window(&es->object_ids, w, h, crop);
-    int W = (int)(2 * MARGIN + 2 * (2 * box + GAP) + 24), H = (int)(MARGIN + box + 24);
+    int W = (int)(2 * MARGIN + 2 * (2 * box + GAP) + 24), H = (int)(MARGIN + box + 40);
     cairo_surface_t *s;
     cairo_t *cr;
     if (!eval_canvas(W, H, &s, &cr)) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: cannot draw", path);

@@ -94,6 +94,8 @@ sss_result eval_run_technique(eval_gl *rc, const sss_scene *view, double t, cons
         return SSS_OK;
     }
     e->precompute_ms = 1000.0 * (sss_time_seconds() - t0);
+    if (sss_gl_kernel_cut_warnings(view, &rd, e->warning, sizeof e->warning) > 0 && e->kind == SSS_EVAL_QUALITY)
+        eval_note(rc->prog, "warning: %s: %s", stage, e->warning);
     sss_gl_timing_series series;
     if (sss_gl_timing_series_init(&series, rc->warmup_frames, frames, &err) != SSS_OK) {
         sss_gl_renderer_destroy(r);

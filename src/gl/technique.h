@@ -109,10 +109,20 @@ typedef struct gl_technique {
      * defaults depart from them; the others are the paper's already */
     const sss_gl_param_value *paper;
     int paper_count;
+    /* optional: how far (scene units) from where light enters object `object`'s surface the technique
+     * carries it, with these parameters, at an output of width x height; NULL: across the whole object.
+     * sss_gl_kernel_cut (support.c) warns when a material spreads half of its light farther. */
+    double (*support)(const double *params, const sss_scene *scene, int object, int width, int height);
     /* NULL, or why the technique cannot run as a pass over a caller's frame (sss_gl_pass_create refuses
      * it with this reason): a technique that does not read the frame's inputs would ignore them */
     const char *not_a_pass;
 } gl_technique;
+
+/* Supports (support.c): Cauchy's mean chord 4 V / A of the object's world mesh (INFINITY when it has no
+ * volume), the distance across the object light travels on average; the side of one pixel at the
+ * object's centre, at width x height. */
+double gl_object_mean_chord(const sss_scene *scene, int object);
+double gl_object_pixel_size(const sss_scene *scene, int object, int width, int height);
 
 /* materials_changed of a technique that derives nothing from materials at creation (its shaders read
  * the material records and LUTs at render time). */

@@ -104,6 +104,26 @@ sss_result view_create_renderer(viewer *v, const sss_gl_technique_info *info, co
     return res;
 }
 
+/* Materials whose kernel reaches beyond the technique's support (sss_gl_kernel_cut): kept for the panel,
+ * logged as warnings when they change. */
+static void check_kernel_cut(viewer *v, const sss_gl_technique_info *info, const sss_scene *scene)
+{
+    sss_gl_renderer_desc d;
+    sss_gl_param_value *params = NULL;
+    char now[sizeof v->kernel_cut] = "";
+    if (view_renderer_desc(v, info, &d, &params, NULL) == SSS_OK) sss_gl_kernel_cut_warnings(scene, &d, now, sizeof now);
+    free(params);
+    if (strcmp(now, v->kernel_cut) == 0) return;
+    memcpy(v->kernel_cut, now, sizeof now);
+    char line[sizeof now + 16];
+    for (const char *at = now; *at && v->desc->log;) {
+        size_t n = strcspn(at, "\n");
+        snprintf(line, sizeof line, "warning: %.*s", (int)n, at);
+        v->desc->log(v->desc->log_user, line);
+        at += n + (at[n] == '\n');
+    }
+}
+
 sss_result view_make_renderer(viewer *v, int tech, sss_error *err)
 {
     return view_make_renderer_for(v, tech, v->scene, NULL, err);
@@ -126,6 +146,7 @@ sss_result view_make_renderer_for(viewer *v, int tech, const sss_scene *scene, c
     v->r = r;
     v->tech = tech;
     v->need_render = 1;
+    check_kernel_cut(v, info, scene);
     /* the part switches of the new technique */
     int p = find_param(info->params, info->param_count, "screen_space");
     int q = find_param(info->params, info->param_count, "translucency");

@@ -132,6 +132,8 @@ static void technique_section(viewer *v, view_panel *p)
         ImGui::EndCombo();
     }
     tooltip(current->summary);
+    if (v->kernel_cut[0]) /* sss_gl_kernel_cut: this technique cuts some material's kernel */
+        ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "warning: %s", v->kernel_cut);
 }
 
 /* The parameter's name, doc string (the technique's table), range and default. */
@@ -543,6 +545,7 @@ sss_result view_panel_draw(viewer *v, sss_error *err)
     if (v->message[0] && sss_time_seconds() < v->message_until) ImGui::TextWrapped("%s", v->message);
     /* the sections scroll below the message, so that a message coming or going does not move them */
     ImGui::BeginChild("sections");
+    ImGui::PushTextWrapPos(0.0f); /* notes wrap at the panel's edge instead of running under it */
     const ImGuiStyle &st = ImGui::GetStyle();
     float room = ImGui::GetContentRegionAvail().x - p->label_width - st.ItemInnerSpacing.x - st.IndentSpacing;
     p->stacked = room < ITEM_MIN;
@@ -555,6 +558,7 @@ sss_result view_panel_draw(viewer *v, sss_error *err)
     timing_section(v, p);
     if (section(v, p, SEC_KEYS)) ImGui::TextUnformatted(sss_view_help_text());
     ImGui::PopItemWidth();
+    ImGui::PopTextWrapPos();
     float height = ImGui::GetWindowHeight();
     ImGui::EndChild();
     ImGui::End();

@@ -78,6 +78,7 @@ struct viewer {
     sss_gl_timings timings;              /* medians of timing_series */
     sss_gl_timing_series timing_series; /* the renderer's frames after warm-up, the latest few */
     char message[256];
+    char kernel_cut[1024];  /* sss_gl_kernel_cut_warnings of the technique shown (empty: none) */
     double message_until;
     int overlay, help;
     double panel_want;     /* the panel's width as dragged or set (framebuffer pixels; view_dock_width

@@ -40,6 +40,13 @@ static void local_destroy(void *state)
     if (s->prog) glDeleteProgram(s->prog);
 }
 
+/* Support (technique.h): no transport between points, so light stays within the pixel it entered. */
+static double local_support(const double *params, const sss_scene *scene, int object, int width, int height)
+{
+    (void)params;
+    return gl_object_pixel_size(scene, object, width, height);
+}
+
 const gl_technique gl_technique_local = {
     .info = {"local", "no transport between points: c_o F_t E rho_eff per pixel (zero scattering distance)",
              NULL, 0},
@@ -49,4 +56,5 @@ const gl_technique gl_technique_local = {
     .render = local_render,
     .destroy = local_destroy,
     .materials_changed = gl_materials_read_at_render,
+    .support = local_support,
 };

@@ -493,6 +493,17 @@ static void sam_stats(const gl_tech_ctx *c, void *state, sss_gl_stats *out)
     out->per_pixel_bytes += s->target_bytes / ((size_t)c->width * (size_t)c->height);
 }
 
+/* Support (technique.h): the back-side links carry light through the object, but along the front only
+ * the surface technique does: ssss as far as it reaches (the object's mean chord), none as one pixel,
+ * maisch2020's screen-space pattern across the object. */
+static double sam_support(const double *values, const sss_scene *scene, int object, int width, int height)
+{
+    const sam_params *p = (const sam_params *)values;
+    if (p->surface == 1) return gl_object_mean_chord(scene, object);
+    if (p->surface == 0) return gl_object_pixel_size(scene, object, width, height);
+    return INFINITY;
+}
+
 const gl_technique gl_technique_sam = {
     .info = {"sam",
              "Maisch & Ropinski 2017: per-vertex translucency from n back-side links with precomputed form "
@@ -510,4 +521,5 @@ const gl_technique gl_technique_sam = {
     .tables_free = sam_tables_free,
     .target = sam_target,
     .stats = sam_stats,
+    .support = sam_support,
 };

@@ -9,6 +9,7 @@
  * projection of world-space tap offsets, depth correction of Eq. 7, stochastic rotation of section 6),
  * the vertical ones summed additively; (3) combine: c_o sqrt(albedo) x total reflectance x the sum.
  * The kernels are built on the CPU once per parameter set (tech_ssss_kernel.c). */
+#include <math.h>
 #include <string.h>
 
 #include "gl/techniques/ssss/tech_ssss.h"
@@ -317,6 +318,25 @@ static void ssss_stats(const gl_tech_ctx *c, void *state, sss_gl_stats *out)
 
 #define SSSS_READS (GL_READ_GBUFFER | GL_READ_ILLUMINATION | GL_READ_LIGHTS)
 
+/* Support (technique.h): the blur gathers along the visible surface of the same object only (taps on
+ * another object or the background take the centre colour), so light that the profile carries farther
+ * than about the object's mean chord (round to the far side) never arrives. */
+static double ssss_support(const double *params, const sss_scene *scene, int object, int width, int height)
+{
+    (void)params, (void)width, (void)height;
+    return gl_object_mean_chord(scene, object);
+}
+
+/* ssss-gauss6 blurs with the skin fit whatever the material: also no farther than its widest Gaussian
+ * reaches (3 sigma; variances in mm^2, the material's scale in mm per scene unit, as build_gauss6). */
+static double gauss6_support(const double *params, const sss_scene *scene, int object, int width, int height)
+{
+    double v = 0.0, scale = scene->objects[object].material.scale;
+    for (int i = 0; i < SSS_GAUSS6_TERMS; i++) v = fmax(v, sss_gauss6_variance_mm2[i]);
+    double fit = 3.0 * sqrt(v) / (scale > 0.0 ? scale : 1.0);
+    return fmin(fit, ssss_support(params, scene, object, width, height));
+}
+
 const gl_technique gl_technique_ssss = {
     .info = {"ssss",
              "Jimenez et al. 2019: separable SSS, two 1D passes of a pre-integrated, artist or guided kernel, "
@@ -332,6 +352,7 @@ const gl_technique gl_technique_ssss = {
     .materials_changed = ssss_materials_changed,
     .target = ssss_target,
     .stats = ssss_stats,
+    .support = ssss_support,
 };
 
 const gl_technique gl_technique_ssss_gauss6 = {
@@ -347,6 +368,7 @@ const gl_technique gl_technique_ssss_gauss6 = {
     .materials_changed = ssss_materials_changed,
     .target = ssss_target,
     .stats = ssss_stats,
+    .support = gauss6_support,
 };
 
 const gl_technique gl_technique_ssss_svd = {
@@ -362,4 +384,5 @@ const gl_technique gl_technique_ssss_svd = {
     .materials_changed = ssss_materials_changed,
     .target = ssss_target,
     .stats = ssss_stats,
+    .support = ssss_support,
 };
