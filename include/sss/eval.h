@@ -64,6 +64,10 @@ typedef struct sss_eval_desc {
     int reference_bounces;          /* the truth compared against: sss_reference_desc.bounces (0: the full
                                        transport, the default; 1: the single-event integral); a cached
                                        reference is used only when its sidecar records the same */
+    int reference_noise;            /* 1: a second reference at the first quality size, seed 1 (cached as
+                                       <scene>_seed1_<w>x<h>[_t<T>].exr): every technique is compared with
+                                       both, and the largest change of a metric between them is the scene's
+                                       noise (sss_eval_scene.noise_*), which the report's "best" must beat */
 } sss_eval_desc;
 
 /* Progress: fraction in [0, 1] of the estimated work and a short description of the current step
@@ -154,6 +158,9 @@ typedef struct sss_eval_scene {
                                          objects and background) from the first technique that rendered
                                          at that size, at its supersampled size (a whole multiple of it);
                                          empty when none did. For the silhouette crops */
+    int has_noise;                    /* desc.reference_noise and both references were available */
+    double noise_dssim, noise_flip;   /* the largest |metric against seed 0 - metric against seed 1| of any
+                                         technique at the first quality size */
 } sss_eval_scene;
 
 typedef struct sss_eval_results {

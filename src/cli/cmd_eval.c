@@ -18,7 +18,7 @@
 
 enum {
     OPT_OUT, OPT_TECHNIQUES, OPT_RESOLUTIONS, OPT_TIMING_RESOLUTIONS, OPT_WIDTH, OPT_HEIGHT, OPT_FRAMES, OPT_WARMUP,
-    OPT_SUPERSAMPLE, OPT_CACHED_REFERENCE, OPT_REFERENCE_DIR, OPT_REFERENCE_QUALITY, OPT_REFERENCE_BOUNCES, OPT_THREADS,
+    OPT_SUPERSAMPLE, OPT_CACHED_REFERENCE, OPT_REFERENCE_DIR, OPT_REFERENCE_QUALITY, OPT_REFERENCE_BOUNCES, OPT_REFERENCE_NOISE, OPT_THREADS,
     OPT_SAM_SWEEP, OPT_NO_SAM_SWEEP, OPT_SAM_COUNTS
 };
 static const cli_option options[] = {
@@ -56,6 +56,12 @@ static const cli_option options[] = {
      "the truth: 1 = the single-event integral (`sss reference --bounces 1`,\n"
      "what techniques that model one event converge to), N = N bounces;\n"
      "default: the full transport (bounces until converged)",
+     NULL, NULL},
+    {OPT_REFERENCE_NOISE, "--reference-noise", NULL, CLI_ARG_NONE, NULL,
+     "a second reference (seed 1) at the first size: the largest change of a\n"
+     "technique's DSSIM or FLIP between the two is the scene's noise, and the\n"
+     "report marks a best technique only when it leads by more (cached as\n"
+     "<scene>_seed1_<W>x<H>[_t<T>].exr)",
      NULL, NULL},
     {OPT_THREADS, "--threads", NULL, CLI_ARG_NUMBER, "N", "threads of the reference renderer", NULL, "all cores"},
     /* the old spelling, still accepted */
@@ -310,6 +316,7 @@ static int set_reference_option(eval_options *o, int id, const char *a, const ch
     sss_eval_desc *d = &o->desc;
     switch (id) {
     case OPT_CACHED_REFERENCE: d->cached_reference = 1; break;
+    case OPT_REFERENCE_NOISE: d->reference_noise = 1; break;
     case OPT_REFERENCE_DIR: d->reference_dir = v; break;
     case OPT_REFERENCE_QUALITY:
         if (strcmp(v, "final") == 0) d->reference_quality = SSS_REFERENCE_FINAL;

@@ -46,6 +46,11 @@ uint64_t eval_file_hash(const char *path);
 typedef struct eval_progress eval_progress;
 sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const sss_eval_desc *desc,
                           eval_progress *prog, sss_eval_reference *ref, sss_image *img, sss_error *err);
+/* The same at another seed of the reference renderer (seed > 0: cached and saved as <stem>_seed<S>_...,
+ * sss_eval_desc.reference_noise). */
+sss_result eval_reference_seed(const sss_scene *view, const sss_eval_scene *es, const sss_eval_desc *desc,
+                               uint64_t seed, eval_progress *prog, sss_eval_reference *ref, sss_image *img,
+                               sss_error *err);
 
 /* Progress bookkeeping (eval_run.c): units done and planned, the callbacks. */
 struct eval_progress {

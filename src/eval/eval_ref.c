@@ -122,6 +122,21 @@ static void ref_progress(void *user, double fraction, const char *stage)
 sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const sss_eval_desc *desc,
                           eval_progress *prog, sss_eval_reference *ref, sss_image *img, sss_error *err)
 {
+    return eval_reference_seed(view, es, desc, 0, prog, ref, img, err);
+}
+
+sss_result eval_reference_seed(const sss_scene *view, const sss_eval_scene *es_given, const sss_eval_desc *desc,
+                               uint64_t seed, eval_progress *prog, sss_eval_reference *ref, sss_image *img,
+                               sss_error *err)
+{
+    /* another seed is another file: the scene's outputs' name with "_seed<S>" */
+    sss_eval_scene named = *es_given;
+    if (seed) {
+        snprintf(named.stem, sizeof named.stem, "%.90s_seed%" PRIu64, es_given->stem, seed);
+        snprintf(named.file_stem, sizeof named.file_stem, "%.90s_seed%" PRIu64, es_given->file_stem, seed);
+        snprintf(named.name, sizeof named.name, "%.90s (seed %" PRIu64 ")", es_given->name, seed);
+    }
+    const sss_eval_scene *es = &named;
     int w = view->camera.width, h = view->camera.height;
     memset(img, 0, sizeof *img);
     ref->width = w;
@@ -180,9 +195,10 @@ sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const
     rd.threads = desc->reference_threads;
     rd.time = es->time;
     rd.bounces = desc->reference_bounces;
+    rd.seed = seed;
     ref_fwd fwd;
     fwd.prog = prog;
-    snprintf(fwd.prefix, sizeof fwd.prefix, "%s %dx%d: reference", es->name, w, h);
+    snprintf(fwd.prefix, sizeof fwd.prefix, "%.120s %dx%d: reference", es->name, w, h);
     double t0 = sss_time_seconds();
     clock_t c0 = clock();
     sss_error rerr = {0};

@@ -184,7 +184,56 @@ static const char *CSS =
 
 static double metric(const sss_eval_entry *e, int flip) { return flip ? e->metrics.flip : e->metrics.dssim; }
 
-/* DSSIM or FLIP per scene and technique at the scene's first size, the best of each scene highlighted. */
+/* The scene's best entry for the metric at its first size, when it leads the runner-up by more than the
+ * noise: twice the largest change of any technique's value between references of two seeds (the two
+ * values may move opposite ways). NULL without a noise estimate or a runner-up. */
+static const sss_eval_entry *best_beyond_noise(const sss_eval_results *res, int s, int flip)
+{
+    const sss_eval_scene *es = &res->scenes[s];
+    if (!es->has_noise) return NULL;
+    int w, h;
+    eval_primary_size(res, s, &w, &h);
+    const sss_eval_entry *best = NULL;
+    double second = INFINITY;
+    for (int k = 0; k < res->label_count; k++) {
+        const sss_eval_entry *e = eval_find(res, s, SSS_EVAL_QUALITY, res->labels[k], w, h);
+        if (!e || !e->has_metrics) continue;
+        if (!best || metric(e, flip) < metric(best, flip)) {
+            if (best) second = metric(best, flip);
+            best = e;
+        } else if (metric(e, flip) < second) second = metric(e, flip);
+    }
+    double noise = flip ? es->noise_flip : es->noise_dssim;
+    return best && second - metric(best, flip) > 2.0 * noise ? best : NULL;
+}
+
+/* How "best" is decided, under the summary tables. */
+static void noise_note(sbuf *b, const sss_eval_results *res)
+{
+    int any = 0;
+    for (int s = 0; s < res->scene_count; s++) any |= res->scenes[s].has_noise;
+    if (!any) {
+        sb_puts(b, "<p class=\"note\" id=\"noise\">No best technique is marked: the run made no noise estimate "
+                   "(<code>sss eval --reference-noise</code> renders the reference with a second seed; a difference "
+                   "smaller than the reference's own noise ranks nothing).</p>\n");
+        return;
+    }
+    sb_puts(b, "<p class=\"note\" id=\"noise\">Marked: a scene's lowest value where it leads the next by more "
+               "than twice the scene's noise. The noise is measured: the reference is rendered again with another "
+               "seed, every technique compared with both, and the largest change of its DSSIM or FLIP is the "
+               "noise (per scene: ");
+    for (int s = 0; s < res->scene_count; s++) {
+        const sss_eval_scene *es = &res->scenes[s];
+        sb_puts(b, s ? "; " : "");
+        sb_esc(b, es->name);
+        if (es->has_noise) sb_printf(b, " DSSIM %.4f, FLIP %.4f", es->noise_dssim, es->noise_flip);
+        else sb_puts(b, " not estimated");
+    }
+    sb_puts(b, ").</p>\n");
+}
+
+/* DSSIM or FLIP per scene and technique at the scene's first size, the best of each scene highlighted
+ * when it leads by more than the noise (best_beyond_noise). */
 static void summary_table(sbuf *b, const sss_eval_results *res, int flip)
 {
     sb_printf(b, "<h2>Summary: %s (lower is better)</h2>\n<table class=\"summary-%s\"><tr><th class=\"l\">scene</th>",
@@ -198,11 +247,7 @@ static void summary_table(sbuf *b, const sss_eval_results *res, int flip)
     for (int s = 0; s < res->scene_count; s++) {
         int w, h;
         eval_primary_size(res, s, &w, &h);
-        double best = INFINITY;
-        for (int k = 0; k < res->label_count; k++) {
-            const sss_eval_entry *e = eval_find(res, s, SSS_EVAL_QUALITY, res->labels[k], w, h);
-            if (e && e->has_metrics && metric(e, flip) < best) best = metric(e, flip);
-        }
+        const sss_eval_entry *best = best_beyond_noise(res, s, flip);
         sb_puts(b, "<tr><td class=\"l\">");
         sb_esc(b, res->scenes[s].name);
         sb_puts(b, "</td>");
@@ -213,7 +258,7 @@ static void summary_table(sbuf *b, const sss_eval_results *res, int flip)
                 sb_esc(b, e ? e->error : "not run");
                 sb_puts(b, "\">failed</td>");
             } else if (!e->has_metrics) sb_puts(b, "<td>&ndash;</td>");
-            else sb_printf(b, "<td%s>%.4f</td>", metric(e, flip) == best ? " class=\"best\"" : "", metric(e, flip));
+            else sb_printf(b, "<td%s>%.4f</td>", e == best ? " class=\"best\"" : "", metric(e, flip));
         }
         sb_puts(b, "</tr>\n");
     }
@@ -324,6 +369,7 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
 
     summary_table(b, res, 0);
     summary_table(b, res, 1);
+    noise_note(b, res);
 
     sb_puts(b, "<h2>Plots</h2>\n");
     sb_image(b, dir, "plot_dssim.png", "DSSIM per technique and scene");
@@ -378,18 +424,11 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
         sb_image(b, dir, file, es->name);
         kernel_cut_note(b, res, s);
         table_head(b);
-        double best[2] = {INFINITY, INFINITY};
+        const sss_eval_entry *best[2] = {best_beyond_noise(res, s, 0), best_beyond_noise(res, s, 1)};
         for (int i = 0; i < res->entry_count; i++) {
             const sss_eval_entry *e = &res->entries[i];
-            for (int m = 0; m < 2; m++)
-                if (e->scene == s && e->kind == SSS_EVAL_QUALITY && e->has_metrics && metric(e, m) < best[m])
-                    best[m] = metric(e, m);
-        }
-        for (int i = 0; i < res->entry_count; i++) {
-            const sss_eval_entry *e = &res->entries[i];
-            int q = e->scene == s && e->kind == SSS_EVAL_QUALITY && e->has_metrics;
             if (e->scene == s && e->kind != SSS_EVAL_SAM_SWEEP)
-                entry_row(b, res, e, (q && e->metrics.dssim == best[0]) | (q && e->metrics.flip == best[1]) << 1);
+                entry_row(b, res, e, (e == best[0]) | (e == best[1]) << 1);
         }
         sb_puts(b, "</table>\n");
     }

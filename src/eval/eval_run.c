@@ -234,6 +234,19 @@ static void keep_subsurface_ids(const sss_scene *scene, sss_image *ids)
     }
 }
 
+/* The reference's seed-to-seed noise as this technique sees it: how much its metrics move when the
+ * reference is rendered with another seed (the scene's noise is the largest over the techniques). */
+static void add_noise(sss_eval_scene *es, const sss_image *ref1, const sss_eval_entry *e)
+{
+    sss_image_metrics m1;
+    if (sss_image_compare_maps(ref1, &e->image, es->exposure, &m1, NULL, NULL, NULL) != SSS_OK) {
+        es->has_noise = 0; /* unknown for this one: no claim for the scene */
+        return;
+    }
+    es->noise_dssim = fmax(es->noise_dssim, fabs(m1.dssim - e->metrics.dssim));
+    es->noise_flip = fmax(es->noise_flip, fabs(m1.flip - e->metrics.flip));
+}
+
 static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size size, sss_error *err)
 {
     sss_eval_results *res = st->res;
@@ -248,6 +261,17 @@ static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size s
     es->reference_count = k + 1;
     eval_progress_finish_step(&st->prog);
     if (r != SSS_OK) return r;
+    sss_image ref1 = {0};
+    if (k == 0 && st->desc->reference_noise) {
+        sss_eval_reference rf1;
+        memset(&rf1, 0, sizeof rf1);
+        r = eval_reference_seed(&view, es, st->desc, 1, &st->prog, &rf1, &ref1, err);
+        if (r != SSS_OK) {
+            sss_image_free(&ref);
+            return r;
+        }
+        es->has_noise = ref.pixels && ref1.pixels;
+    }
     sss_eval_entry e;
     for (int i = 0; i < res->label_count; i++) {
         st->rc.object_ids = k == 0 ? &es->object_ids : NULL;
@@ -266,6 +290,7 @@ static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size s
                 eval_fail_entry(&e, cerr.message);
             }
         }
+        if (e.has_metrics && ref1.pixels) add_noise(es, &ref1, &e);
         if (k != 0 || !e.ok) sss_image_free(&e.image);
         if (r == SSS_OK) r = add_result(st, &e);
         if (r != SSS_OK) {
@@ -273,9 +298,11 @@ static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size s
             sss_image_free(&e.dssim_map);
             sss_image_free(&e.flip_map);
             sss_image_free(&ref);
+            sss_image_free(&ref1);
             return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
         }
     }
+    sss_image_free(&ref1);
     /* the SAM sweep at the first quality size (Maisch & Ropinski 2017, Fig. 10: RMSE against back-side samples) */
     if (k == 0 && res->sam_swept) {
         eval_spec spec;

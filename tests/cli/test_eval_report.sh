@@ -2,7 +2,7 @@
 # report.html of sss eval opens in headless Chromium without errors and every image loads: a copy of
 # the page with a small script appended marks the number of images and of broken ones (naturalWidth
 # 0) on <body>, read back with --dump-dom; the same script finds, as laid out by the browser, the FLIP
-# columns with numbers, the zoomed crops of every compared technique (loaded, drawn with a size) and
+# columns with numbers, no crops table (the crops are on the sheet: once), no best marked without a noise estimate, and
 # the sheet (whose error maps carry the colour bars); a screenshot is taken and must not be blank. Skips (exit 0)
 # when chromium is not installed (Debian package `chromium`: scripts/install-deps.sh --dev).
 # Usage: bash test_eval_report.sh <sss-binary> <repo-root>
@@ -63,12 +63,15 @@ case "$body" in
 *"data-images=\"$n_html\""*"data-broken=\"0\""*) ;;
 *) fail "images not all loaded (page has $n_html): $body" ;;
 esac
-[ "$n_html" -ge 5 ] || fail "report has only $n_html images"
+# three plots (DSSIM, FLIP, passes; one size: no resolution plot) and the sheet
+[ "$n_html" -eq 4 ] || fail "report has $n_html images, not 4"
 grep -q "nosuch" "$T/dom.html" || fail "the failed technique is not in the rendered page"
 # one FLIP header per entry table (scene + SAM sweep not run: 1), two compared entries with a FLIP value
-# (the quality size: local and ssss), the best of the scene marked in the FLIP summary
-case "$body" in *'data-flip="1/2/1"'*) ;; *) fail "FLIP columns: $body" ;; esac
-case "$body" in *'data-crops="2"'*) ;; *) fail "zoomed crops of local and ssss: $body" ;; esac
+# (the quality size: local and ssss); no best marked (no noise estimate without --reference-noise, and
+# the page says so); the zoomed crops only on the sheet, not a second time in a table
+case "$body" in *'data-flip="1/2/0"'*) ;; *) fail "FLIP columns: $body" ;; esac
+case "$body" in *'data-crops="0"'*) ;; *) fail "zoomed crops shown twice: $body" ;; esac
+grep -q "No best technique is marked" "$T/dom.html" || fail "the page does not say why no best is marked"
 case "$body" in *'data-sheets="1"'*) ;; *) fail "the sheet with the error maps and colour bars: $body" ;; esac
 grep -q "colour bars" "$T/dom.html" || fail "the page does not explain the colour bars"
 [ -e "$T/out/plot_sam_rmse.png" ] && fail "an empty SAM plot was written (no sweep ran)"
