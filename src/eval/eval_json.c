@@ -51,6 +51,8 @@ static cJSON *entry_json(const sss_eval_results *res, const sss_eval_entry *e)
     cJSON_AddStringToObject(o, "status", e->ok ? "ok" : "failed");
     if (e->ok) cJSON_AddNullToObject(o, "error");
     else add_text(o, "error", e->error);
+    if (e->warning[0]) add_text(o, "warning", e->warning);
+    else cJSON_AddNullToObject(o, "warning");
     if (e->has_metrics) {
         add_num(o, "dssim", e->metrics.dssim);
         add_num(o, "flip", e->metrics.flip);
@@ -137,6 +139,11 @@ static cJSON *results_json(const sss_eval_results *res)
         cJSON_AddNumberToObject(o, "height", s->height);
         cJSON_AddNumberToObject(o, "exposure", s->exposure);
         cJSON_AddNumberToObject(o, "triangles", (double)s->triangles);
+        cJSON *noise = s->has_noise ? cJSON_AddObjectToObject(o, "noise") : cJSON_AddNullToObject(o, "noise");
+        if (s->has_noise && noise) {
+            add_num(noise, "dssim", s->noise_dssim);
+            add_num(noise, "flip", s->noise_flip);
+        }
         cJSON *refs = cJSON_AddArrayToObject(o, "references");
         for (int k = 0; refs && k < s->reference_count; k++) {
             const sss_eval_reference *r = &s->references[k];

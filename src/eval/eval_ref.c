@@ -62,6 +62,7 @@ static int read_sidecar(const char *exr, uint64_t *hash, char quality[8], int *b
 
 /* What the render measured, for the sidecar: CPU seconds (all threads) and the bounces' times. */
 typedef struct render_record {
+    uint64_t seed;
     double seconds, cpu_seconds;
     sss_reference_stats stats;
 } render_record;
@@ -88,7 +89,8 @@ static sss_result write_sidecar(const char *exr, const sss_eval_scene *es, int w
     const char *slash = strrchr(es->path, '/'), *name = slash ? slash + 1 : es->path;
     char tflag[80] = "";
     int n = es->has_time ? snprintf(tflag, sizeof tflag, " --time %g", es->time) : 0;
-    if (bounces > 0) snprintf(tflag + n, sizeof tflag - (size_t)n, " --bounces %d", bounces);
+    if (bounces > 0) n += snprintf(tflag + n, sizeof tflag - (size_t)n, " --bounces %d", bounces);
+    if (rec->seed) snprintf(tflag + n, sizeof tflag - (size_t)n, " --seed %" PRIu64, rec->seed);
     fputs("{\n  \"scene\": \"", f);
     json_text(f, name);
     fprintf(f,
@@ -204,6 +206,7 @@ sss_result eval_reference_seed(const sss_scene *view, const sss_eval_scene *es_g
     sss_error rerr = {0};
     render_record rec;
     memset(&rec, 0, sizeof rec);
+    rec.seed = seed;
     if (sss_reference_render(view, &rd, img, ref_progress, &fwd, &rec.stats, &rerr) != SSS_OK) {
         snprintf(ref->error, sizeof ref->error, "%s", rerr.message);
         eval_note(prog, "%s: reference failed: %s", es->name, rerr.message);

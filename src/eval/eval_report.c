@@ -302,9 +302,9 @@ static void kernel_cut_note(sbuf *b, const sss_eval_results *res, int s)
         const sss_eval_entry *e = eval_find(res, s, SSS_EVAL_QUALITY, res->labels[k], w, h);
         if (!e || !e->warning[0]) continue;
         if (!any++)
-            sb_puts(b, "<p class=\"warn\" id=\"kernel-cut\"><b>Truncated kernels.</b> These techniques carry light "
-                       "over a shorter distance than the material spreads half of it (the colour of the long distances "
-                       "is lost; sss_gl_kernel_cut, docs/eval.md):");
+            sb_printf(b, "<p class=\"warn\" id=\"kernel-cut-%d\"><b>Truncated kernels.</b> These techniques carry "
+                         "light over a shorter distance than the material spreads half of it (the colour of the long "
+                         "distances is lost; sss_gl_kernel_cut, docs/eval.md):", s);
         char line[sizeof e->warning];
         for (const char *at = e->warning; *at;) { /* one line per object */
             size_t n = strcspn(at, "\n");
