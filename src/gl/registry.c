@@ -13,6 +13,7 @@ extern const gl_technique gl_technique_local;
 extern const gl_technique gl_technique_sam;
 extern const gl_technique gl_technique_mertens2003, gl_technique_dss, gl_technique_chen2012;
 extern const gl_technique gl_technique_ssss, gl_technique_ssss_gauss6, gl_technique_ssss_svd, gl_technique_screen;
+extern const gl_technique gl_technique_burley;
 
 static const gl_technique *const techniques[] = {
     &gl_technique_maisch2020,
@@ -20,6 +21,7 @@ static const gl_technique *const techniques[] = {
     &gl_technique_sam,
     &gl_technique_mertens2003, &gl_technique_dss, &gl_technique_chen2012,
     &gl_technique_ssss, &gl_technique_ssss_gauss6, &gl_technique_ssss_svd, &gl_technique_screen,
+    &gl_technique_burley,
 };
 #define TECHNIQUE_COUNT ((int)(sizeof techniques / sizeof techniques[0]))
 
