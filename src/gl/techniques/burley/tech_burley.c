@@ -15,15 +15,6 @@
 
 static const sss_gl_param_info burley_params_info[] = {BURLEY_PARAMS(GL_PARAM_INFO)};
 
-typedef struct burley_state {
-    GLuint prog_prep, prog_scatter, prog_resolve;
-    GLuint ssbo, samp_cube, samp_2d;
-    GLuint tex_signal, tex_scatter, fbo_signal, fbo_scatter;
-    int width, height;
-    double built_fit, built_cdf; /* the parameters the block was built with */
-    int have_block;
-    size_t target_bytes, block_bytes;
-} burley_state;
 
 static void free_targets(burley_state *s)
 {

@@ -72,6 +72,17 @@ enum { BURLEY_TRANS_OFF = 0, BURLEY_TRANS_THICK, BURLEY_TRANS_THIN };
 
 GL_PARAM_STRUCT(burley_params, BURLEY_PARAMS);
 
+/* Its state (tests read tex_scatter: rgb the scattered light, a the sample count per pixel). */
+typedef struct burley_state {
+    GLuint prog_prep, prog_scatter, prog_resolve;
+    GLuint ssbo, samp_cube, samp_2d;
+    GLuint tex_signal, tex_scatter, fbo_signal, fbo_scatter;
+    int width, height;
+    double built_fit, built_cdf; /* the parameters the block was built with */
+    int have_block;
+    size_t target_bytes, block_bytes;
+} burley_state;
+
 /* ---- The profile (burley_fit.c) ------------------------------------------------------------------ */
 
 /* R(r) of one channel. */
