@@ -207,10 +207,12 @@ static void burley_stats(const gl_tech_ctx *c, void *state, sss_gl_stats *out)
 }
 
 /* preset=paper: HDRP as published (Golubev 2018 and HDRP's defaults: medium quality's 40 samples,
- * SSS_PIXELS_PER_SAMPLE 4, the 0.997 radius, random rotation, bilateral weights, thick transmission from
- * the shadow map, the 15-degree wrap); HDRP's artist sets d directly, here the searchlight fit gives it
- * (docs/burley.md). Those whose defaults differ: */
-static const sss_gl_param_value paper[] = {{"center", 0}};
+ * SSS_PIXELS_PER_SAMPLE 4, the 0.997 radius, random rotation, bilateral depth weights, every sample from
+ * the whole profile, thick transmission from the shadow map, the 15-degree wrap). HDRP's artist sets d
+ * directly; here Christensen & Burley's fit for perpendicular illumination gives it, the configuration of
+ * the ground truth's photon beam diffusion (docs/burley.md). The defaults depart in three parameters,
+ * each measured on the eval scenes (docs/burley.md): */
+static const sss_gl_param_value paper[] = {{"fit", BURLEY_FIT_SEARCHLIGHT}, {"bilateral", 1}, {"center", 0}};
 
 const gl_technique gl_technique_burley = {
     .info = {"burley",

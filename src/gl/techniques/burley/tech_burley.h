@@ -53,14 +53,14 @@ enum { BURLEY_TRANS_OFF = 0, BURLEY_TRANS_THICK, BURLEY_TRANS_THIN };
       "keeps its own light (HDRP's SSS_PIXELS_PER_SAMPLE: 4)")                                                    \
     X(filter_cdf, SSS_GL_PARAM_FLOAT, 0.997, 0.5, 0.999999,                                                       \
       "the kernel radius holds this fraction of the widest channel's energy (HDRP: 0.997)")                       \
-    X(fit, SSS_GL_PARAM_INT, 0, 0, 3,                                                                              \
+    X(fit, SSS_GL_PARAM_INT, 3, 0, 3,                                                                              \
       "d from the material (Christensen & Burley 2015): 0 perpendicular illumination, mean free path; 1 diffuse "  \
       "surface transmission; 2 perpendicular, diffuse mean free path; 3 nearest to the material's own profile") \
     X(rotation, SSS_GL_PARAM_BOOL, 1, 0, 1,                                                                       \
       "a per-pixel random rotation of the golden-angle pattern (HDRP's SSS_RANDOM_ROTATION)")                     \
-    X(bilateral, SSS_GL_PARAM_BOOL, 1, 0, 1,                                                                      \
+    X(bilateral, SSS_GL_PARAM_BOOL, 0, 0, 1,                                                                      \
       "samples weighted by R(sqrt(r^2 + dz^2)), dz the depth difference (HDRP's SSS_BILATERAL_FILTER)")            \
-    X(center, SSS_GL_PARAM_BOOL, 0, 0, 1,                                                                         \
+    X(center, SSS_GL_PARAM_BOOL, 1, 0, 1,                                                                         \
       "1: the pixel's own disc (radius sqrt(area / pi)) integrated exactly and the samples drawn beyond it; "     \
       "0: every sample from the whole profile (HDRP)")                                                            \
     X(transmission, SSS_GL_PARAM_INT, 1, 0, 2,                                                                    \
