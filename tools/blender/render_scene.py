@@ -1,23 +1,31 @@
 """Render an sss scene (docs/scene-format.md) in Blender 3.4, headless, with Cycles or EEVEE.
 
     blender -b --factory-startup --python-exit-code 1 --python tools/blender/render_scene.py -- SCENE.json \\
-        --engine cycles|eevee -o OUT.exr [--width W --height H] [--time T] [--samples N] [--sss PATH]
+        --engine cycles|eevee -o OUT.exr [--width W --height H] [--time T] [--samples N] [--medium albedo|exact]
+        [--sss PATH]
 
 The output is scored against sss's ground truth by `sss eval SCENE.json --images NAME=OUT_PATTERN`
-(docs/eval.md); docs/blender.md says what the mapping below keeps and what it cannot.
+(docs/eval.md); docs/blender.md summarises the mapping below and what it measures.
 
 Geometry, camera and materials come from `sss export gltf` (run here with the sss binary: --sss, $SSS,
 `sss` on PATH, or build/sss of this checkout): world-space meshes posed at --time, the camera's frame
 and vertical field of view, and each subsurface material's coefficients. Lights and the environment come
 from the scene file. Mapping:
 
- - Medium. Cycles' random walk (Chiang et al. 2016) turns a colour A and a radius r per channel into
-   volume coefficients (Blender 3.4, intern/cycles/kernel/closure/bssrdf.h and
-   integrator/subsurface_random_walk.h): the single-scattering albedo alpha = remap(A) (their fit), and
-   sigma_t = 1 / (r sqrt(3 (1 - alpha'))) with alpha' the classical dipole's albedo whose total
-   reflectance is A under the subsurface IOR. Both are inverted here, so that the walk runs in the
-   medium's own sigma_t = sigma_a + sigma_s and alpha = sigma_s / sigma_t (g = 0 for measured media).
-   Subsurface IOR = eta. EEVEE receives the same colour and radius.
+ - Medium (--medium albedo, the default). Cycles' random walk (Chiang et al. 2016) takes a colour A and a
+   radius r per channel and makes volume coefficients of them (Blender 3.4,
+   intern/cycles/kernel/closure/bssrdf.h and integrator/subsurface_random_walk.h): the single-scattering
+   albedo alpha = remap(A), a fit made so that a semi-infinite slab reflects A, and the extinction
+   sigma_t = 1 / (r sqrt(3 (1 - alpha'))), alpha' the classical dipole's albedo of total reflectance A
+   under the subsurface IOR, so that r is the diffuse mean free path. Given here: A = the material's total
+   diffuse reflectance (its PBD profile's, the glTF base colour), r = 1 / sigma_tr, sigma_tr =
+   sqrt(3 sigma_a sigma_t'), IOR = eta. The walk leaves the medium at its first boundary hit (no
+   reflection inside the interface), which is why its own alpha is needed: on a semi-infinite Skin1 slab
+   lit head-on it reflects the reference's light within 2% per channel.
+   --medium exact instead inverts both mappings so that the walk runs in the medium's own
+   sigma_t = sigma_a + sigma_s and alpha = sigma_s / sigma_t: the same slab then reflects 1.36/1.72/1.96x
+   the reference's light, the total reflectance PBD gives for an index-matched boundary (eta = 1), since
+   the walk's boundary lets every path out. EEVEE receives the same colour and radius.
  - Interface: (1 - F) subsurface + F mirror (Glossy, sharp), F the dielectric Fresnel of eta, except on
    camera rays, which see the subsurface part only: sss reference leaves the camera ray's own mirror
    reflection out by default (docs/reference.md, --specular).
@@ -52,17 +60,18 @@ class Refused(Exception):
 
 def parse_args(argv):
     args = argv[argv.index("--") + 1:] if "--" in argv else []
-    opts = {"engine": "cycles", "out": None, "width": 0, "height": 0, "time": 0.0, "samples": 128, "sss": None}
+    opts = {"engine": "cycles", "out": None, "width": 0, "height": 0, "time": 0.0, "samples": 128, "sss": None,
+            "medium": "albedo"}
     scene = None
     i = 0
     while i < len(args):
         a = args[i]
-        if a in ("--engine", "-o", "--output", "--width", "--height", "--time", "--samples", "--sss"):
+        if a in ("--engine", "-o", "--output", "--width", "--height", "--time", "--samples", "--sss", "--medium"):
             if i + 1 >= len(args):
                 raise Refused("%s needs a value" % a)
             v = args[i + 1]
             key = {"-o": "out", "--output": "out"}.get(a, a[2:])
-            opts[key] = v if key in ("engine", "out", "sss") else (float(v) if key == "time" else int(v))
+            opts[key] = v if key in ("engine", "out", "sss", "medium") else (float(v) if key == "time" else int(v))
             i += 2
         elif a.startswith("-"):
             raise Refused("unknown option %s" % a)
@@ -75,6 +84,8 @@ def parse_args(argv):
         raise Refused("usage: blender -b --python render_scene.py -- SCENE.json --engine cycles|eevee -o OUT.exr")
     if opts["engine"] not in ("cycles", "eevee"):
         raise Refused("--engine must be cycles or eevee, got %s" % opts["engine"])
+    if opts["medium"] not in ("albedo", "exact"):
+        raise Refused("--medium must be albedo or exact, got %s" % opts["medium"])
     if os.path.splitext(opts["out"])[1].lower() not in (".exr", ".hdr", ".png"):
         raise Refused("%s: the output must be .exr, .hdr or .png" % opts["out"])
     return scene, opts
@@ -147,7 +158,13 @@ def dipole_alpha_prime(rd, eta):
     return xm
 
 
-def random_walk_inputs(sigma_t, alpha, eta):
+def albedo_inputs(sigma_t, alpha, g, rho_eff):
+    """Colour = the material's total diffuse reflectance, radius = its diffuse mean free path."""
+    radius = [1.0 / math.sqrt(3 * st * (1 - al) * st * (1 - g * al)) for st, al in zip(sigma_t, alpha)]
+    return [min(max(r, 1e-6), 1.0) for r in rho_eff], radius
+
+
+def exact_inputs(sigma_t, alpha, eta):
     """Colour and radius per channel that make Cycles' walk use sigma_t and alpha."""
     colour, radius = [], []
     for st, al in zip(sigma_t, alpha):
@@ -182,9 +199,12 @@ def node(nt, kind, **inputs):
     return n
 
 
-def subsurface_material(name, gltf_mat):
+def subsurface_material(name, gltf_mat, mode):
     sigma_t, alpha, g, eta = medium_of(gltf_mat)
-    colour, radius = random_walk_inputs(sigma_t, alpha, eta)
+    if mode == "exact":
+        colour, radius = exact_inputs(sigma_t, alpha, eta)
+    else:
+        colour, radius = albedo_inputs(sigma_t, alpha, g, gltf_mat["pbrMetallicRoughness"]["baseColorFactor"][:3])
     mat = bpy.data.materials.new(name)
     mat.use_nodes = True
     mat.use_sss_translucency = True  # EEVEE: light through thin parts
@@ -226,13 +246,13 @@ def diffuse_material(name, gltf_mat):
     return mat
 
 
-def add_meshes(doc, binary):
+def add_meshes(doc, binary, mode):
     mats = []
     for i, m in enumerate(doc.get("materials", [])):
         if "baseColorTexture" in m.get("pbrMetallicRoughness", {}):
             raise Refused("materials[%d]: albedo textures are not mapped to Blender by this script" % i)
         sub = "KHR_materials_volume" in m.get("extensions", {})
-        mats.append(subsurface_material("m%d" % i, m) if sub else diffuse_material("m%d" % i, m))
+        mats.append(subsurface_material("m%d" % i, m, mode) if sub else diffuse_material("m%d" % i, m))
     for n, nd in enumerate(doc["nodes"]):
         if "mesh" not in nd:
             continue
@@ -421,7 +441,7 @@ def main():
     for i, l in enumerate(lights):
         if l["type"] != "environment":
             add_light(i, l)
-    add_meshes(doc, binary)
+    add_meshes(doc, binary, opts["medium"])
     add_camera(doc, width, height)
     set_world(os.path.dirname(os.path.abspath(scene_path)), lights)
     set_render(opts, width, height, desc.get("render", {}).get("exposure", 0.0))
