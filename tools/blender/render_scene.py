@@ -40,7 +40,7 @@ from the scene file. Mapping:
  - Film: a box filter one pixel wide (the reference integrates each pixel's area), no denoising, scene-
    linear EXR/HDR (PNG: sRGB through the Standard view at the scene's exposure, the convention of
    `sss eval --images`). Cycles: --samples per pixel, up to 16 bounces of every kind (the reference's full
-   transport), seed 0.
+   transport), a fixed random seed.
 """
 import json
 import math
