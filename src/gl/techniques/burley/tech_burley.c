@@ -206,7 +206,7 @@ static void burley_stats(const gl_tech_ctx *c, void *state, sss_gl_stats *out)
     out->per_pixel_bytes += s->target_bytes / ((size_t)c->width * (size_t)c->height);
 }
 
-/* preset=paper: HDRP as published (Golubev 2018 and HDRP's defaults: medium quality's 40 samples,
+/* preset=paper = preset=hdrp: HDRP as published (Golubev 2018 and HDRP's defaults: medium quality's 40 samples,
  * SSS_PIXELS_PER_SAMPLE 4, the 0.997 radius, random rotation, bilateral depth weights, every sample from
  * the whole profile, thick transmission from the shadow map, the 15-degree wrap). HDRP's artist sets d
  * directly; here Christensen & Burley's fit for perpendicular illumination gives it, the configuration of
@@ -231,4 +231,5 @@ const gl_technique gl_technique_burley = {
     .stats = burley_stats,
     .paper = paper,
     .paper_count = (int)(sizeof paper / sizeof paper[0]),
+    .paper_is_hdrp = 1,
 };
