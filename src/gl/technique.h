@@ -109,6 +109,8 @@ typedef struct gl_technique {
      * defaults depart from them; the others are the paper's already */
     const sss_gl_param_value *paper;
     int paper_count;
+    /* 1: the paper's configuration is Unity HDRP's shipped defaults, so preset=hdrp takes it too */
+    int paper_is_hdrp;
     /* optional: how far (scene units) from where light enters object `object`'s surface the technique
      * carries it, with these parameters, at an output of width x height; NULL: across the whole object.
      * sss_gl_kernel_cut (support.c) warns when a material spreads half of its light farther. */

@@ -2,7 +2,7 @@
  * than the technique carries it. A torus of tube radius r = 0.35 (R = 0.8): Cauchy's mean chord
  * 4 V / A of a torus is 2 r = 0.7 whatever R (V = 2 pi^2 R r^2, A = 4 pi^2 R r), the support the ssss
  * family declares. A magenta medium with a mean free path of 1 (red, blue) spreads half of its light
- * beyond the tube: ssss, ssss-svd, sam (its ssss front) and local warn, naming object, material and
+ * beyond the tube: ssss, ssss-svd, burley, sam (its ssss front) and local warn, naming object, material and
  * technique; with a mean free path of 0.01 none does; maisch2020 and dss, which carry light across the
  * object, never do. local's support is one pixel at the object: 2 d tan(fov / 2) / 96. */
 #include <math.h>
@@ -47,7 +47,7 @@ int main(void)
 {
     sss_scene lng, shrt;
     if (!load(1.0, 0.05, &lng) || !load(0.01, 0.002, &shrt)) return 1;
-    static const char *const cutting[] = {"ssss", "ssss-svd", "sam", "local"};
+    static const char *const cutting[] = {"ssss", "ssss-svd", "burley", "sam", "local"};
     double reach = 0, support = 0;
     for (size_t i = 0; i < sizeof cutting / sizeof cutting[0]; i++) {
         CHECK_MSG(cut(&lng, cutting[i], 0, &reach, &support) == 1, "%s, long mfp: reach %g, support %g", cutting[i],
