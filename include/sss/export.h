@@ -48,15 +48,23 @@ typedef struct sss_export_pbrt_desc {
 SSS_API sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *desc, const char *out_path,
                                    sss_error *err);
 
+/* The extension that carries a subsurface material's scattering in an exported glTF. */
+typedef enum sss_export_gltf_scatter {
+    SSS_EXPORT_GLTF_VOLUME_SCATTER = 0, /* KHR_materials_volume_scatter + KHR_materials_diffuse_transmission */
+    SSS_EXPORT_GLTF_SCATTER = 1         /* KHR_materials_scatter (the draft replacing both) +
+                                         * KHR_materials_transmission */
+} sss_export_gltf_scatter;
+
 typedef struct sss_export_gltf_desc {
     double time;        /* pose of animated objects (seconds); default 0 */
     int skipped_lights; /* out: area and environment lights, which glTF's punctual lights cannot hold */
+    sss_export_gltf_scatter scatter_extension; /* default SSS_EXPORT_GLTF_VOLUME_SCATTER */
 } sss_export_gltf_desc;
 
 /* Writes the scene as one binary glTF 2.0 file (docs/gltf.md, "Export"): one node and mesh per object
  * (world space, posed at desc->time), subsurface materials as KHR_materials_volume +
- * KHR_materials_volume_scatter + KHR_materials_ior + KHR_materials_diffuse_transmission (the
- * importer's mapping inverted: sss_gltf_load of the file gives back the coefficients), diffuse ones
+ * KHR_materials_ior + the scattering extension of desc->scatter_extension (the importer's mapping
+ * inverted: sss_gltf_load of the file gives back the coefficients), diffuse ones
  * as baseColorFactor, the camera (yfov, aspectRatio), point, spot and directional lights as
  * KHR_lights_punctual (intensities 1:1), albedo textures as embedded PNG baseColorTextures (8-bit
  * sRGB: exact for textures read from PNG or JPEG; HDR values clip at 1). Not written: profiles other

@@ -12,8 +12,8 @@
  * map, print, or create a context (the caller's context must be current, OpenGL 4.5 core:
  * sss_gl_context_adopt_current wraps it).
  *
- * The sss_gl_renderer of sss/gl.h is a client of this API: it renders its own G-buffer and
- * illumination and hands them to the same pass.
+ * The sss_gl_renderer of sss/gl.h runs techniques the same way: it renders its own G-buffer and
+ * illumination and runs the technique on them as this pass runs it on the caller's.
  *
  * Threading and memory as sss/gl.h: the pass belongs to the context's thread; _create allocates,
  * _destroy frees (NULL is accepted).
@@ -56,11 +56,23 @@ typedef struct sss_gl_pass_desc {
  * Techniques with mip chains (sss_gl_pass_info.needs_mips) need full mip chains allocated on position
  * and irradiance (and normal when needs_normal_mips); the pass fills levels 1.. itself, level 0 is
  * only read. The matrices are column-major; proj is a perspective projection in the standard OpenGL
- * convention (near plane mapped to -1) or reversed-Z with an infinite far plane (proj[10] = 0). */
+ * convention (near plane mapped to -1) or reversed-Z with an infinite far plane (proj[10] = 0).
+ *
+ * An engine that keeps depth rather than world positions gives `depth` and leaves `position` 0:
+ *   depth       GL_DEPTH_COMPONENT32F, 24 or 16, or R32F: the depth buffer of this view and proj, written
+ *               with glDepthRange(0, 1) and, for reversed-Z, glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)
+ *               (the standard convention with GL_NEGATIVE_ONE_TO_ONE); the far value (1, or 0 for
+ *               reversed-Z) is background
+ * The pass then reconstructs the world position (the inverse of proj x view) and the pixel area (the
+ * cross product of the position differences to the neighbouring pixels, on the side whose depth
+ * agrees better, so edges do not inflate it) into a position texture of its own (with the mip levels
+ * it needs), with w = 0 where position's rule above says so (background, not subsurface, n.v below the
+ * grazing cut-off). Timed as "position_from_depth". */
 typedef struct sss_gl_pass_frame {
     unsigned position, normal, albedo, irradiance, reflected, output;
     float view[16], proj[16];
     double time;                      /* seconds: animations of the registered meshes */
+    unsigned depth;                   /* instead of position (which is then 0): the camera's depth */
 } sss_gl_pass_frame;
 
 typedef struct sss_gl_pass sss_gl_pass;

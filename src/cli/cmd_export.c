@@ -1,5 +1,5 @@
 /* sss export pbrt SCENE.json -o OUT.pbrt [--time T] [--width W] [--height H] [--spp N] [--maxdepth N]
- * sss export gltf SCENE.json -o OUT.glb [--time T] [--width W] [--height H] */
+ * sss export gltf SCENE.json -o OUT.glb [--time T] [--width W] [--height H] [--scatter-extension E] */
 #include <stdio.h>
 #include <string.h>
 
@@ -8,7 +8,7 @@
 
 static const char *const cmd = "export";
 
-enum { OPT_OUTPUT, OPT_TIME, OPT_WIDTH, OPT_HEIGHT, OPT_SPP, OPT_MAXDEPTH };
+enum { OPT_OUTPUT, OPT_TIME, OPT_WIDTH, OPT_HEIGHT, OPT_SPP, OPT_MAXDEPTH, OPT_SCATTER_EXTENSION };
 #define EXPORT_OPTIONS(what)                                                                                         \
     {OPT_OUTPUT, "--output", "-o", CLI_ARG_FILE, "FILE", "the " what " file to write", NULL, CLI_REQUIRED},         \
         {OPT_TIME, "--time", NULL, CLI_ARG_NUMBER, "T", "pose of animated objects, seconds", NULL, "0"},             \
@@ -20,7 +20,14 @@ static const cli_option pbrt_options[] = {
     {OPT_MAXDEPTH, "--maxdepth", NULL, CLI_ARG_NUMBER, "N",
      "the path integrator's maxdepth, 1.." CLI_STR(SSS_EXPORT_PBRT_MAXDEPTH_MAX), NULL, "16"},
 };
-static const cli_option gltf_options[] = {EXPORT_OPTIONS(".glb")};
+static const cli_option gltf_options[] = {
+    EXPORT_OPTIONS(".glb"),
+    {OPT_SCATTER_EXTENSION, "--scatter-extension", NULL, CLI_ARG_TEXT, "E",
+     "the extension carrying subsurface scattering: volume_scatter (KHR_materials_volume_scatter +\n"
+     "KHR_materials_diffuse_transmission) or scatter (the draft KHR_materials_scatter, which replaces\n"
+     "both, + KHR_materials_transmission)",
+     "volume_scatter scatter", "volume_scatter"},
+};
 const cli_command_spec cli_spec_export_pbrt = {
     "export pbrt", pbrt_options, CLI_COUNT(pbrt_options), CLI_ARG_FILE, "pbrt gltf", "SCENE.json",
     "Writes the scene for PBRT-v3: OUT.pbrt plus one binary PLY per object beside it\n"
@@ -37,8 +44,9 @@ const cli_command_spec cli_spec_export_pbrt = {
 const cli_command_spec cli_spec_export_gltf = {
     "export gltf", gltf_options, CLI_COUNT(gltf_options), CLI_ARG_FILE, NULL, "SCENE.json",
     "gltf writes one binary glTF 2.0 file (docs/gltf.md): world-space meshes, subsurface materials\n"
-    "as KHR_materials_volume + KHR_materials_volume_scatter (+ ior, diffuse transmission), the\n"
-    "camera and KHR_lights_punctual lights; `sss import` reads it back.\n"
+    "as KHR_materials_volume + KHR_materials_volume_scatter (+ ior, diffuse transmission) or, with\n"
+    "--scatter-extension scatter, KHR_materials_scatter (+ ior, transmission), the camera and\n"
+    "KHR_lights_punctual lights; `sss import` reads it back.\n"
     "--width and --height set the exported camera's image size (pbrt: the film; gltf: the aspect ratio).\n",
     NULL, NULL};
 
@@ -46,6 +54,7 @@ typedef struct export_options {
     int gltf;
     const char *scene_path, *out;
     sss_export_pbrt_desc desc;
+    sss_export_gltf_scatter scatter_extension;
     int width, height;
     cli_common common;
 } export_options;
@@ -72,6 +81,13 @@ static int set_option(void *opts, int id, const char *a, const char *v)
             return cli_usage_error(cmd, "--maxdepth must be in 1..%d, got %d", SSS_EXPORT_PBRT_MAXDEPTH_MAX,
                                    o->desc.maxdepth);
         break;
+    case OPT_SCATTER_EXTENSION: {
+        const char *names[] = {"volume_scatter", "scatter"};
+        if (strcmp(v, names[0]) != 0 && strcmp(v, names[1]) != 0)
+            return cli_unknown(cmd, "scatter extension", v, names, 2);
+        o->scatter_extension = strcmp(v, names[1]) == 0 ? SSS_EXPORT_GLTF_SCATTER : SSS_EXPORT_GLTF_VOLUME_SCATTER;
+        break;
+    }
     default: /* CLI_OPERAND */
         if (o->scene_path) return cli_usage_error(cmd, "unexpected argument '%s'", v);
         o->scene_path = v;
@@ -107,7 +123,7 @@ static int export_run(const export_options *o)
         sss_scene_free(&scene);
         return CLI_EXIT_ERROR;
     }
-    sss_export_gltf_desc gltf_desc = {.time = o->desc.time};
+    sss_export_gltf_desc gltf_desc = {.time = o->desc.time, .scatter_extension = o->scatter_extension};
     sss_result res = o->gltf ? sss_export_gltf(&scene, &gltf_desc, o->out, &err)
                              : sss_export_pbrt(&scene, &o->desc, o->out, &err);
     sss_scene_free(&scene);

@@ -1,5 +1,6 @@
 /* sss import ASSET.gltf|ASSET.glb -o SCENE.json [--width W] [--height H] [--camera N] [--light-scale S] */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli/cli.h"
@@ -19,8 +20,10 @@ const cli_command_spec cli_spec_import = {
     "import", options, CLI_COUNT(options), CLI_ARG_FILE, NULL, "ASSET.gltf|ASSET.glb",
     "Imports a glTF 2.0 asset as a scene (docs/gltf.md): SCENE.json plus one binary PLY per mesh\n"
     "primitive beside it (SCENE_objN.ply, world space: the node hierarchy is flattened).\n"
-    "KHR_materials_volume + KHR_materials_volume_scatter (+ KHR_materials_ior) become subsurface\n"
-    "materials (sigma_a, sigma_s, g, eta per world unit), other materials diffuse (baseColor);\n"
+    "KHR_materials_volume + KHR_materials_scatter, KHR_materials_volume_scatter or\n"
+    "KHR_materials_diffuse_transmission (+ KHR_materials_ior) become subsurface materials (sigma_a,\n"
+    "sigma_s, g, eta per world unit), other materials diffuse (baseColor); a warning names what was\n"
+    "approximated or left out. Draco, meshopt and quantized meshes are decoded.\n"
     "KHR_lights_punctual point, spot and directional lights keep their intensity (candela as W/sr,\n"
     "lux as irradiance). The camera is the first camera node (or --camera N), else one that frames\n"
     "the scene. render, reference, view and eval also read .gltf/.glb directly.\n",
@@ -29,6 +32,7 @@ const cli_command_spec cli_spec_import = {
 typedef struct import_options {
     const char *asset, *out;
     sss_gltf_desc desc;
+    cli_common common;
 } import_options;
 
 static int set_option(void *opts, int id, const char *a, const char *v)
@@ -61,11 +65,27 @@ static int set_option(void *opts, int id, const char *a, const char *v)
 static int import_parse(int argc, char **argv, import_options *o)
 {
     memset(o, 0, sizeof *o);
-    int status = cli_parse(&cli_spec_import, argc, argv, 1, set_option, o, NULL);
+    int status = cli_parse(&cli_spec_import, argc, argv, 1, set_option, o, &o->common);
     if (status != CLI_EXIT_OK) return status;
     if (!o->asset) return cli_usage_error(cmd, "missing the glTF asset");
     if (!o->out) return cli_usage_error(cmd, "missing -o SCENE.json");
     return CLI_EXIT_OK;
+}
+
+/* What the material mapping approximated or left out, once per material of the asset. */
+static void print_notes(const char *asset, const sss_gltf_scene *s)
+{
+    int top = 0;
+    for (size_t i = 0; i < s->object_count; i++)
+        if (s->objects[i].material_index > top) top = s->objects[i].material_index;
+    unsigned char *said = calloc((size_t)top + 2, 1); /* by material index + 1 (-1: the default material) */
+    for (size_t i = 0; i < s->object_count; i++) {
+        const sss_gltf_object *o = &s->objects[i];
+        if (!o->material.note || (said && said[o->material_index + 1])) continue;
+        if (said) said[o->material_index + 1] = 1;
+        fprintf(stderr, "sss import: warning: %s: materials[%d]: %s\n", asset, o->material_index, o->material.note);
+    }
+    free(said);
 }
 
 static int import_run(const import_options *o)
@@ -73,6 +93,7 @@ static int import_run(const import_options *o)
     sss_gltf_scene scene;
     sss_error err = {0};
     if (sss_gltf_load(o->asset, &o->desc, &scene, &err) != SSS_OK) return cli_fail(cmd, &err);
+    if (!o->common.quiet) print_notes(o->asset, &scene);
     /* it refuses an output that is one of the asset's files (or another output) before writing */
     sss_result res = sss_gltf_write_scene(&scene, o->out, &err);
     size_t objects = scene.object_count, lights = scene.light_count;

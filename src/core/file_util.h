@@ -9,7 +9,10 @@
  * bytes go to a temporary file created exclusively (O_CREAT|O_EXCL|O_NOFOLLOW, a fresh random name) in
  * the output's folder, so a planted symlink is never followed, and are renamed over the output only
  * when complete. Inside an output transaction (sss_outputs_begin on the calling thread) the renames
- * wait for sss_outputs_end: a command with several outputs leaves all of them or none.
+ * wait for sss_outputs_end: a command with several outputs leaves all of them or none. A transaction
+ * that sets create_folders also creates its outputs' missing folders (mkdir, one level at a time, never
+ * through a file) and removes them again (when empty) if it aborts; elsewhere a missing folder is an
+ * error naming it.
  */
 #ifndef SSS_CORE_FILE_UTIL_H
 #define SSS_CORE_FILE_UTIL_H
@@ -34,8 +37,9 @@ FILE *sss_fopen_input(const char *path, uint64_t max_size, uint64_t *size, sss_e
 sss_result sss_read_file(const char *path, size_t max_size, char **data, size_t *size, sss_error *err);
 
 /* Opens a new temporary file for an atomic write of path ("wb"); tmp (cap >= 4096 recommended)
- * receives its name. Refuses a path that is a folder. Close the FILE yourself, then commit or discard,
- * or use sss_atomic_close. */
+ * receives its name. Refuses a path that is a folder. A missing folder of path is created when the active
+ * transaction has create_folders set, else refused ("PATH: cannot write: the folder DIR does not
+ * exist"). Close the FILE yourself, then commit or discard, or use sss_atomic_close. */
 FILE *sss_atomic_open(const char *path, char *tmp, size_t cap, sss_error *err);
 /* Renames tmp to path (inside an output transaction: at its end); on failure removes tmp and reports
  * an error naming path. */
@@ -53,6 +57,10 @@ typedef struct sss_staged_output {
 typedef struct sss_outputs {
     sss_staged_output *items;
     size_t count, capacity;
+    int create_folders; /* set after begin: missing folders of the outputs are created (and are the
+                         * transaction's: kept on commit, removed on abort) */
+    char **dirs;        /* the folders this transaction created, outermost first */
+    size_t dir_count, dir_capacity;
     sss_result failure; /* a staging step that failed (out of memory): end does not commit */
     struct sss_outputs *outer;
 } sss_outputs;

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gl/pass_depth.h"
 #include "gl/pass_state.h"
 #include "gl/runtime.h"
 
@@ -15,6 +16,7 @@ struct sss_gl_pass {
     gl_runtime rt;         /* its core's frame is external: slots for the caller's textures */
     GLuint attached;       /* the output texture attached to the frame's fbo_final */
     size_t object_count;   /* the registered scene's at creation (surface ids 1..object_count) */
+    gl_pass_depth depth;   /* the positions made from a caller's depth buffer (frame.depth) */
 };
 
 /* ---- Creation and updates -------------------------------------------------------------------- */
@@ -70,6 +72,7 @@ void sss_gl_pass_destroy(sss_gl_pass *pass)
 {
     if (!pass) return;
     sss_gl_context_make_current(pass->rt.core.ctx);
+    GL_MEM_ACCOUNT(pass->rt.core.frame_gpu_bytes, gl_pass_depth_free(&pass->depth));
     gl_runtime_free(&pass->rt);
     free(pass);
 }
@@ -191,9 +194,15 @@ static sss_result check_frame(const gl_core *core, const sss_gl_pass_frame *f, s
 {
     static const GLenum f32[] = {GL_RGBA32F, 0}, f16_32[] = {GL_RGBA16F, GL_RGBA32F, 0},
                         albedo[] = {GL_RGBA16F, GL_RGBA32F, GL_RGBA8, 0};
+    static const GLenum depth[] = {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT16, GL_R32F, 0};
     int mips = (core->reads & GL_READ_MIPS) ? core->frame.levels : 1;
     int normal_mips = (core->reads & GL_READ_NORMAL_MIPS) ? core->frame.levels : 1;
-    sss_result res = check_texture(core, f->position, "position", f32, mips, err);
+    if (f->position && f->depth)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "sss_gl_pass_execute: frame.position (%u) and frame.depth (%u) are both given: one of them",
+                             f->position, f->depth);
+    sss_result res = f->position || !f->depth ? check_texture(core, f->position, "position", f32, mips, err)
+                                              : check_texture(core, f->depth, "depth", depth, 1, err);
     if (res == SSS_OK) res = check_texture(core, f->normal, "normal", normal_mips > 1 ? f32 : f16_32, normal_mips, err);
     if (res == SSS_OK) res = check_texture(core, f->albedo, "albedo", albedo, 1, err);
     if (res == SSS_OK) res = check_texture(core, f->irradiance, "irradiance", f32, mips, err);
@@ -212,7 +221,7 @@ static sss_result check_frame(const gl_core *core, const sss_gl_pass_frame *f, s
 static sss_result bind_inputs(sss_gl_pass *pass, const sss_gl_pass_frame *f, sss_error *err)
 {
     gl_frame *fr = &pass->rt.core.frame;
-    fr->pos = f->position;
+    fr->pos = f->position ? f->position : pass->depth.position;
     fr->nrm = f->normal;
     fr->albedo = f->albedo;
     fr->irr = f->irradiance;
@@ -237,10 +246,18 @@ static sss_result bind_inputs(sss_gl_pass *pass, const sss_gl_pass_frame *f, sss
 static sss_result run_frame(sss_gl_pass *pass, const sss_gl_pass_frame *frame, const gl_camera *cam, sss_error *err)
 {
     gl_runtime *rt = &pass->rt;
-    sss_result res = bind_inputs(pass, frame, err);
+    gl_core *core = &rt->core;
+    sss_result res = SSS_OK;
+    if (!frame->position) /* the positions from the depth buffer, into a target of the pass */
+        GL_MEM_ACCOUNT(core->frame_gpu_bytes,
+                       res = gl_pass_depth_prepare(&pass->depth, core->width, core->height,
+                                                   (rt->tech->reads & GL_READ_MIPS) ? core->frame.levels : 1, err));
+    if (res == SSS_OK) res = bind_inputs(pass, frame, err);
     if (res == SSS_OK) res = gl_runtime_frame_begin(rt, cam, frame->time, err);
     if (res != SSS_OK) return res;
-    if (rt->tech->reads & GL_READ_LIGHTS) res = gl_core_shadows(&rt->core, err);
+    if (!frame->position)
+        res = gl_pass_depth_resolve(&pass->depth, core, frame->depth, frame->normal, frame->view, frame->proj, err);
+    if (res == SSS_OK && (rt->tech->reads & GL_READ_LIGHTS)) res = gl_core_shadows(&rt->core, err);
     if (res == SSS_OK && (rt->tech->reads & GL_READ_MIPS)) res = gl_core_mipmaps(&rt->core, err);
     return gl_runtime_frame_finish(rt, res, err);
 }

@@ -173,8 +173,10 @@ static sss_result split_glb(gltf_ctx *c, const unsigned char *data, size_t size,
 static int extension_supported(const char *name)
 {
     static const char *const known[] = {"KHR_materials_volume", "KHR_materials_volume_scatter",
-                                        "KHR_materials_ior", "KHR_materials_diffuse_transmission",
-                                        "KHR_lights_punctual"};
+                                        "KHR_materials_scatter", "KHR_materials_ior",
+                                        "KHR_materials_diffuse_transmission", "KHR_lights_punctual",
+                                        "KHR_draco_mesh_compression", "EXT_meshopt_compression",
+                                        "KHR_mesh_quantization"};
     for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
         if (strcmp(name, known[i]) == 0) return 1;
     return 0;
@@ -190,7 +192,7 @@ static sss_result check_root(gltf_ctx *c)
     if (strncmp(version->valuestring, "2.", 2) != 0)
         return gltf_fail(c, SSS_ERROR_UNSUPPORTED, "asset.version: \"%s\" (only glTF 2.x is supported)",
                          version->valuestring);
-    const cJSON *required = gltf_get(c->root, "extensionsRequired");
+    const cJSON *required = gltf_get(c->root, "extensionsRequired"), *used = gltf_get(c->root, "extensionsUsed");
     if (required && !cJSON_IsArray(required))
         return gltf_fail(c, SSS_ERROR_PARSE, "extensionsRequired: expected an array");
     int i = 0;
@@ -199,7 +201,12 @@ static sss_result check_root(gltf_ctx *c)
         if (!extension_supported(e->valuestring))
             return gltf_fail(c, SSS_ERROR_UNSUPPORTED, "extensionsRequired[%d]: \"%s\" is not supported", i,
                              e->valuestring);
+        c->quantization |= strcmp(e->valuestring, "KHR_mesh_quantization") == 0;
     }
+    /* KHR_mesh_quantization must be required where used; an asset that only lists it as used is read
+     * as meant all the same */
+    for (const cJSON *e = cJSON_IsArray(used) ? used->child : NULL; e; e = e->next)
+        c->quantization |= cJSON_IsString(e) && strcmp(e->valuestring, "KHR_mesh_quantization") == 0;
     return SSS_OK;
 }
 
@@ -225,6 +232,9 @@ sss_result gltf_open(gltf_ctx *c, const unsigned char *data, size_t size)
 
 void gltf_close(gltf_ctx *c)
 {
+    for (size_t i = 0; c->decoded_views && i < gltf_count(c, GLTF_BUFFER_VIEWS); i++) free(c->decoded_views[i]);
+    free(c->decoded_views);
+    c->decoded_views = NULL;
     for (size_t i = 0; i < c->buffer_count; i++) free(c->buffers[i].owned);
     free(c->buffers);
     for (int i = 0; i < GLTF_LIST_COUNT; i++) free(c->lists[i].items);

@@ -88,6 +88,7 @@ static sss_result node_mesh(gltf_walk *w, long node, long mesh_index, const doub
         snprintf(path, sizeof path, "meshes[%ld].primitives[%ld]", mesh_index, p);
         sss_result res = gltf_primitive_mesh(c, node, mesh_index, p, prim, world, &o.mesh, &has_uvs);
         if (res == SSS_OK) res = gltf_int(c, prim, path, "material", 0, -1, 0, 1L << 30, &material);
+        o.material_index = (int)material;
         if (res == SSS_OK) res = gltf_material(c, material, &o.material);
         if (res == SSS_OK && !has_uvs) gltf_material_free(&o.material); /* a texture needs UVs */
         if (res == SSS_OK) res = add_object(w, &o);

@@ -41,6 +41,9 @@ typedef struct gltf_ctx {
     size_t buffer_count;
     sss_gltf_desc desc;
     sss_gltf_scene *out;  /* where decoded embedded images go (out->images, one slot per images[k]) */
+    int quantization;     /* KHR_mesh_quantization is used: integer positions, normals and UVs allowed */
+    unsigned char **decoded_views; /* per bufferViews[k]: its EXT_meshopt_compression data decoded, or NULL */
+    size_t decoded_bytes; /* meshopt views and Draco meshes decoded so far (SSS_GLTF_MAX_DECODED_SIZE) */
 } gltf_ctx;
 
 /* A validated accessor: element i, component k is at base + i * stride + k * component size. */
@@ -96,7 +99,11 @@ sss_result gltf_list_files(gltf_ctx *c, sss_gltf_scene *out);
 /* The bytes of a data: URI with base64 content (malloc'd into *owned); path names the URI's JSON member. */
 sss_result gltf_data_uri(gltf_ctx *c, const char *uri, const char *path, unsigned char **owned, size_t *size);
 
-/* gltf_accessor.c. The bytes of bufferViews[index] (use names the referrer in messages). */
+/* gltf_accessor.c. accessors[index]'s type, count and normalization into a (base NULL) and its
+ * bufferView (-1: none) and byteOffset; use and components as for gltf_accessor_get. */
+sss_result gltf_accessor_meta(gltf_ctx *c, long index, const char *use, int components, gltf_accessor *a,
+                              long *view, long *offset);
+/* The bytes of bufferViews[index] (use names the referrer in messages). */
 sss_result gltf_buffer_view(gltf_ctx *c, long index, const char *use, const unsigned char **start, size_t *length);
 /* accessors[index], used as `use` (a JSON path for messages, e.g.
  * "meshes[0].primitives[1].attributes.POSITION"); components: the required element size. */
@@ -105,6 +112,31 @@ sss_result gltf_accessor_get(gltf_ctx *c, long index, const char *use, int compo
 double gltf_accessor_float(const gltf_accessor *a, size_t i, int k);
 /* Element i of an unsigned integer accessor (indices). */
 uint32_t gltf_accessor_uint(const gltf_accessor *a, size_t i);
+
+/* gltf_meshopt.c: bufferViews[index] whose EXT_meshopt_compression object is ext (stride: the view's
+ * byteStride, 0 when absent; *length: its byteLength), decoded once (meshoptimizer) into
+ * c->decoded_views[index]: *start points there. Every member is checked against the extension's rules
+ * and the compressed bytes against their buffer before anything is decoded. */
+sss_result gltf_meshopt_view(gltf_ctx *c, long index, const cJSON *ext, long stride, const unsigned char **start,
+                             size_t *length);
+/* Adds bytes to c->decoded_bytes, refusing (SSS_ERROR_LIMIT, naming path) beyond SSS_GLTF_MAX_DECODED_SIZE. */
+sss_result gltf_decoded_budget(gltf_ctx *c, unsigned long long bytes, const char *path);
+
+/* The vertex and index data of a primitive: accessors over the file's bytes, or over decoded Draco data
+ * (owned, released by gltf_source_free). idx_accessor: the indices' accessor (-1: none; for messages). */
+typedef struct gltf_source {
+    gltf_accessor pos, nrm, uv, idx;
+    int has_nrm, has_uv, has_idx;
+    long idx_accessor;
+    void *owned[4];
+} gltf_source;
+void gltf_source_free(gltf_source *src);
+/* gltf_draco.c: the primitive's KHR_draco_mesh_compression object ext (path: the primitive's JSON path)
+ * decoded into src (float attributes, 32-bit indices); its accessors give the counts the decoded data
+ * must have. The stream's header is read here first: its triangle count must be the indices accessor's
+ * and within the limits and the decoding budget before the decoder allocates anything. */
+sss_result gltf_draco_source(gltf_ctx *c, const cJSON *primitive, const cJSON *ext, const char *path,
+                             gltf_source *src);
 
 /* gltf_material.c: materials[index] (index -1: the glTF default material). */
 sss_result gltf_material(gltf_ctx *c, long index, sss_gltf_material *m);

@@ -70,6 +70,7 @@ sss_result sss_gltf_write_scene(const sss_gltf_scene *scene, const char *scene_p
     if (res == SSS_OK) res = check_files(scene, scene_path, paths, names, files, err);
     sss_outputs t;
     sss_outputs_begin(&t); /* all or none: a failure removes the files written so far */
+    t.create_folders = 1;  /* and the folders made for them (`sss import a.glb -o new/scene.json`) */
     for (size_t i = 0; res == SSS_OK && i < files; i++) {
         if (!names[i]) continue;
         if (i >= n) /* 8-bit sources: writing the decoded pixels at exposure 0 gives back their exact codes */

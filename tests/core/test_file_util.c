@@ -1,6 +1,7 @@
 /* File helpers: whole-file reads honour the size limit, atomic writes leave either the complete new
  * file or nothing, extensions are lower-cased; inputs that are not regular files fail without
- * blocking; output transactions rename all their files or none; outputs that are inputs are found. */
+ * blocking; output transactions rename all their files or none and, when asked, create the missing
+ * folders of their outputs (removed again when they abort); outputs that are inputs are found. */
 #include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
@@ -95,6 +96,55 @@ static void test_transaction(const char *dir)
     CHECK(count_entries(dir) == 2);
     rmdir(b);
     remove(a);
+}
+
+/* A transaction with create_folders creates an output's missing folders (sss import -o newdir/scene.json
+ * used to fail): kept on commit, also through a nested transaction, removed on abort; never through a
+ * file. Elsewhere a missing folder is an error naming it. */
+static void test_missing_folders(const char *dir)
+{
+    char deep[512], top[512], file[512], under_file[512];
+    snprintf(top, sizeof top, "%s/new", dir);
+    snprintf(deep, sizeof deep, "%s/new/sub/x.txt", dir);
+    snprintf(file, sizeof file, "%s/plain.txt", dir);
+    snprintf(under_file, sizeof under_file, "%s/plain.txt/sub/y.txt", dir);
+    sss_error err = {0};
+    sss_outputs t, inner;
+    CHECK(!write_atomic(deep, "x", &err)); /* no transaction: refused, the folder named */
+    CHECK_MSG(strstr(err.message, "x.txt: cannot write: the folder") && strstr(err.message, "new/sub does not exist"),
+              "%s", err.message);
+    sss_outputs_begin(&t); /* a transaction that does not ask for folders: the same */
+    CHECK(!write_atomic(deep, "x", &err));
+    CHECK(sss_outputs_end(&t, 1, &err) == SSS_OK);
+    CHECK(count_entries(dir) == 0);
+
+    sss_outputs_begin(&t);
+    sss_outputs_begin(&inner);
+    inner.create_folders = 1;
+    CHECK_MSG(write_atomic(deep, "x", &err), "%s", err.message);
+    CHECK(sss_outputs_end(&inner, 1, &err) == SSS_OK);
+    CHECK(sss_outputs_end(&t, 0, &err) == SSS_OK); /* abort: the file and both folders go */
+    CHECK(count_entries(dir) == 0);
+
+    sss_outputs_begin(&t);
+    t.create_folders = 1;
+    CHECK_MSG(write_atomic(deep, "x", &err), "%s", err.message);
+    CHECK(sss_outputs_end(&t, 1, &err) == SSS_OK);
+    CHECK(has_text(deep, "x"));
+    remove(deep);
+    snprintf(deep, sizeof deep, "%s/new/sub", dir);
+    rmdir(deep);
+    rmdir(top);
+
+    CHECK(write_atomic(file, "f", &err)); /* a file where a folder is needed: refused, not replaced */
+    sss_outputs_begin(&t);
+    t.create_folders = 1;
+    CHECK(!write_atomic(under_file, "y", &err));
+    CHECK_MSG(strstr(err.message, "y.txt: cannot write: Not a directory"), "%s", err.message);
+    CHECK(sss_outputs_end(&t, 0, &err) == SSS_OK);
+    CHECK(has_text(file, "f"));
+    remove(file);
+    CHECK(count_entries(dir) == 0);
 }
 
 /* The temporary file is new (O_EXCL): a symlink at an old-style name is never followed, and two
@@ -223,6 +273,7 @@ int main(void)
     test_fifo(dir);
     test_transaction(dir);
     test_temp_names(dir);
+    test_missing_folders(dir);
     test_same_file(dir);
     test_io_set(dir);
     rmdir(dir);
