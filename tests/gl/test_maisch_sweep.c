@@ -9,19 +9,21 @@
  * red, 0.034 blue: at fov 40 a pixel is 0.23 units). Lights above and beside the object: a point light
  * in front, a spot (cone 25 degrees) from the other side, a directional one from the front.
  *
- * Before issue 32 the box measured up to 1.38/1.41/1.43 at fov 6.5 (point light), 1.14-1.18 at 13,
- * and 0.31/0.27/0.24 under the spot at 6.5: one splat per splat-mesh triangle put a triangle's off-image
- * part at the mean of its off-image sub-triangles' centroids (on the image: the screen-space part held
- * that surface too), with one F_t E for all of it. And Skin1 measured up to +11% (blue, the bunny at fov
- * 40): the receiver's own oblique pixel was cut into two pieces with x_o where they meet, so both held a
- * short kernel's peak. Both are fixed (docs/maisch2020.md, "Zoom"); the worst case of the others is
- * printed.
+ * Before issue 32 the box measured 1.38/1.41/1.43 at fov 6.5 under the point light (1.39/1.42/1.44
+ * directional; the worst checked cell), 1.14-1.18 at 13, and 0.31/0.27/0.24 under the spot at 6.5:
+ * one splat per splat-mesh triangle put a triangle's off-image part at the mean of its off-image
+ * sub-triangles' centroids (on the image: the screen-space part held that surface too), with one F_t E
+ * for all of it. And Skin1 measured up to +11% (blue, the bunny at fov 40): the receiver's own oblique
+ * pixel was cut into two pieces with x_o where they meet, so both held a short kernel's peak. Both are
+ * fixed (docs/maisch2020.md, `offscreen_pieces` and `footprint_split`).
  *
  * Not within 2% (printed, not checked; docs/maisch2020.md "Known limits"): the box under the spot with
- * Skin1 (fov 40-13: +3..+5%, the screen-space part next to the box's lit edges; fov 6.5: -28% red, the
- * image's edge runs along a sharply lit strip beyond it and the splats carry 30-60% of what a kernel
- * shorter than a translucency pixel brings across), with Marble (fov 40: +2.5% blue; fov 6.5: -7%, the
- * same strip), and with Skin1 at fov 40 under the point and directional lights (+2.1% green). */
+ * Skin1 (fov 40-13: +3..+5%, the screen-space part next to the box's lit edges; fov 6.5: 0.714 red: the
+ * view is a dark face lit from a sharply lit strip beyond the image's edge, and Skin1's red kernel,
+ * 0.18 units, is shorter than the smallest piece there, a 16th of the image, 0.21 units), with Marble
+ * (fov 40: +2.5% blue; fov 6.5: -7%, the same strip: the splats carry 0.92 of the off-image sources'
+ * light, which is 97-99% of the image's), and with Skin1 at fov 40 under the point and directional
+ * lights (+2.1% green). */
 #include "gl_test_util.h"
 
 static const char *const meshes[] = {"bunny", "box"};
