@@ -17,7 +17,7 @@
 #define MAX_LIST 256
 
 enum {
-    OPT_OUT, OPT_TECHNIQUES, OPT_RESOLUTIONS, OPT_TIMING_RESOLUTIONS, OPT_WIDTH, OPT_HEIGHT, OPT_FRAMES, OPT_WARMUP,
+    OPT_OUT, OPT_TECHNIQUES, OPT_RESOLUTIONS, OPT_TIMING_RESOLUTIONS, OPT_WIDTH, OPT_HEIGHT, OPT_FRAMES, OPT_WARMUP, OPT_FRAME_BUDGET,
     OPT_SUPERSAMPLE, OPT_CACHED_REFERENCE, OPT_REFERENCE_DIR, OPT_REFERENCE_QUALITY, OPT_REFERENCE_BOUNCES, OPT_THREADS,
     OPT_SAM_SWEEP, OPT_NO_SAM_SWEEP, OPT_SAM_COUNTS
 };
@@ -40,6 +40,10 @@ static const cli_option options[] = {
      "extra sizes where only frame times are measured", NULL, NULL},
     {OPT_FRAMES, "--frames", NULL, CLI_ARG_NUMBER, "N", "timed frames per technique; timings are medians", NULL, "5"},
     {OPT_WARMUP, "--warmup", NULL, CLI_ARG_NUMBER, "W", "frames rendered first and not timed", NULL, "2"},
+    {OPT_FRAME_BUDGET, "--frame-budget", NULL, CLI_ARG_NUMBER, "S",
+     "a technique's timed frames stop after S seconds (at least one); one whose\n"
+     "first warm-up frame alone takes longer is timed on that frame (no warm-up)",
+     NULL, "none"},
     {OPT_SUPERSAMPLE, "--supersample", NULL, CLI_ARG_NUMBER, "K",
      "antialiasing of every technique (`sss render --supersample`): passes at\n"
      "K x the size, box-filtered down; K in 1..4",
@@ -347,6 +351,9 @@ static int set_option(void *opts, int id, const char *a, const char *v)
         if (d->warmup_frames == 0) d->warmup_frames = -1; /* the library's "none" */
         return status;
     }
+    case OPT_FRAME_BUDGET:
+        if (!cli_parse_positive(CMD, a, v, &d->frame_budget_s)) return CLI_EXIT_USAGE;
+        return d->frame_budget_s <= 1e6 ? CLI_EXIT_OK : cli_usage_error(CMD, "--frame-budget must be at most 1e6 seconds");
     case OPT_SUPERSAMPLE: return cli_parse_supersample(CMD, a, v, &d->supersample) ? CLI_EXIT_OK : CLI_EXIT_USAGE;
     case OPT_SAM_SWEEP: d->sam_sweep = 1; return CLI_EXIT_OK;
     case OPT_NO_SAM_SWEEP: d->sam_sweep = -1; return CLI_EXIT_OK;
