@@ -32,6 +32,19 @@ typedef struct sss_eval_size {
     int width, height;
 } sss_eval_size;
 
+/* An image of each scene rendered by another program (`sss eval --images NAME=PATTERN`), scored against
+ * the same truth as the techniques, in the same tables, sheets, crops and plots, marked as external
+ * (no timings, no memory). pattern is a file path in which every "{scene}" stands for the scene's file
+ * name without its extension; the format comes from the extension: EXR, PFM or HDR hold linear radiance,
+ * PNG sRGB as displayed at the scene's exposure (decoded, then divided by 2^exposure, so that the
+ * metrics, which tone-map with the scene's exposure, see the file's own pixels). Each image must have the
+ * scene's first quality size and finite values; otherwise sss_eval_run fails before any work, naming the
+ * file. Compared at the first quality size only. */
+typedef struct sss_eval_image_source {
+    const char *name;    /* the entry's label; not a technique spec of the run, nor another image's name */
+    const char *pattern; /* "renders/{scene}_cycles.exr" */
+} sss_eval_image_source;
+
 /* Zero-initialised means: every registered technique, each scene at its camera's size, 5 timed
  * frames after 2 warm-up frames (SSS_GL_TIMED_FRAMES, SSS_GL_WARMUP_FRAMES),
  * references rendered at final quality, SAM sweep when `sam` is among the techniques.
@@ -64,6 +77,8 @@ typedef struct sss_eval_desc {
     int reference_bounces;          /* the truth compared against: sss_reference_desc.bounces (0: the full
                                        transport, the default; 1: the single-event integral); a cached
                                        reference is used only when its sidecar records the same */
+    const sss_eval_image_source *images; /* images from other programs (above); NULL or 0 count: none */
+    int image_count;
     double frame_budget_s;          /* 0: none. Else a technique's timed frames stop once they have taken
                                        this many seconds (at least one is timed), and a technique whose
                                        first warm-up frame alone took longer is timed on that frame, with
@@ -121,6 +136,9 @@ typedef struct sss_eval_entry {
     sss_image image;                  /* QUALITY at the first resolution only (empty otherwise) */
     sss_image dssim_map;              /* per-pixel, per-channel DSSIM of image (same rule) */
     sss_image flip_map;               /* per-pixel FLIP of image, in all three channels (same rule) */
+    int external;                     /* an image from another program (sss_eval_desc.images): label its
+                                         name, technique "external", no frames, timings or stats */
+    char file[1024];                  /* external: the file read */
 } sss_eval_entry;
 
 typedef enum sss_eval_ref_source {
@@ -166,8 +184,11 @@ typedef struct sss_eval_results {
     int scene_count;
     sss_eval_entry *entries;
     int entry_count, entry_capacity;
-    char **labels;                    /* the technique specs evaluated, in order */
+    char **labels;                    /* the technique specs evaluated, in order, then the names of the
+                                         external images (sss_eval_desc.images) */
     int label_count;
+    int external_count;               /* the last external_count labels are external images */
+    char **external_patterns;         /* their patterns, as given (external_count entries) */
     int frames;                       /* timed frames per technique */
     int warmup_frames;                /* untimed frames before them */
     double frame_budget_s;            /* sss_eval_desc.frame_budget_s (0: none) */

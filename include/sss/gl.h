@@ -117,16 +117,19 @@ SSS_API const sss_gl_param_info *sss_gl_shared_params(int *count);
 
 /* Presets: the shared parameter "preset" sets every parameter of the technique, its own and the shared
  * ones, to the preset's values: SSS_GL_PRESET_MEASURED (0, the defaults: what measures best on the
- * evaluation scenes) or SSS_GL_PRESET_PAPER (1, the published configuration of the technique's paper).
+ * evaluation scenes), SSS_GL_PRESET_PAPER (1, the published configuration of the technique's paper) or
+ * SSS_GL_PRESET_HDRP (2, Unity HDRP's shipped defaults: only for burley, whose paper, Golubev 2018,
+ * is HDRP's, so that it equals preset=paper there; other techniques refuse it, naming it).
  * In a renderer desc the preset is applied first, wherever it stands, so the other parameters given
  * with it override it; sss_gl_renderer_set_param("preset", ...) resets every parameter. */
 #define SSS_GL_PRESET_MEASURED 0
 #define SSS_GL_PRESET_PAPER 1
+#define SSS_GL_PRESET_HDRP 2
 /* The value a parameter (technique or shared) takes under preset=paper for a technique: the paper's
  * where it departs from the default, else the default. NaN for an unknown technique or parameter. */
 SSS_API double sss_gl_paper_value(const char *technique, const char *param);
 /* Parses the text of a parameter value (--param NAME=TEXT): a finite number, or for "preset" also the
- * names "paper" and "measured". SSS_ERROR_INVALID_ARGUMENT naming the parameter otherwise. */
+ * names "paper", "measured" and "hdrp". SSS_ERROR_INVALID_ARGUMENT naming the parameter otherwise. */
 SSS_API sss_result sss_gl_param_parse(const char *name, const char *text, double *out, sss_error *err);
 
 /* ---- Renderer -------------------------------------------------------------------------------- */

@@ -184,7 +184,7 @@ int cli_params_add(const char *cmd, cli_params *params, const char *text)
     params->values[k].name = params->names[k];
     sss_error err = {0};
     if (sss_gl_param_parse(params->names[k], eq + 1, &params->values[k].value, &err) != SSS_OK) {
-        cli_usage_error(cmd, "--param: %s", err.message); /* preset=paper|measured, or a number */
+        cli_usage_error(cmd, "--param: %s", err.message); /* preset=paper|measured|hdrp, or a number */
         return 0;
     }
     params->count++;

@@ -15,11 +15,12 @@
 
 #define CMD "eval"
 #define MAX_LIST 256
+#define MAX_IMAGES 16
 
 enum {
     OPT_OUT, OPT_TECHNIQUES, OPT_RESOLUTIONS, OPT_TIMING_RESOLUTIONS, OPT_WIDTH, OPT_HEIGHT, OPT_FRAMES, OPT_WARMUP, OPT_FRAME_BUDGET,
     OPT_SUPERSAMPLE, OPT_CACHED_REFERENCE, OPT_REFERENCE_DIR, OPT_REFERENCE_QUALITY, OPT_REFERENCE_BOUNCES, OPT_THREADS,
-    OPT_SAM_SWEEP, OPT_NO_SAM_SWEEP, OPT_SAM_COUNTS
+    OPT_SAM_SWEEP, OPT_NO_SAM_SWEEP, OPT_SAM_COUNTS, OPT_IMAGES
 };
 static const cli_option options[] = {
     {OPT_OUT, "--out", "-o", CLI_ARG_DIR, "DIR", "output folder", NULL, "out/eval"},
@@ -70,6 +71,11 @@ static const cli_option options[] = {
      NULL, NULL},
     {OPT_NO_SAM_SWEEP, "--no-sam-sweep", NULL, CLI_ARG_NONE, NULL, "never the sam sweep", NULL, NULL},
     {OPT_SAM_COUNTS, "--sam-counts", NULL, CLI_ARG_TEXT, "LIST", "the sample counts of the sweep", NULL, "3,10,20,50"},
+    {OPT_IMAGES, "--images", NULL, CLI_ARG_TEXT, "NAME=PATTERN",
+     "images of another renderer scored like a technique, marked external;\n"
+     "{scene} in PATTERN is the scene file's name without .json; EXR, PFM,\n"
+     "HDR linear, PNG sRGB; the scene's size; repeat for more (at most 16)",
+     NULL, NULL},
 };
 const cli_command_spec cli_spec_eval = {
     CMD, options, CLI_COUNT(options), CLI_ARG_FILE, NULL, "SCENE.json[@T]...",
@@ -206,7 +212,8 @@ static void print_summary(const sss_eval_results *res, const char *out_dir)
             else snprintf(p, sizeof p, "inf");
             snprintf(r, sizeof r, "%.3f", e->metrics.rmse);
         }
-        if (e->ok) snprintf(ms, sizeof ms, "%.1f", e->total_ms);
+        if (e->external) snprintf(ms, sizeof ms, "external");
+        else if (e->ok) snprintf(ms, sizeof ms, "%.1f", e->total_ms);
         printf("%-22.22s %-26.26s %-7s %9s %8s %8s %8s %11s\n", esc(res->scenes[e->scene].name, b1),
                esc(e->label, b2), e->ok ? "ok" : "FAILED", d, fl, p, r, ms);
     }
@@ -242,6 +249,7 @@ typedef struct eval_options {
     char *techs[MAX_LIST];
     sss_eval_size *sizes, *tsizes, one_size;
     int sam_counts[64];
+    sss_eval_image_source images[MAX_IMAGES];
     char save_dir[2048];
     sss_eval_desc desc;  /* points into the fields above */
     cli_common common;
@@ -253,6 +261,7 @@ static void eval_options_free(eval_options *o)
     free(o->tsizes);
     free(o->tech_text);
     free(o->scenes);
+    for (int j = 0; j < o->desc.image_count; j++) free((char *)o->images[j].name);
 }
 
 static int set_techniques(eval_options *o, const char *v)
@@ -298,6 +307,21 @@ static int set_sam_counts(eval_options *o, const char *a, const char *v)
     }
     o->desc.sam_counts = o->sam_counts;
     o->desc.sam_count_count = n;
+    return CLI_EXIT_OK;
+}
+
+/* --images NAME=PATTERN (v lives as long as argv). */
+static int add_images(eval_options *o, const char *v)
+{
+    const char *eq = strchr(v, '=');
+    if (!eq || eq == v || !eq[1]) return cli_usage_error(CMD, "--images needs NAME=PATTERN, got '%s'", v);
+    if (o->desc.image_count >= MAX_IMAGES) return cli_usage_error(CMD, "--images: at most %d", MAX_IMAGES);
+    char *name = strndup(v, (size_t)(eq - v));
+    if (!name) return cli_failf(CMD, "out of memory");
+    o->images[o->desc.image_count].name = name;
+    o->images[o->desc.image_count].pattern = eq + 1;
+    o->desc.images = o->images;
+    o->desc.image_count++;
     return CLI_EXIT_OK;
 }
 
@@ -358,6 +382,7 @@ static int set_option(void *opts, int id, const char *a, const char *v)
     case OPT_SAM_SWEEP: d->sam_sweep = 1; return CLI_EXIT_OK;
     case OPT_NO_SAM_SWEEP: d->sam_sweep = -1; return CLI_EXIT_OK;
     case OPT_SAM_COUNTS: return set_sam_counts(o, a, v);
+    case OPT_IMAGES: return add_images(o, v);
     case CLI_OPERAND: o->scenes[o->nscenes++] = v; return CLI_EXIT_OK;
     default: return set_reference_option(o, id, a, v);
     }

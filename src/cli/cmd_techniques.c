@@ -35,7 +35,8 @@ const cli_command_spec cli_spec_techniques = {
     "summary). --params also lists each technique's parameters (set them with\n"
     "`sss render --param NAME=VALUE`) and the parameters shared by all techniques. Defaults are the\n"
     "values that measure best on the evaluation scenes; `--param preset=paper` sets the published\n"
-    "configuration, shown as [preset=paper: VALUE] where it differs.\n",
+    "configuration, shown as [preset=paper: VALUE] where it differs (burley: also `preset=hdrp`,\n"
+    "Unity HDRP's defaults, which are its paper's).\n",
     NULL, NULL};
 
 typedef struct techniques_options {

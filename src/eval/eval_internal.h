@@ -88,6 +88,18 @@ extern const int eval_default_sam_counts[EVAL_DEFAULT_SAM_COUNTS]; /* 3, 10, 20,
 /* sam's back-side sample count parameter, or NULL. */
 const sss_gl_param_info *eval_find_sam_param(const sss_gl_technique_info *t);
 
+/* ---- Images from other programs (eval_external.c) ---- */
+
+/* Checks sss_eval_desc.images before any work: names (non-empty, distinct, not a technique spec of the
+ * run) and patterns ("{scene}" required when there are several scenes). */
+sss_result eval_external_validate(const sss_eval_desc *d, int scene_count, sss_error *err);
+/* Reads every source's image of scene es, which must be w x h and finite, into imgs[0..image_count)
+ * (created; all freed on failure) and their files into paths. Errors name the source and the file. */
+sss_result eval_external_load(const sss_eval_desc *d, const sss_eval_scene *es, int w, int h, sss_image *imgs,
+                              char (*paths)[1024], sss_error *err);
+/* The QUALITY entry of an external image (label, technique "external", ok, no timings); img moves into it. */
+void eval_external_entry(int scene, const char *label, const char *path, sss_image *img, sss_eval_entry *e);
+
 /* ---- Drawing (eval_draw.c) ---- */
 
 typedef struct eval_rgb {

@@ -42,7 +42,7 @@ static cJSON *entry_json(const sss_eval_results *res, const sss_eval_entry *e)
     cJSON_AddStringToObject(o, "label", e->label);
     cJSON *params = cJSON_AddObjectToObject(o, "params");
     eval_spec spec;
-    if (params && eval_parse_spec(e->label, &spec, NULL) == SSS_OK)
+    if (params && !e->external && eval_parse_spec(e->label, &spec, NULL) == SSS_OK)
         for (int i = 0; i < spec.param_count; i++) add_num(params, spec.names[i], spec.params[i].value);
     cJSON_AddNumberToObject(o, "width", e->width);
     cJSON_AddNumberToObject(o, "height", e->height);
@@ -66,8 +66,11 @@ static cJSON *entry_json(const sss_eval_results *res, const sss_eval_entry *e)
     cJSON_AddNumberToObject(o, "frames", e->frames);
     cJSON_AddNumberToObject(o, "warmup_frames", e->warmup_frames);
     cJSON_AddNumberToObject(o, "supersample", e->supersample > 0 ? e->supersample : 1);
-    if (e->ok) add_num(o, "ms_total", e->total_ms);
+    if (e->ok && !e->external) add_num(o, "ms_total", e->total_ms);
     else cJSON_AddNullToObject(o, "ms_total");
+    cJSON_AddBoolToObject(o, "external", e->external);
+    if (e->external) add_text(o, "file", e->file);
+    else cJSON_AddNullToObject(o, "file");
     cJSON *passes = cJSON_AddArrayToObject(o, "passes");
     for (int p = 0; passes && e->ok && p < e->pass_count; p++) {
         cJSON *po = cJSON_CreateObject();
@@ -125,8 +128,17 @@ static cJSON *results_json(const sss_eval_results *res)
         cJSON_AddStringToObject(set, "reference_quality", res->reference_quality == SSS_REFERENCE_DRAFT ? "draft" : "final");
         cJSON_AddBoolToObject(set, "cached_reference", res->cached_reference);
         cJSON_AddNumberToObject(set, "reference_bounces", res->reference_bounces);
+        int nt = res->label_count - res->external_count;
         cJSON *t = cJSON_AddArrayToObject(set, "techniques");
-        for (int i = 0; t && i < res->label_count; i++) cJSON_AddItemToArray(t, cJSON_CreateString(res->labels[i]));
+        for (int i = 0; t && i < nt; i++) cJSON_AddItemToArray(t, cJSON_CreateString(res->labels[i]));
+        cJSON *im = cJSON_AddArrayToObject(set, "images");
+        for (int j = 0; im && j < res->external_count; j++) {
+            cJSON *io = cJSON_CreateObject();
+            if (!io) continue;
+            cJSON_AddStringToObject(io, "name", res->labels[nt + j]);
+            cJSON_AddStringToObject(io, "pattern", res->external_patterns[j]);
+            cJSON_AddItemToArray(im, io);
+        }
     }
     cJSON *scenes = cJSON_AddArrayToObject(root, "scenes");
     for (int i = 0; scenes && i < res->scene_count; i++) {
@@ -230,8 +242,8 @@ sss_result sss_eval_write_csv(const sss_eval_results *res, const char *path, sss
     char tmp[4096];
     FILE *f = sss_atomic_open(path, tmp, sizeof tmp, err);
     if (!f) return err ? err->code : SSS_ERROR_IO;
-    fputs("scene,time,kind,technique,label,width,height,sam_n,status,dssim,flip,psnr,rmse,max_abs,frames,warmup_frames,ms_total,"
-          "precompute_ms,gpu_bytes,passes,error\n", f);
+    fputs("scene,time,kind,technique,label,width,height,sam_n,status,dssim,flip,psnr,rmse,max_abs,frames,ms_total,"
+          "precompute_ms,gpu_bytes,passes,error,external,file,warmup_frames\n", f);
     for (int i = 0; i < res->entry_count; i++) {
         const sss_eval_entry *e = &res->entries[i];
         const sss_eval_scene *s = &res->scenes[e->scene];
@@ -248,8 +260,8 @@ sss_result sss_eval_write_csv(const sss_eval_results *res, const char *path, sss
         csv_num(f, e->metrics.psnr, e->has_metrics); /* empty when infinite (identical images: rmse 0) */
         csv_num(f, e->metrics.rmse, e->has_metrics);
         csv_num(f, e->metrics.max_abs, e->has_metrics);
-        fprintf(f, ",%d,%d", e->frames, e->warmup_frames);
-        csv_num(f, e->total_ms, e->ok);
+        fprintf(f, ",%d", e->frames);
+        csv_num(f, e->total_ms, e->ok && !e->external);
         csv_num(f, e->precompute_ms, e->precompute_ms > 0);
         if (e->has_stats) fprintf(f, ",%zu,", e->stats.texture_bytes + e->stats.buffer_bytes);
         else fputs(",,", f);
@@ -261,7 +273,9 @@ sss_result sss_eval_write_csv(const sss_eval_results *res, const char *path, sss
         csv_field(f, passes);
         fputc(',', f);
         csv_field(f, e->ok ? "" : e->error);
-        fputc('\n', f);
+        fprintf(f, ",%d,", e->external);
+        csv_field(f, e->external ? e->file : "");
+        fprintf(f, ",%d\n", e->warmup_frames);
     }
     return sss_atomic_close(f, tmp, path, err);
 }

@@ -145,6 +145,13 @@ static void draw_fail_mark(cairo_t *cr, double x, double y)
     cairo_stroke(cr);
 }
 
+/* An external image's place in a timing plot: it has no timings (sss_eval_entry.external). */
+static void draw_external_mark(cairo_t *cr, double x, double y)
+{
+    cairo_set_source_rgb(cr, 0.45, 0.45, 0.45);
+    eval_text(cr, x, y - 4, FONT - 4, 0, 0.5, "ext");
+}
+
 static void center_message(cairo_t *cr, const frame *f, const char *msg, const char *detail)
 {
     cairo_set_source_rgb(cr, 0.4, 0.4, 0.4);
@@ -287,8 +294,8 @@ sss_result sss_eval_plot_passes(const sss_eval_results *res, const char *path, s
         double vmax = 0;
         for (int k = 0; k < ns; k++) {
             const sss_eval_entry *e = eval_find(res, g, SSS_EVAL_QUALITY, res->labels[k], pw, ph);
-            if (e && e->ok && nt < 256) totals[nt++] = e->total_ms;
-            if (e && e->ok) vmax = fmax(vmax, e->total_ms);
+            if (e && e->ok && !e->external && nt < 256) totals[nt++] = e->total_ms;
+            if (e && e->ok && !e->external) vmax = fmax(vmax, e->total_ms);
         }
         double cap = vmax;
         if (nt >= 3) {
@@ -309,6 +316,7 @@ sss_result sss_eval_plot_passes(const sss_eval_results *res, const char *path, s
             const sss_eval_entry *e = eval_find(res, g, SSS_EVAL_QUALITY, res->labels[k], pw, ph);
             double x = gx + k * bw;
             if (!e || !e->ok) draw_fail_mark(cr, x + bw / 2, f.y1);
+            else if (e->external) draw_external_mark(cr, x + bw / 2, f.y1);
             else {
                 double acc = 0;
                 for (int p = 0; p < e->pass_count; p++) {
@@ -484,7 +492,8 @@ sss_result sss_eval_plot_resolution(const sss_eval_results *res, const char *pat
             series *se = &sv[(size_t)g * (size_t)nl + (size_t)k];
             for (int i = 0; i < res->entry_count && se->n < 64; i++) {
                 const sss_eval_entry *e = &res->entries[i];
-                if (e->scene != g || e->kind == SSS_EVAL_SAM_SWEEP || !e->ok || strcmp(e->label, res->labels[k]) != 0)
+                if (e->scene != g || e->kind == SSS_EVAL_SAM_SWEEP || !e->ok || e->external ||
+                    strcmp(e->label, res->labels[k]) != 0)
                     continue;
                 se->x[se->n] = e->width * (double)e->height / 1e6;
                 se->y[se->n] = e->total_ms;

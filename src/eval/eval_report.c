@@ -133,6 +133,8 @@ static void fmt_num(char *out, size_t cap, double v, const char *fmt, int ok)
     else snprintf(out, cap, fmt, v);
 }
 
+static void sb_puts(sbuf *b, const char *s) { sb_put(b, s, strlen(s)); }
+
 /* best: bit 0 the scene's lowest DSSIM, bit 1 its lowest FLIP. */
 static void entry_row(sbuf *b, const sss_eval_results *res, const sss_eval_entry *e, int best)
 {
@@ -142,7 +144,7 @@ static void entry_row(sbuf *b, const sss_eval_results *res, const sss_eval_entry
     if (e->has_metrics && isinf(e->metrics.psnr)) snprintf(p, sizeof p, "&infin;");
     else fmt_num(p, sizeof p, e->metrics.psnr, "%.2f", e->has_metrics);
     fmt_num(r, sizeof r, e->metrics.rmse, "%.3f", e->has_metrics);
-    fmt_num(ms, sizeof ms, e->total_ms, "%.1f", e->ok);
+    fmt_num(ms, sizeof ms, e->total_ms, "%.1f", e->ok && !e->external);
     if (e->ok && (e->frames < res->frames || e->warmup_frames < res->warmup_frames)) /* cut by --frame-budget */
         snprintf(ms + strlen(ms), sizeof ms - strlen(ms), " <span class=\"small\">(%d frame%s%s)</span>", e->frames,
                  e->frames == 1 ? "" : "s", e->warmup_frames ? "" : ", no warm-up");
@@ -159,13 +161,17 @@ static void entry_row(sbuf *b, const sss_eval_results *res, const sss_eval_entry
     sb_printf(b, "<td%s>%s</td><td class=\"flip%s\">%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td>"
                  "<td class=\"l small\">",
               best & 1 ? " class=\"best\"" : "", d, best & 2 ? " best" : "", fl, p, r, ms, pre, mem);
-    if (e->ok)
+    if (e->external) {
+        sb_puts(b, "external image: ");
+        sb_esc(b, e->file);
+    } else if (e->ok) {
         for (int k = 0; k < e->pass_count; k++) sb_printf(b, "%s%s&nbsp;%.1f", k ? ", " : "", e->passes[k].name, e->passes[k].ms);
-    else sb_esc(b, e->error);
+    } else {
+        sb_esc(b, e->error);
+    }
     sb_put(b, "</td></tr>\n", 11);
 }
 
-static void sb_puts(sbuf *b, const char *s) { sb_put(b, s, strlen(s)); }
 
 static void table_head(sbuf *b)
 {

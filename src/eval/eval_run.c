@@ -50,7 +50,7 @@ static sss_result validate(const sss_eval_desc *d, int scene_count, sss_error *e
     for (int i = 0; i < d->sam_count_count; i++)
         if (!d->sam_counts || d->sam_counts[i] < 1)
             return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "eval: SAM sample counts must be >= 1");
-    return SSS_OK;
+    return eval_external_validate(d, scene_count, err);
 }
 
 /* "path.json@T" -> path and time (the suffix counts only when it is a finite number). */
@@ -191,6 +191,9 @@ typedef struct run_state {
     const sss_gl_param_info *sam_param;
     int sam_spec; /* index of the spec the sweep starts from (the first "sam" spec), -1 for plain sam */
     int counts_buf[64];
+    int nt;                 /* technique specs: the first nt labels (the external images follow) */
+    sss_image *ext_images;  /* scene si's image of source j at [si * image_count + j], until moved to its entry */
+    char (*ext_paths)[1024];
 } run_state;
 
 static sss_result add_result(run_state *st, const sss_eval_entry *e)
@@ -237,6 +240,42 @@ static void keep_subsurface_ids(const sss_scene *scene, sss_image *ids)
     }
 }
 
+/* Compares an entry's image with the reference: metrics, and the maps at the first size (k = 0). */
+static void score_entry(const sss_eval_scene *es, const sss_image *ref, int k, sss_eval_entry *e)
+{
+    if (!e->ok || !ref->pixels) return;
+    sss_error cerr = {0};
+    sss_image map = {0}, flip_map = {0};
+    if (sss_image_compare_maps(ref, &e->image, es->exposure, &e->metrics, k == 0 ? &map : NULL,
+                               k == 0 ? &flip_map : NULL, &cerr) == SSS_OK) {
+        e->has_metrics = 1;
+        e->dssim_map = map;
+        e->flip_map = flip_map;
+    } else {
+        eval_fail_entry(e, cerr.message);
+    }
+}
+
+/* The external images of scene si (at its first quality size) as entries. */
+static sss_result add_external_entries(run_state *st, int si, const sss_image *ref)
+{
+    sss_eval_results *res = st->res;
+    for (int j = 0; j < res->external_count; j++) {
+        sss_eval_entry e;
+        size_t at = (size_t)si * (size_t)res->external_count + (size_t)j;
+        eval_external_entry(si, res->labels[st->nt + j], st->ext_paths[at], &st->ext_images[at], &e);
+        score_entry(&res->scenes[si], ref, 0, &e);
+        if (!e.ok) sss_image_free(&e.image);
+        if (add_result(st, &e) != SSS_OK) {
+            sss_image_free(&e.image);
+            sss_image_free(&e.dssim_map);
+            sss_image_free(&e.flip_map);
+            return SSS_ERROR_OUT_OF_MEMORY;
+        }
+    }
+    return SSS_OK;
+}
+
 static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size size, sss_error *err)
 {
     sss_eval_results *res = st->res;
@@ -252,23 +291,12 @@ static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size s
     eval_progress_finish_step(&st->prog);
     if (r != SSS_OK) return r;
     sss_eval_entry e;
-    for (int i = 0; i < res->label_count; i++) {
+    for (int i = 0; i < st->nt; i++) {
         st->rc.object_ids = k == 0 ? &es->object_ids : NULL;
         r = run_entry(st, &view, si, i, size, SSS_EVAL_QUALITY, &e);
         st->rc.object_ids = NULL;
         if (k == 0) keep_subsurface_ids(&st->scenes[si], &es->object_ids);
-        if (r == SSS_OK && e.ok && ref.pixels) {
-            sss_error cerr = {0};
-            sss_image map = {0}, flip_map = {0};
-            if (sss_image_compare_maps(&ref, &e.image, es->exposure, &e.metrics, k == 0 ? &map : NULL,
-                                       k == 0 ? &flip_map : NULL, &cerr) == SSS_OK) {
-                e.has_metrics = 1;
-                e.dssim_map = map;
-                e.flip_map = flip_map;
-            } else {
-                eval_fail_entry(&e, cerr.message);
-            }
-        }
+        if (r == SSS_OK) score_entry(es, &ref, k, &e);
         if (k != 0 || !e.ok) sss_image_free(&e.image);
         if (r == SSS_OK) r = add_result(st, &e);
         if (r != SSS_OK) {
@@ -278,6 +306,10 @@ static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size s
             sss_image_free(&ref);
             return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
         }
+    }
+    if (k == 0 && add_external_entries(st, si, &ref) != SSS_OK) {
+        sss_image_free(&ref);
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
     }
     /* the SAM sweep at the first quality size (Maisch & Ropinski 2017, Fig. 10: RMSE against back-side samples) */
     if (k == 0 && res->sam_swept) {
@@ -333,11 +365,10 @@ static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size s
 
 static sss_result run_timing_size(run_state *st, int si, sss_eval_size size, sss_error *err)
 {
-    sss_eval_results *res = st->res;
     sss_scene view;
     sss_result r = sized_view(&st->scenes[si], size.width, size.height, &view, err);
     if (r != SSS_OK) return r;
-    for (int i = 0; i < res->label_count; i++) {
+    for (int i = 0; i < st->nt; i++) {
         sss_eval_entry e;
         r = run_entry(st, &view, si, i, size, SSS_EVAL_TIMING, &e);
         sss_image_free(&e.image);
@@ -373,14 +404,23 @@ static double plan_units(run_state *st)
             int h = d->resolution_count ? d->resolutions[k].height : es->height;
             double px = (double)w * h;
             units += reference_units(st, es, w, h);
-            units += st->res->label_count * (st->rc.frames + st->rc.warmup_frames + 1.0) * px;
+            units += st->nt * (st->rc.frames + st->rc.warmup_frames + 1.0) * px;
             if (k == 0 && st->res->sam_swept) units += st->sam_count_n * 2.0 * px;
         }
         for (int k = 0; k < d->timing_resolution_count; k++)
-            units += st->res->label_count * (st->rc.frames + st->rc.warmup_frames + 1.0) * d->timing_resolutions[k].width *
+            units += st->nt * (st->rc.frames + st->rc.warmup_frames + 1.0) * d->timing_resolutions[k].width *
                      (double)d->timing_resolutions[k].height;
     }
     return units;
+}
+
+/* The external images not moved into entries (all of them after a failure). */
+static void free_external(run_state *st, int scene_count)
+{
+    for (size_t i = 0; st->ext_images && i < (size_t)scene_count * (size_t)st->desc->image_count; i++)
+        sss_image_free(&st->ext_images[i]);
+    free(st->ext_images);
+    free(st->ext_paths);
 }
 
 sss_result sss_eval_run(const char *const *scene_args, int scene_count, const sss_eval_desc *desc_in,
@@ -419,11 +459,17 @@ sss_result sss_eval_run(const char *const *scene_args, int scene_count, const ss
 
     /* techniques: the given specs, or every registered one */
     int nl = desc.technique_count ? desc.technique_count : sss_gl_technique_count();
-    out->labels = calloc((size_t)(nl ? nl : 1), sizeof *out->labels);
+    int ni = desc.image_count;
+    st.nt = nl;
+    out->labels = calloc((size_t)(nl + ni ? nl + ni : 1), sizeof *out->labels);
+    out->external_patterns = calloc((size_t)(ni ? ni : 1), sizeof *out->external_patterns);
+    st.ext_images = calloc((size_t)scene_count * (size_t)(ni ? ni : 1), sizeof *st.ext_images);
+    st.ext_paths = calloc((size_t)scene_count * (size_t)(ni ? ni : 1), sizeof *st.ext_paths);
     st.specs = calloc((size_t)(nl ? nl : 1), sizeof *st.specs);
     out->scenes = calloc((size_t)scene_count, sizeof *out->scenes);
     st.scenes = calloc((size_t)scene_count, sizeof *st.scenes);
-    if (!out->labels || !st.specs || !out->scenes || !st.scenes) {
+    if (!out->labels || !st.specs || !out->scenes || !st.scenes || !out->external_patterns || !st.ext_images ||
+        !st.ext_paths) {
         r = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
         goto fail;
     }
@@ -436,6 +482,16 @@ sss_result sss_eval_run(const char *const *scene_args, int scene_count, const ss
         }
         out->label_count = i + 1;
         if ((r = eval_parse_spec(spec, &st.specs[i], err)) != SSS_OK) goto fail;
+    }
+    out->external_count = ni;
+    for (int j = 0; j < ni; j++) {
+        out->labels[nl + j] = eval_escaped(desc.images[j].name);
+        out->external_patterns[j] = eval_escaped(desc.images[j].pattern);
+        if (!out->labels[nl + j] || !out->external_patterns[j]) {
+            r = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+            goto fail;
+        }
+        out->label_count = nl + j + 1;
     }
 
     /* scenes */
@@ -456,6 +512,11 @@ sss_result sss_eval_run(const char *const *scene_args, int scene_count, const ss
         es->height = st.scenes[i].camera.height;
         es->exposure = st.scenes[i].render.exposure;
         for (size_t o = 0; o < st.scenes[i].object_count; o++) es->triangles += st.scenes[i].objects[o].mesh.triangle_count;
+        /* the external images, at the first quality size: a missing or mis-sized one stops the run now */
+        sss_eval_size first = desc.resolution_count ? desc.resolutions[0] : (sss_eval_size){es->width, es->height};
+        if (ni && (r = eval_external_load(&desc, es, first.width, first.height, st.ext_images + (size_t)i * ni,
+                                          st.ext_paths + (size_t)i * ni, err)) != SSS_OK)
+            goto fail;
     }
 
     /* the SAM sweep: needs the technique and its sample-count parameter */
@@ -536,6 +597,7 @@ sss_result sss_eval_run(const char *const *scene_args, int scene_count, const ss
     for (int i = 0; i < scene_count; i++) sss_scene_free(&st.scenes[i]);
     free(st.scenes);
     free(st.specs);
+    free_external(&st, scene_count);
     out->seconds = sss_time_seconds() - t_start;
     return SSS_OK;
 fail:
@@ -544,6 +606,7 @@ fail:
         for (int i = 0; i < scene_count; i++) sss_scene_free(&st.scenes[i]);
     free(st.scenes);
     free(st.specs);
+    free_external(&st, scene_count);
     sss_eval_results_free(out);
     return r;
 }

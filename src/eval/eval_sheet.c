@@ -89,8 +89,10 @@ static void caption(cairo_t *cr, const sss_eval_entry *e, const char *label, dou
         char psnr[32];
         if (isfinite(e->metrics.psnr)) snprintf(psnr, sizeof psnr, "%.1f dB", e->metrics.psnr);
         else snprintf(psnr, sizeof psnr, "inf");
-        snprintf(buf, sizeof buf, "DSSIM %.4f   FLIP %.4f   PSNR %s   %.1f ms", e->metrics.dssim, e->metrics.flip, psnr,
-                 e->total_ms);
+        char ms[32];
+        if (e->external) snprintf(ms, sizeof ms, "external");
+        else snprintf(ms, sizeof ms, "%.1f ms", e->total_ms);
+        snprintf(buf, sizeof buf, "DSSIM %.4f   FLIP %.4f   PSNR %s   %s", e->metrics.dssim, e->metrics.flip, psnr, ms);
     } else {
         snprintf(buf, sizeof buf, "no reference   %.1f ms", e->total_ms);
     }

@@ -230,6 +230,8 @@ void sss_eval_results_free(sss_eval_results *res)
     free(res->entries);
     for (int i = 0; i < res->label_count; i++) free(res->labels[i]);
     free(res->labels);
+    for (int i = 0; i < res->external_count && res->external_patterns; i++) free(res->external_patterns[i]);
+    free(res->external_patterns);
     memset(res, 0, sizeof *res);
 }
 

@@ -74,16 +74,22 @@ static sss_result unknown_param(const gl_technique *tech, const char *name, sss_
                          tech->info.param_count);
 }
 
-/* preset: every parameter back to its default, then (paper) the technique's published values. */
+/* preset: every parameter back to its default, then (paper) the technique's published values; hdrp is
+ * the paper's values of a technique whose paper is HDRP's (tech->paper_is_hdrp: burley). */
 static sss_result apply_preset(const gl_technique *tech, double *params, double *shared, double preset, sss_error *err)
 {
+    if (preset == SSS_GL_PRESET_HDRP && !tech->paper_is_hdrp)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "technique %s has no preset hdrp (Unity HDRP's defaults are burley's; use paper or "
+                             "measured)",
+                             tech->info.name);
     gl_params_defaults(&tech->info, params);
     int n = 0;
     const sss_gl_param_info *sp = sss_gl_shared_params(&n);
     for (int i = 0; i < n; i++) shared[i] = sp[i].default_value;
     shared[GL_P_PRESET] = preset;
     sss_result res = SSS_OK;
-    for (int i = 0; preset == SSS_GL_PRESET_PAPER && i < tech->paper_count && res == SSS_OK; i++)
+    for (int i = 0; preset != SSS_GL_PRESET_MEASURED && i < tech->paper_count && res == SSS_OK; i++)
         res = gl_params_set_value(tech, params, shared, tech->paper[i].name, tech->paper[i].value, NULL, err);
     return res;
 }

@@ -13,6 +13,7 @@ extern const gl_technique gl_technique_local;
 extern const gl_technique gl_technique_sam;
 extern const gl_technique gl_technique_mertens2003, gl_technique_dss, gl_technique_chen2012;
 extern const gl_technique gl_technique_ssss, gl_technique_ssss_gauss6, gl_technique_ssss_svd, gl_technique_screen;
+extern const gl_technique gl_technique_burley;
 
 static const gl_technique *const techniques[] = {
     &gl_technique_maisch2020,
@@ -20,6 +21,7 @@ static const gl_technique *const techniques[] = {
     &gl_technique_sam,
     &gl_technique_mertens2003, &gl_technique_dss, &gl_technique_chen2012,
     &gl_technique_ssss, &gl_technique_ssss_gauss6, &gl_technique_ssss_svd, &gl_technique_screen,
+    &gl_technique_burley,
 };
 #define TECHNIQUE_COUNT ((int)(sizeof techniques / sizeof techniques[0]))
 
@@ -73,9 +75,10 @@ static const sss_gl_param_info shared_params[GL_P_SHARED_COUNT] = {
                            "splats reach the radius holding this fraction of R_d's integral (<= r_max)"},
     [GL_P_SPLAT_TRIANGLES] = {"splat_triangles", SSS_GL_PARAM_INT, 4096, 4, 16777216,
                               "triangle budget of simplified splat meshes (objects without splat_mesh)"},
-    [GL_P_PRESET] = {"preset", SSS_GL_PARAM_INT, SSS_GL_PRESET_MEASURED, 0, 1,
+    [GL_P_PRESET] = {"preset", SSS_GL_PARAM_INT, SSS_GL_PRESET_MEASURED, 0, 2,
                      "sets every parameter: 0 (measured) the defaults, best on the eval scenes; 1 (paper) the "
-                     "published configuration (`--param preset=paper`); parameters given with it override it"},
+                     "published configuration (`--param preset=paper`); 2 (hdrp) Unity HDRP's defaults, burley "
+                     "only; parameters given with it override it"},
 };
 
 const sss_gl_param_info *sss_gl_shared_params(int *count)
@@ -104,11 +107,12 @@ sss_result sss_gl_param_parse(const char *name, const char *text, double *out, s
     int is_preset = strcmp(name, shared_params[GL_P_PRESET].name) == 0;
     if (is_preset && strcmp(text, "paper") == 0) return *out = SSS_GL_PRESET_PAPER, SSS_OK;
     if (is_preset && strcmp(text, "measured") == 0) return *out = SSS_GL_PRESET_MEASURED, SSS_OK;
+    if (is_preset && strcmp(text, "hdrp") == 0) return *out = SSS_GL_PRESET_HDRP, SSS_OK;
     char *end = NULL;
     double v = strtod(text, &end);
     if (end == text || *end != '\0' || !isfinite(v))
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "parameter %s: '%s' is not a finite number%s", name, text,
-                             is_preset ? " nor 'paper' or 'measured'" : "");
+                             is_preset ? " nor 'paper', 'measured' or 'hdrp'" : "");
     *out = v;
     return SSS_OK;
 }

@@ -109,6 +109,8 @@ typedef struct gl_technique {
      * defaults depart from them; the others are the paper's already */
     const sss_gl_param_value *paper;
     int paper_count;
+    /* 1: the paper's configuration is Unity HDRP's shipped defaults, so preset=hdrp takes it too */
+    int paper_is_hdrp;
     /* NULL, or why the technique cannot run as a pass over a caller's frame (sss_gl_pass_create refuses
      * it with this reason): a technique that does not read the frame's inputs would ignore them */
     const char *not_a_pass;

@@ -436,7 +436,7 @@ int main(int argc, char **argv)
     sss_scene scene;
     CHECK(gt_load("gl_spot.json", &scene));
     static const char *const techniques[] = {"maisch2020", "screen", "local", "ssss", "ssss-gauss6", "ssss-svd",
-                                             "mertens2003", "dss", "sam"};
+                                             "mertens2003", "dss", "sam", "burley"};
     for (size_t i = 0; i < sizeof techniques / sizeof techniques[0]; i++)
         if (argc < 2 || strcmp(argv[1], techniques[i]) == 0) check_technique(&scene, techniques[i]); /* argv: one */
     check_refused(&scene, "chen2012");

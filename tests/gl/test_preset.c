@@ -5,7 +5,8 @@
  *    bit for bit, the one rendered with those values passed one by one;
  *  - parameters given with the preset override it wherever they stand in the desc, and setting the
  *    preset on a live renderer resets every parameter (preset=measured: the defaults);
- *  - every technique accepts it; "paper" and "measured" parse as its values, and only for it. */
+ *  - every technique accepts it; "paper", "measured" and "hdrp" parse as its values, and only for it;
+ *  - preset=hdrp gives burley HDRP's defaults and is refused by the techniques that are not HDRP's. */
 #include "gl_test_util.h"
 
 /* Maisch & Ropinski 2020 as published, technique and shared parameters. */
@@ -125,6 +126,32 @@ static void test_every_technique(const sss_scene *scene)
     CHECK(sss_gl_paper_value("ssss", "taps") == 7); /* Jimenez et al. 2019, section 7 */
 }
 
+/* preset=hdrp: burley reads back Unity HDRP's shipped defaults (Golubev 2018; HDRP's
+ * DiffusionProfileSettings and SubsurfaceScattering.compute: the medium quality level's 40 samples,
+ * SSS_PIXELS_PER_SAMPLE 4, a radius holding 0.997 of the energy, SSS_RANDOM_ROTATION, SSS_BILATERAL_FILTER,
+ * every sample from the whole profile, thick transmission, the wrap sin 15 deg), listed here from HDRP,
+ * not from the code; the same as its preset=paper. Other techniques refuse it, naming it. */
+static void test_hdrp(const sss_scene *scene)
+{
+    static const sss_gl_param_value hdrp[] = {{"samples", 40}, {"pixels_per_sample", 4}, {"filter_cdf", 0.997},
+                                              {"rotation", 1},  {"bilateral", 1},         {"center", 0},
+                                              {"transmission", 1}, {"transmission_wrap", 0.2588}};
+    sss_gl_param_value preset = {"preset", SSS_GL_PRESET_HDRP};
+    sss_gl_renderer *r = make(scene, "burley", &preset, 1);
+    CHECK(r != NULL);
+    for (int i = 0; r && i < (int)(sizeof hdrp / sizeof hdrp[0]); i++)
+        CHECK_MSG(sss_gl_renderer_get_param(r, hdrp[i].name) == hdrp[i].value, "burley preset=hdrp: %s", hdrp[i].name);
+    for (int i = 0; r && i < sss_gl_technique_find("burley")->param_count; i++) {
+        const char *name = sss_gl_technique_find("burley")->params[i].name;
+        CHECK_MSG(sss_gl_renderer_get_param(r, name) == sss_gl_paper_value("burley", name), "hdrp != paper: %s", name);
+    }
+    sss_gl_renderer_destroy(r);
+    sss_error err = {0};
+    sss_gl_renderer_desc d = gt_desc("maisch2020", &preset, 1, 0);
+    CHECK(sss_gl_renderer_create(gt_ctx(), scene, &d, &r, &err) == SSS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(strstr(err.message, "maisch2020") && strstr(err.message, "hdrp"), "message: %s", err.message);
+}
+
 static void test_parse(void)
 {
     double v = -1;
@@ -135,6 +162,7 @@ static void test_parse(void)
     CHECK(sss_gl_param_parse("layers", "paper", &v, &err) == SSS_ERROR_INVALID_ARGUMENT);
     CHECK(strstr(err.message, "layers") != NULL);
     CHECK(sss_gl_param_parse("preset", "papers", &v, &err) == SSS_ERROR_INVALID_ARGUMENT);
+    CHECK(sss_gl_param_parse("preset", "hdrp", &v, &err) == SSS_OK && v == SSS_GL_PRESET_HDRP);
     CHECK(sss_gl_param_parse("n", "1e999", &v, &err) == SSS_ERROR_INVALID_ARGUMENT);
     CHECK(sss_gl_param_parse("n", "", &v, &err) == SSS_ERROR_INVALID_ARGUMENT);
 }
@@ -151,6 +179,7 @@ int main(void)
     test_paper_values(&scene);
     test_paper_image(&scene);
     test_every_technique(&scene);
+    test_hdrp(&scene);
     sss_scene_free(&scene);
     return CHECK_DONE();
 }

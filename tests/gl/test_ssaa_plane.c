@@ -1,7 +1,8 @@
 /* Supersampling antialiasing keeps the image (sss_gl_renderer_desc.supersample): on the flat plane of
  * splat_plane_util.h (Skin1, lit head-on by a directional light, E = 1, filling the view), far from any
  * edge, the central half of the image at k = 2 equals the one at k = 1:
- *  - techniques with no parameter counted in pixels (local, ssss and its kernels, sam): every pixel
+ *  - techniques with no parameter counted in pixels (local, ssss and its kernels, sam), and burley, whose
+ *    estimate on a uniformly lit plane is E whatever its samples (sum(w E) / sum(w)): every pixel
  *    within half-float precision (2^-11 relative; the images differ only in float rounding, measured
  *    < 3e-7), and local also at k = 3 and 4;
  *  - maisch2020 and screen, whose pattern (n, n_l, layers) and translucency_divisor count output
@@ -174,7 +175,8 @@ int main(void)
         {"local", 2, half, half, -1, 0},         {"local", 3, half, half, -1, 0},
         {"local", 4, half, half, -1, 0},         {"ssss", 2, half, half, -1, 0},
         {"ssss-gauss6", 2, half, half, -1, 0},   {"ssss-svd", 2, half, half, -1, 0},
-        {"sam", 2, half, half, -1, 0},           {"maisch2020", 2, 0.0075, 0.01, -1, 0},
+        {"sam", 2, half, half, -1, 0},           {"burley", 2, half, half, -1, 0},
+        {"maisch2020", 2, 0.0075, 0.01, -1, 0},
         {"screen", 2, 0.0075, 0.01, -1, 0},      {"mertens2003", 2, 0.001, 0.05, -1, 0},
         {"chen2012", 2, same, same, 0, 1.01},    {"dss", 2, same, same, 0, 1.01},
         {"dss", 3, same, same, 0, 1.01},         {"chen2012", 2, 0.01, 0.03, -1, 1.75},

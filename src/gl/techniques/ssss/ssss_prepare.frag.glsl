@@ -6,46 +6,19 @@
 // -n, profile T(s) = R_d integrated over the plane at depth s, cosine term saturate(0.3 + dot(l, -n))).
 // Alpha is the object mask: object id + 1 on subsurface pixels, 0 elsewhere (the passes skip those).
 #include "common.glsl"
+#include "shadow_thickness.glsl"
 
 layout(binding = 0) uniform sampler2D g_pos;
 layout(binding = 1) uniform sampler2D g_nrm;
 layout(binding = 2) uniform sampler2D g_albedo;
 layout(binding = 3) uniform sampler2D t_irr;
 layout(binding = 5) uniform sampler2D t_trans;            // T(s) / T(0), one row per material
-layout(binding = 6) uniform samplerCubeArray t_cube_raw;  // the cube shadow maps without comparison
-layout(binding = 7) uniform sampler2DArray t_2d_raw;      // the 2D shadow maps without comparison
 
 layout(std430, binding = 12) readonly buffer SsssBlock { vec4 sd[]; };
 
 uniform int u_transmittance;
 
 layout(location = 0) out vec4 o_value;
-
-// Thickness crossed by light i to reach p (shrunk along -n); < 0 when the map cannot tell.
-float thickness(Light L, vec3 p, vec3 n)
-{
-    int kind = int(L.spot.z + 0.5);
-    if (kind == 0) return -1.0;
-    float bias = u_misc.z;
-    if (kind == 1) {
-        float texel = length(p - L.position.xyz) * L.shadow.z;
-        vec3 d = p - n * bias * texel - L.position.xyz;
-        float occ = texture(t_cube_raw, vec4(d, L.spot.w)).r * L.shadow.y;
-        return max(length(d) - occ, 0.0);
-    }
-    float texel = L.shadow.w > 0.5 ? L.shadow.z : length(p - L.position.xyz) * L.shadow.z;
-    vec3 ps = p - n * bias * texel;
-    vec4 clip = L.shadow_matrix * vec4(ps, 1.0);
-    if (clip.w <= 0.0) return -1.0;
-    vec3 ndc = clip.xyz / clip.w;
-    vec2 uv = ndc.xy * 0.5 + 0.5;
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return -1.0;
-    float zocc = texture(t_2d_raw, vec3(uv, L.spot.w)).r * 2.0 - 1.0;
-    if (zocc >= ndc.z) return 0.0;
-    // the occluder on the same light ray, back in world space
-    vec4 w = inverse(L.shadow_matrix) * vec4(ndc.xy, zocc, 1.0);
-    return length(ps - w.xyz / w.w);
-}
 
 void main()
 {
@@ -70,7 +43,7 @@ void main()
             vec3 E = light_incident(L, p, l);
             float c = clamp(0.3 + dot(l, -n), 0.0, 1.0); // SSSS reference: the back's cosine
             if (c <= 0.0 || max(E.r, max(E.g, E.b)) <= 0.0) continue;
-            float s = thickness(L, p, n);
+            float s = shadow_thickness(L, p, n);
             if (s < 0.0 || s >= smax) continue;
             float u = (s / smax * float(SSSS_TRANS_SIZE - 1) + 0.5) / float(SSSS_TRANS_SIZE);
             vec3 T = textureLod(t_trans, vec2(u, (row + 0.5) / float(textureSize(t_trans, 0).y)), 0.0).rgb;
