@@ -199,6 +199,7 @@ static void print_summary(const sss_eval_results *res, const char *out_dir)
     char b1[ESC_CAP], b2[ESC_CAP], b3[ESC_CAP];
     printf("%-22s %-26s %-7s %9s %8s %8s %8s %11s\n", "scene", "technique", "status", "DSSIM", "FLIP", "PSNR", "RMSE",
            "ms/frame");
+    int cut = 0; /* entries timed on fewer frames than asked (--frame-budget) */
     for (int i = 0; i < res->entry_count; i++) {
         const sss_eval_entry *e = &res->entries[i];
         if (e->kind != SSS_EVAL_QUALITY) continue;
@@ -213,10 +214,18 @@ static void print_summary(const sss_eval_results *res, const char *out_dir)
             snprintf(r, sizeof r, "%.3f", e->metrics.rmse);
         }
         if (e->external) snprintf(ms, sizeof ms, "external");
-        else if (e->ok) snprintf(ms, sizeof ms, "%.1f", e->total_ms);
+        else if (e->ok) {
+            int fewer = e->frames < res->frames || e->warmup_frames < res->warmup_frames;
+            snprintf(ms, sizeof ms, "%.1f%s", e->total_ms, fewer ? "*" : "");
+            cut += fewer;
+        }
         printf("%-22.22s %-26.26s %-7s %9s %8s %8s %8s %11s\n", esc(res->scenes[e->scene].name, b1),
                esc(e->label, b2), e->ok ? "ok" : "FAILED", d, fl, p, r, ms);
     }
+    if (cut)
+        printf("* fewer frames than asked (--frame-budget %g s); without warm-up where the first frame took longer:\n"
+               "  its time then includes one-off costs (results.json: frames, warmup_frames)\n",
+               res->frame_budget_s);
     int failed = 0;
     for (int i = 0; i < res->entry_count; i++) failed += !res->entries[i].ok;
     if (failed) {
