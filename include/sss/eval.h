@@ -83,6 +83,11 @@ typedef struct sss_eval_desc {
                                        noise (sss_eval_scene.noise_*), which the report's "best" must beat */
     const sss_eval_image_source *images; /* images from other programs (above); NULL or 0 count: none */
     int image_count;
+    double frame_budget_s;          /* 0: none. Else a technique's timed frames stop once they have taken
+                                       this many seconds (at least one is timed), and a technique whose
+                                       first warm-up frame alone took longer is timed on that frame, with
+                                       its one-off costs (shader compilation, first uploads) in it: its
+                                       entry's warmup_frames is 0. For slow techniques in short runs */
 } sss_eval_desc;
 
 /* Progress: fraction in [0, 1] of the estimated work and a short description of the current step
@@ -124,7 +129,9 @@ typedef struct sss_eval_entry {
                                          one per line), or empty */
     int has_metrics;                  /* compared with a reference */
     sss_image_metrics metrics;
-    int frames;                       /* frames rendered */
+    int frames;                       /* timed frames (the median's) */
+    int warmup_frames;                /* untimed frames rendered before them (fewer than asked only
+                                         under sss_eval_desc.frame_budget_s) */
     int supersample;                  /* the SSAA factor it rendered with (1: off) */
     double total_ms;                  /* median of the per-frame totals */
     int pass_count;
@@ -193,6 +200,7 @@ typedef struct sss_eval_results {
     char **external_patterns;         /* their patterns, as given (external_count entries) */
     int frames;                       /* timed frames per technique */
     int warmup_frames;                /* untimed frames before them */
+    double frame_budget_s;            /* sss_eval_desc.frame_budget_s (0: none) */
     int supersample;                  /* sss_eval_desc.supersample (1: off) */
     sss_reference_quality reference_quality;
     int cached_reference;

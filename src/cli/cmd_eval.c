@@ -18,7 +18,7 @@
 #define MAX_IMAGES 16
 
 enum {
-    OPT_OUT, OPT_TECHNIQUES, OPT_RESOLUTIONS, OPT_TIMING_RESOLUTIONS, OPT_WIDTH, OPT_HEIGHT, OPT_FRAMES, OPT_WARMUP,
+    OPT_OUT, OPT_TECHNIQUES, OPT_RESOLUTIONS, OPT_TIMING_RESOLUTIONS, OPT_WIDTH, OPT_HEIGHT, OPT_FRAMES, OPT_WARMUP, OPT_FRAME_BUDGET,
     OPT_SUPERSAMPLE, OPT_CACHED_REFERENCE, OPT_REFERENCE_DIR, OPT_REFERENCE_QUALITY, OPT_REFERENCE_BOUNCES, OPT_REFERENCE_NOISE, OPT_THREADS,
     OPT_SAM_SWEEP, OPT_NO_SAM_SWEEP, OPT_SAM_COUNTS, OPT_IMAGES
 };
@@ -41,6 +41,10 @@ static const cli_option options[] = {
      "extra sizes where only frame times are measured", NULL, NULL},
     {OPT_FRAMES, "--frames", NULL, CLI_ARG_NUMBER, "N", "timed frames per technique; timings are medians", NULL, "5"},
     {OPT_WARMUP, "--warmup", NULL, CLI_ARG_NUMBER, "W", "frames rendered first and not timed", NULL, "2"},
+    {OPT_FRAME_BUDGET, "--frame-budget", NULL, CLI_ARG_NUMBER, "S",
+     "a technique's timed frames stop after S seconds (at least one); one whose\n"
+     "first warm-up frame alone takes longer is timed on that frame (no warm-up)",
+     NULL, "none"},
     {OPT_SUPERSAMPLE, "--supersample", NULL, CLI_ARG_NUMBER, "K",
      "antialiasing of every technique (`sss render --supersample`): passes at\n"
      "K x the size, box-filtered down; K in 1..4",
@@ -201,6 +205,7 @@ static void print_summary(const sss_eval_results *res, const char *out_dir)
     char b1[ESC_CAP], b2[ESC_CAP], b3[ESC_CAP];
     printf("%-22s %-26s %-7s %9s %8s %8s %8s %11s\n", "scene", "technique", "status", "DSSIM", "FLIP", "PSNR", "RMSE",
            "ms/frame");
+    int cut = 0; /* entries timed on fewer frames than asked (--frame-budget) */
     for (int i = 0; i < res->entry_count; i++) {
         const sss_eval_entry *e = &res->entries[i];
         if (e->kind != SSS_EVAL_QUALITY) continue;
@@ -215,10 +220,18 @@ static void print_summary(const sss_eval_results *res, const char *out_dir)
             snprintf(r, sizeof r, "%.3f", e->metrics.rmse);
         }
         if (e->external) snprintf(ms, sizeof ms, "external");
-        else if (e->ok) snprintf(ms, sizeof ms, "%.1f", e->total_ms);
+        else if (e->ok) {
+            int fewer = e->frames < res->frames || e->warmup_frames < res->warmup_frames;
+            snprintf(ms, sizeof ms, "%.1f%s", e->total_ms, fewer ? "*" : "");
+            cut += fewer;
+        }
         printf("%-22.22s %-26.26s %-7s %9s %8s %8s %8s %11s\n", esc(res->scenes[e->scene].name, b1),
                esc(e->label, b2), e->ok ? "ok" : "FAILED", d, fl, p, r, ms);
     }
+    if (cut)
+        printf("* fewer frames than asked (--frame-budget %g s); without warm-up where the first frame took longer:\n"
+               "  its time then includes one-off costs (results.json: frames, warmup_frames)\n",
+               res->frame_budget_s);
     int failed = 0;
     for (int i = 0; i < res->entry_count; i++) failed += !res->entries[i].ok;
     if (failed) {
@@ -378,6 +391,9 @@ static int set_option(void *opts, int id, const char *a, const char *v)
         if (d->warmup_frames == 0) d->warmup_frames = -1; /* the library's "none" */
         return status;
     }
+    case OPT_FRAME_BUDGET:
+        if (!cli_parse_positive(CMD, a, v, &d->frame_budget_s)) return CLI_EXIT_USAGE;
+        return d->frame_budget_s <= 1e6 ? CLI_EXIT_OK : cli_usage_error(CMD, "--frame-budget must be at most 1e6 seconds");
     case OPT_SUPERSAMPLE: return cli_parse_supersample(CMD, a, v, &d->supersample) ? CLI_EXIT_OK : CLI_EXIT_USAGE;
     case OPT_SAM_SWEEP: d->sam_sweep = 1; return CLI_EXIT_OK;
     case OPT_NO_SAM_SWEEP: d->sam_sweep = -1; return CLI_EXIT_OK;

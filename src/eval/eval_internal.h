@@ -74,6 +74,7 @@ typedef struct eval_gl {
     const char *gl_error;
     const char *method;   /* timing method the renderer reported */
     int frames, warmup_frames;
+    double frame_budget_s; /* sss_eval_desc.frame_budget_s */
     int supersample;      /* SSAA factor of specs that do not set "supersample" */
     eval_progress *prog;
     sss_image *object_ids; /* when not NULL and still empty: receives the G-buffer object ids of the next

@@ -66,6 +66,7 @@ static cJSON *entry_json(const sss_eval_results *res, const sss_eval_entry *e)
         cJSON_AddBoolToObject(o, "psnr_infinite", 0);
     }
     cJSON_AddNumberToObject(o, "frames", e->frames);
+    cJSON_AddNumberToObject(o, "warmup_frames", e->warmup_frames);
     cJSON_AddNumberToObject(o, "supersample", e->supersample > 0 ? e->supersample : 1);
     if (e->ok && !e->external) add_num(o, "ms_total", e->total_ms);
     else cJSON_AddNullToObject(o, "ms_total");
@@ -123,6 +124,8 @@ static cJSON *results_json(const sss_eval_results *res)
     if (set) {
         cJSON_AddNumberToObject(set, "frames", res->frames);
         cJSON_AddNumberToObject(set, "warmup_frames", res->warmup_frames);
+        if (res->frame_budget_s > 0) cJSON_AddNumberToObject(set, "frame_budget_s", res->frame_budget_s);
+        else cJSON_AddNullToObject(set, "frame_budget_s");
         cJSON_AddNumberToObject(set, "supersample", res->supersample > 0 ? res->supersample : 1);
         cJSON_AddStringToObject(set, "reference_quality", res->reference_quality == SSS_REFERENCE_DRAFT ? "draft" : "final");
         cJSON_AddBoolToObject(set, "cached_reference", res->cached_reference);
@@ -247,7 +250,7 @@ sss_result sss_eval_write_csv(const sss_eval_results *res, const char *path, sss
     FILE *f = sss_atomic_open(path, tmp, sizeof tmp, err);
     if (!f) return err ? err->code : SSS_ERROR_IO;
     fputs("scene,time,kind,technique,label,width,height,sam_n,status,dssim,flip,psnr,rmse,max_abs,frames,ms_total,"
-          "precompute_ms,gpu_bytes,passes,error,external,file\n", f);
+          "precompute_ms,gpu_bytes,passes,error,external,file,warmup_frames\n", f);
     for (int i = 0; i < res->entry_count; i++) {
         const sss_eval_entry *e = &res->entries[i];
         const sss_eval_scene *s = &res->scenes[e->scene];
@@ -279,7 +282,7 @@ sss_result sss_eval_write_csv(const sss_eval_results *res, const char *path, sss
         csv_field(f, e->ok ? "" : e->error);
         fprintf(f, ",%d,", e->external);
         csv_field(f, e->external ? e->file : "");
-        fputc('\n', f);
+        fprintf(f, ",%d\n", e->warmup_frames);
     }
     return sss_atomic_close(f, tmp, path, err);
 }

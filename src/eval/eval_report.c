@@ -138,13 +138,16 @@ static void sb_puts(sbuf *b, const char *s) { sb_put(b, s, strlen(s)); }
 /* best: bit 0 the scene's lowest DSSIM, bit 1 its lowest FLIP. */
 static void entry_row(sbuf *b, const sss_eval_results *res, const sss_eval_entry *e, int best)
 {
-    char d[32], fl[32], p[32], r[32], ms[32], pre[32], mem[32];
+    char d[32], fl[32], p[32], r[32], ms[96], pre[32], mem[32];
     fmt_num(d, sizeof d, e->metrics.dssim, "%.4f", e->has_metrics);
     fmt_num(fl, sizeof fl, e->metrics.flip, "%.4f", e->has_metrics);
     if (e->has_metrics && isinf(e->metrics.psnr)) snprintf(p, sizeof p, "&infin;");
     else fmt_num(p, sizeof p, e->metrics.psnr, "%.2f", e->has_metrics);
     fmt_num(r, sizeof r, e->metrics.rmse, "%.3f", e->has_metrics);
     fmt_num(ms, sizeof ms, e->total_ms, "%.1f", e->ok && !e->external);
+    if (e->ok && (e->frames < res->frames || e->warmup_frames < res->warmup_frames)) /* cut by --frame-budget */
+        snprintf(ms + strlen(ms), sizeof ms - strlen(ms), " <span class=\"small\">(%d frame%s%s)</span>", e->frames,
+                 e->frames == 1 ? "" : "s", e->warmup_frames ? "" : ", no warm-up");
     fmt_num(pre, sizeof pre, e->precompute_ms, "%.0f", e->precompute_ms > 0);
     fmt_num(mem, sizeof mem, e->has_stats ? (e->stats.texture_bytes + e->stats.buffer_bytes) / 1048576.0 : 0, "%.1f",
             e->has_stats);
@@ -167,7 +170,6 @@ static void entry_row(sbuf *b, const sss_eval_results *res, const sss_eval_entry
         sb_esc(b, e->error);
     }
     sb_put(b, "</td></tr>\n", 11);
-    (void)res;
 }
 
 
@@ -348,6 +350,10 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
     sb_puts(b, "</td></tr><tr><th class=\"l\">timing</th><td>");
     sb_printf(b, "median of %d frame%s per technique after %d warm-up frame%s (not timed); ", res->frames,
               res->frames == 1 ? "" : "s", res->warmup_frames, res->warmup_frames == 1 ? "" : "s");
+    if (res->frame_budget_s > 0)
+        sb_printf(b, "a technique's timed frames stop after %g s (at least one), and one whose first frame took longer "
+                     "is timed on that frame alone, its one-off costs (shader compilation, first uploads) included: "
+                     "ms/frame shows such entries' frames; ", res->frame_budget_s);
     if (res->supersample > 1)
         sb_printf(b, "supersampled %d&times;%d (SSAA, every pass at %d&times; the size); ", res->supersample,
                   res->supersample, res->supersample);

@@ -23,6 +23,9 @@ static sss_result validate(const sss_eval_desc *d, int scene_count, sss_error *e
     if (d->warmup_frames < -1 || d->warmup_frames > 10000)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "eval: warmup_frames must be in -1..10000, got %d",
                              d->warmup_frames);
+    if (!(d->frame_budget_s >= 0 && d->frame_budget_s <= 1e6))
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "eval: frame_budget_s must be in 0..1e6 seconds, got %g",
+                             d->frame_budget_s);
     if (d->resolution_count < 0 || d->resolution_count > EVAL_MAX_QUALITY_SIZES)
         return sss_error_set(err, SSS_ERROR_LIMIT, "eval: at most %d quality resolutions", EVAL_MAX_QUALITY_SIZES);
     if (d->supersample < 0 || d->supersample > SSS_GL_MAX_SUPERSAMPLE)
@@ -474,6 +477,8 @@ sss_result sss_eval_run(const char *const *scene_args, int scene_count, const ss
     st.rc.warmup_frames = desc.warmup_frames == 0 ? SSS_GL_WARMUP_FRAMES : desc.warmup_frames < 0 ? 0 : desc.warmup_frames;
     out->frames = st.rc.frames;
     out->warmup_frames = st.rc.warmup_frames;
+    st.rc.frame_budget_s = desc.frame_budget_s;
+    out->frame_budget_s = desc.frame_budget_s;
     st.rc.supersample = desc.supersample ? desc.supersample : 1;
     out->supersample = st.rc.supersample;
     out->reference_quality = desc.reference_quality;

@@ -46,11 +46,53 @@ void eval_fail_entry(sss_eval_entry *e, const char *msg)
     snprintf(e->error, sizeof e->error, "%s", msg && msg[0] ? msg : "unknown error");
 }
 
+/* One frame: its GPU timings and its wall seconds (render call to return, glFinish included). */
+static int render_frame(eval_gl *rc, sss_gl_renderer *r, double t, sss_gl_timings *tm, double *seconds,
+                        sss_error *err)
+{
+    double t0 = sss_time_seconds();
+    if (sss_gl_renderer_render(r, t, err) != SSS_OK) return 0;
+    *seconds = sss_time_seconds() - t0;
+    sss_gl_renderer_timings(r, tm);
+    if (tm->method) rc->method = tm->method;
+    return 1;
+}
+
+/* The warm-up and timed frames into series (made with rc->warmup_frames to drop). Under a frame budget
+ * (sss_eval_desc.frame_budget_s) the timed frames stop once they have taken it, and a first warm-up
+ * frame that alone took longer becomes the one timed frame: a slow technique costs one frame, not
+ * warm-up + frames of them, and its entry says it had no warm-up. */
+static int render_frames(eval_gl *rc, sss_gl_renderer *r, double t, int frames, const char *stage,
+                         sss_gl_timing_series *series, sss_eval_entry *e, sss_error *err)
+{
+    double budget = rc->frame_budget_s, timed_s = 0, s = 0;
+    char st[256];
+    for (int f = 0; f < series->warmup + frames; f++) {
+        if (budget > 0 && series->timed > 0 && timed_s >= budget) break;
+        int warm = f < series->warmup, total = series->warmup + frames;
+        if (warm) snprintf(st, sizeof st, "%s: warm-up frame %d/%d", stage, f + 1, series->warmup);
+        else snprintf(st, sizeof st, "%s: frame %d/%d", stage, f - series->warmup + 1, frames);
+        eval_progress_update(rc->prog, (1.0 + f) / (total + 1.0), st);
+        sss_gl_timings tm;
+        if (!render_frame(rc, r, t, &tm, &s, err)) return 0;
+        if (f == 0 && warm && budget > 0 && s > budget) {
+            series->warmup = 0; /* nothing added yet: the first frame is the timed one */
+            warm = 0;
+        }
+        if (!warm) timed_s += s;
+        sss_gl_timing_series_add(series, &tm);
+        e->frames = series->timed;
+        e->warmup_frames = series->warmup;
+    }
+    return 1;
+}
+
 sss_result eval_run_technique(eval_gl *rc, const sss_scene *view, double t, const eval_spec *spec, int nparams,
                               int frames, sss_eval_entry *e, const char *stage)
 {
     e->ok = 0;
     e->frames = 0;
+    e->warmup_frames = 0;
     if (!rc->gl) {
         eval_fail_entry(e, rc->gl_error);
         return SSS_OK;
@@ -103,21 +145,7 @@ sss_result eval_run_technique(eval_gl *rc, const sss_scene *view, double t, cons
     }
     sss_image img = {0};
     int ok = sss_image_create(&img, rd.width, rd.height, &err) == SSS_OK;
-    int rendered = rc->warmup_frames + frames;
-    for (int f = 0; ok && f < rendered; f++) {
-        if (f < rc->warmup_frames) snprintf(st, sizeof st, "%s: warm-up frame %d/%d", stage, f + 1, rc->warmup_frames);
-        else snprintf(st, sizeof st, "%s: frame %d/%d", stage, f - rc->warmup_frames + 1, frames);
-        eval_progress_update(rc->prog, (1.0 + f) / (rendered + 1.0), st);
-        if (sss_gl_renderer_render(r, t, &err) != SSS_OK) {
-            ok = 0;
-            break;
-        }
-        sss_gl_timings tm;
-        sss_gl_renderer_timings(r, &tm);
-        if (tm.method) rc->method = tm.method;
-        sss_gl_timing_series_add(&series, &tm);
-        e->frames = series.timed;
-    }
+    if (ok) ok = render_frames(rc, r, t, frames, stage, &series, e, &err);
     if (ok) ok = sss_gl_renderer_read(r, &img, &err) == SSS_OK;
     if (ok && rc->object_ids && !rc->object_ids->pixels &&
         sss_gl_renderer_read_buffer(r, "object_id", rc->object_ids, NULL) != SSS_OK)

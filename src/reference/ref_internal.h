@@ -302,9 +302,48 @@ typedef struct ref_camera {
     int width, height;
 } ref_camera;
 
+/* ---- sources by where the camera sees them (ref_sources.c) --------------------------------------
+ * A diagnostic, not part of the public model: the single-event image with only some of the surface's
+ * light sources, to split a real-time technique's light by where its sources lie and compare each part
+ * with the ground truth's from the same surface (docs/maisch2020.md). A source point is in exactly one
+ * class, so the images of a partition of the classes add up to the unmasked one (tests/reference/
+ * test_ref_sources.c). Masked sources keep their place in the random streams: only their T becomes 0. */
+typedef enum ref_source_class {
+    REF_SOURCE_VISIBLE = 1u, /* on the image, seen by the camera, |n_s . v| >= grazing */
+    REF_SOURCE_GRAZING = 2u, /* on the image, seen by the camera, |n_s . v| < grazing */
+    REF_SOURCE_HIDDEN = 4u,  /* on the image, facing the camera (n_g . v >= 0), behind nearer surface */
+    REF_SOURCE_BACK = 8u,    /* on the image, facing away (n_g . v < 0) */
+    REF_SOURCE_OFF = 16u,    /* outside the image, or behind the camera */
+    REF_SOURCE_ALL = 31u
+} ref_source_class;
+
+typedef struct ref_source_mask {
+    unsigned keep;  /* the classes kept (ref_source_class bits); 0 or REF_SOURCE_ALL: every source */
+    double grazing; /* |n_s . v| below which a seen source is GRAZING (e.g. a technique's cut-off) */
+} ref_source_mask;
+
+struct ref_ctx;
+/* The class of a surface point p with unit geometric normal ng and shading normal ns. */
+ref_source_class ref_source_classify(const struct ref_ctx *ctx, const double p[3], const double ng[3],
+                                     const double ns[3], double grazing);
+/* SSS_OK when mask can be used with desc (bounces 1, known classes, grazing in 0..1). */
+sss_result ref_source_mask_check(const ref_source_mask *mask, const sss_reference_desc *desc, sss_error *err);
+/* Whether ctx's mask keeps the source at p (always without a mask). */
+int ref_source_kept(const struct ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3]);
+/* sss_reference_render_world with a source mask (NULL: none, the renderer); a mask needs desc->bounces = 1
+ * (the single-event integral: T of the kept sources only). */
+sss_result ref_render_world(const sss_reference_world *world, const sss_reference_desc *desc,
+                            const ref_source_mask *mask, sss_image *out, sss_reference_progress_fn progress,
+                            void *user, sss_reference_stats *stats, sss_error *err);
+/* sss_reference_render with a source mask (NULL: none). */
+sss_result ref_render_scene(const sss_scene *scene, const sss_reference_desc *desc, const ref_source_mask *mask,
+                            sss_image *out, sss_reference_progress_fn progress, void *user,
+                            sss_reference_stats *stats, sss_error *err);
+
 typedef struct ref_ctx {
     const sss_reference_world *world;
     sss_reference_desc desc;
+    ref_source_mask mask;      /* keep 0: every source (the renderer); else a diagnostic (above) */
     RTCDevice device;
     RTCScene scene;
     ref_camera cam;

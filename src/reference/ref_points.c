@@ -142,6 +142,7 @@ sss_result ref_points_generate(ref_ctx *ctx, size_t object, double h, sss_error 
                         }
                         double T[3];
                         ref_irradiance(ctx, p, ng, ns, eta, ctx->area_samples_point, ctx->env_samples_point, 0, 1, &rng, T);
+                        if (!ref_source_kept(ctx, p, ng, ns)) T[0] = T[1] = T[2] = 0.0;
                         ref_point *pt = &pts[k];
                         for (int q = 0; q < 3; q++) {
                             pt->p[q] = (float)p[q];

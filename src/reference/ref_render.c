@@ -113,6 +113,7 @@ static int probe_irradiance(const ref_ctx *ctx, const ref_object *obj, const sur
     surface_hit y;
     decode_hit(ctx, x->geom, &rh, n, &y);
     ref_irradiance(ctx, y.p, y.ng, y.ns, obj->eta, area_n, env_n, 0, 1, rng, val);
+    if (!ref_source_kept(ctx, y.p, y.ng, y.ns)) val[0] = val[1] = val[2] = 0.0;
     if (ctx->transport) { /* bounces 2..N at the probe's point */
         double ind[3];
         ref_indirect_at(ctx, x->geom, y.prim, y.u, y.v, NULL, ind);
@@ -129,6 +130,7 @@ static void irradiance_at_hit(const ref_ctx *ctx, const ref_object *obj, const s
 {
     ref_irradiance(ctx, x->p, x->ng, x->ns, obj->eta, ctx->area_samples_camera, ctx->env_samples_camera, 0, 1,
                    rng, T);
+    if (!ref_source_kept(ctx, x->p, x->ng, x->ns)) T[0] = T[1] = T[2] = 0.0;
     if (ctx->transport) {
         double ind[3];
         ref_indirect_at(ctx, x->geom, x->prim, x->u, x->v, NULL, ind);
@@ -344,9 +346,9 @@ static int samples_agree(const double (*L)[3], const sample_info *info, int n, d
 
 #define MAX_BASE_SIDE 64
 
-sss_result sss_reference_render_world(const sss_reference_world *world, const sss_reference_desc *desc,
-                                      sss_image *out, sss_reference_progress_fn progress, void *user,
-                                      sss_reference_stats *stats, sss_error *err)
+sss_result ref_render_world(const sss_reference_world *world, const sss_reference_desc *desc,
+                            const ref_source_mask *mask, sss_image *out, sss_reference_progress_fn progress,
+                            void *user, sss_reference_stats *stats, sss_error *err)
 {
     if (!out) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "reference: output image is NULL");
     memset(out, 0, sizeof *out);
@@ -356,6 +358,11 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
     memset(&ctx, 0, sizeof ctx);
     ctx.world = world;
     if (desc) ctx.desc = *desc;
+    if (mask) {
+        sss_result mr = ref_source_mask_check(mask, desc, err);
+        if (mr != SSS_OK) return mr;
+        ctx.mask = *mask;
+    }
     if (ctx.desc.spp < 0 || ctx.desc.threads < 0 || !(ctx.desc.density >= 0.0) || !isfinite(ctx.desc.density) ||
         ctx.desc.light_samples < 0 || !isfinite(ctx.desc.time))
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
@@ -497,4 +504,11 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
         return sss_error_set(err, SSS_ERROR_NUMERIC, "reference: the image has non-finite values");
     }
     return SSS_OK;
+}
+
+sss_result sss_reference_render_world(const sss_reference_world *world, const sss_reference_desc *desc,
+                                      sss_image *out, sss_reference_progress_fn progress, void *user,
+                                      sss_reference_stats *stats, sss_error *err)
+{
+    return ref_render_world(world, desc, NULL, out, progress, user, stats, err);
 }

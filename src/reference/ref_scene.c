@@ -6,9 +6,9 @@
 
 #include "reference/ref_internal.h"
 
-sss_result sss_reference_render(const sss_scene *scene, const sss_reference_desc *desc, sss_image *out,
-                                sss_reference_progress_fn progress, void *user,
-                                sss_reference_stats *stats, sss_error *err)
+sss_result ref_render_scene(const sss_scene *scene, const sss_reference_desc *desc, const ref_source_mask *mask,
+                            sss_image *out, sss_reference_progress_fn progress, void *user,
+                            sss_reference_stats *stats, sss_error *err)
 {
     if (out) memset(out, 0, sizeof *out);
     if (!scene) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "reference: scene is NULL");
@@ -56,7 +56,7 @@ sss_result sss_reference_render(const sss_scene *scene, const sss_reference_desc
         world.lights = scene->lights;
         world.light_count = scene->light_count;
         world.exposure = scene->render.exposure;
-        r = sss_reference_render_world(&world, desc, out, progress, user, stats, err);
+        r = ref_render_world(&world, desc, mask, out, progress, user, stats, err);
         /* messages about the scene's parts ("lights[0].file: ...") name the scene file, as the loader's do */
         if (r != SSS_OK && err && (!strncmp(err->message, "lights[", 7) || !strncmp(err->message, "objects[", 8)))
             sss_error_prefix(err, scene->name ? scene->name : "scene");
@@ -65,4 +65,11 @@ sss_result sss_reference_render(const sss_scene *scene, const sss_reference_desc
     free(meshes);
     free(objects);
     return r;
+}
+
+sss_result sss_reference_render(const sss_scene *scene, const sss_reference_desc *desc, sss_image *out,
+                                sss_reference_progress_fn progress, void *user,
+                                sss_reference_stats *stats, sss_error *err)
+{
+    return ref_render_scene(scene, desc, NULL, out, progress, user, stats, err);
 }

@@ -322,7 +322,7 @@ static void test_outputs(void)
     }
     free(text);
 
-    /* CSV: header + 6 rows of 20 fields; the error field quoted with doubled quotes */
+    /* CSV: header + 6 rows of 23 fields; the error field quoted with doubled quotes */
     snprintf(path, sizeof path, "%s/results.csv", dir);
     CHECK(sss_read_file(path, 1 << 24, &text, &size, NULL) == SSS_OK);
     if (text) {
@@ -331,7 +331,7 @@ static void test_outputs(void)
             if (*c == '"') in_quotes = !in_quotes;
             else if (!in_quotes && *c == ',') fields++;
             else if (!in_quotes && *c == '\n') {
-                bad_rows += fields != 20;
+                bad_rows += fields != 23;
                 rows++;
                 fields = 1;
             }
@@ -648,6 +648,49 @@ static void test_crop_windows(void)
     CHECK(!eval_silhouette_window(&id_image, W + 1, H, SIZE).valid); /* ids not a multiple of the output */
 }
 
+/* --frame-budget: under a budget no frame can meet, a technique renders one frame, timed, without
+ * warm-up (its entry says so); under one every frame meets, it renders all it was asked for. Runs on
+ * the reference test_run saved. */
+static void test_frame_budget(void)
+{
+    char scene_t[420], refs[400];
+    snprintf(scene_t, sizeof scene_t, "%s/ball.json@0.25", tmpdir);
+    snprintf(refs, sizeof refs, "%s/refs", tmpdir);
+    const char *scenes[] = {scene_t};
+    const char *specs[] = {"local"};
+    static const double budgets[] = {1e-9, 1e5};
+    for (int k = 0; k < 2; k++) {
+        sss_eval_desc d;
+        memset(&d, 0, sizeof d);
+        d.techniques = specs;
+        d.technique_count = 1;
+        d.frames = 3;
+        d.warmup_frames = 2;
+        d.frame_budget_s = budgets[k];
+        d.reference_quality = SSS_REFERENCE_DRAFT;
+        d.cached_reference = 1;
+        d.reference_dir = refs;
+        sss_eval_results res;
+        sss_error err = {0};
+        CHECK_MSG(sss_eval_run(scenes, 1, &d, NULL, &res, &err) == SSS_OK, "%s", err.message);
+        CHECK(res.frame_budget_s == budgets[k] && res.frames == 3 && res.warmup_frames == 2);
+        if (res.gl_ok && res.entry_count == 1) {
+            const sss_eval_entry *e = &res.entries[0];
+            CHECK_MSG(e->ok, "%s", e->error);
+            if (k == 0) CHECK_MSG(e->frames == 1 && e->warmup_frames == 0, "frames %d, warm-up %d", e->frames, e->warmup_frames);
+            else CHECK_MSG(e->frames == 3 && e->warmup_frames == 2, "frames %d, warm-up %d", e->frames, e->warmup_frames);
+            CHECK(e->total_ms > 0 && e->has_metrics);
+        }
+        sss_eval_results_free(&res);
+    }
+    sss_eval_desc bad;
+    memset(&bad, 0, sizeof bad);
+    bad.frame_budget_s = -1;
+    sss_eval_results res;
+    sss_error err = {0};
+    CHECK(sss_eval_run(scenes, 1, &bad, NULL, &res, &err) == SSS_ERROR_INVALID_ARGUMENT && strstr(err.message, "frame_budget"));
+}
+
 int main(void)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sss_test_eval_XXXXXX");
@@ -660,6 +703,7 @@ int main(void)
     test_crop_windows();
     test_run_errors();
     test_run();
+    test_frame_budget();
     char cmd[400];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
     if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", tmpdir);

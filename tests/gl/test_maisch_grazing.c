@@ -15,12 +15,14 @@
  * F_t(n.l) (n.l) E rho_eff whatever n.v is; n.v and n.l are the ideal sphere's at the pixel's ray.
  * Checked in bands of n.v: the grazing pixels 0.06 <= n.v < 0.2, below Eq. 8's cut-off (the default
  * grazing_sources 0.05 leaves steeper ones out), and the ones beside them, 0.2 <= n.v < 0.4, where
- * counting a pixel's area twice would show; rows within 16 pixels of the equator (n.l >= 0.999).
- * Bound 15% per band and channel: the pattern's own error on this sphere away from the rim (n.v
- * 0.4-0.7: R +1.7%, G +6.2%, B +12.8%, printed, not checked). Measured: the paper (grazing_sources 0,
- * footprint_split 1) R -51..-61%, G -68..-77%, B -80..-86% on the grazing bands and +35/+61/+91% at
- * n.v 0.2-0.3 (one disc per oblique pixel reaches the neighbours' kernel peaks); the defaults within
- * -1.4..+13.6% (blue at n.v 0.06-0.1 the worst). */
+ * counting a pixel's area twice would show; rows within 16 pixels of the equator (n.l >= 0.999); and
+ * the pixels well inside, 0.4 <= n.v < 0.7. Bound 4% per band and channel. Measured: the paper
+ * (grazing_sources 0, footprint_split 1) R -51..-61%, G -68..-77%, B -80..-86% on the grazing bands and
+ * +35/+61/+91% at n.v 0.2-0.3 (one disc per oblique pixel reaches the neighbours' kernel peaks); the
+ * defaults within -2.8..+1.7% (R at n.v 0.06-0.1 the worst). Before issue 32 the defaults measured
+ * -1.4..+13.6% on the grazing bands and R +1.7%, G +6.2%, B +12.8% inside (bound 15%, the inside not
+ * checked): the receiver's own oblique pixel was cut into an even number of pieces, with x_o where two
+ * of them meet, so both discs held the kernel's peak (maisch2020_screen.frag.glsl, oblique_pixel). */
 #include "gl_test_util.h"
 #include "sss/material.h"
 
@@ -28,7 +30,7 @@
 #define DIST 20.0
 #define CX 0.9 /* the window's centre, x */
 #define HALF 0.2
-#define TOL 0.15
+#define TOL 0.04
 
 static int sphere_scene(sss_scene *scene)
 {
@@ -109,8 +111,7 @@ int main(void)
     }
     const sss_scene_material *m = &scene.objects[0].material;
     double eta = m->optical.eta;
-    /* sub-bands of n.v: the grazing ones (Eq. 8: below 0.2), the ones beside them, and a reference
-     * band well inside (not checked: it shows the pattern's own error on this sphere) */
+    /* sub-bands of n.v: the grazing ones (Eq. 8: below 0.2), the ones beside them, and one well inside */
     static const double edge[] = {0.06, 0.1, 0.15, 0.2, 0.3, 0.4};
     enum { BANDS = 5 };
     for (int fixed = 0; fixed <= 1; fixed++) {
@@ -131,7 +132,7 @@ int main(void)
             printf("  n.v %.2f..%.2f (%4d px): R %+6.1f%% G %+6.1f%% B %+6.1f%%\n", lo, hi, n, 100 * dev[0],
                    100 * dev[1], 100 * dev[2]);
             CHECK(n >= 20);
-            if (!fixed || k == BANDS) continue;
+            if (!fixed) continue;
             for (int c = 0; c < 3; c++)
                 CHECK_MSG(fabs(dev[c]) < TOL, "n.v %.2f..%.2f, channel %d: %+.3f off F_t E rho_eff", lo, hi, c, dev[c]);
         }

@@ -240,6 +240,21 @@ static inline double img_max(const sss_image *img)
     return m;
 }
 
+/* J(a) = int_a^inf S(r) 2 r acos(a / r) dr: the plane integral of channel c of the profile over a
+ * half-plane whose edge is a >= 0 away (the arc of the circle of radius r beyond the edge); midpoint rule
+ * in v, r = a + e^v, from 1e-10 to 60 units beyond a. */
+static inline double ref_edge_J(const sss_profile *p, int c, double a)
+{
+    double v0 = log(1e-10), v1 = log(60.0), sum = 0.0;
+    int n = 6000;
+    for (int i = 0; i < n; i++) {
+        double v = v0 + (v1 - v0) * (i + 0.5) / n, e = exp(v), r = a + e;
+        double ac = a > 0.0 ? acos(a / r) : 0.5 * T_PI;
+        sum += sss_profile_eval(p, c, r) * 2.0 * r * ac * e * (v1 - v0) / n;
+    }
+    return sum;
+}
+
 static inline int render_or_die(const sss_reference_world *w, const sss_reference_desc *d, sss_image *out,
                          sss_reference_stats *st)
 {

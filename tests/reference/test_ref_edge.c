@@ -6,23 +6,10 @@
  * within 1%. */
 #include "ref_test_util.h"
 
-static double edge_J(const sss_profile *p, int c, double a)
-{
-    /* r = a + e^v, midpoint rule in v from 1e-10 to 60 units beyond a. */
-    double v0 = log(1e-10), v1 = log(60.0), sum = 0.0;
-    int n = 6000;
-    for (int i = 0; i < n; i++) {
-        double v = v0 + (v1 - v0) * (i + 0.5) / n, e = exp(v), r = a + e;
-        double ac = a > 0.0 ? acos(a / r) : 0.5 * T_PI;
-        sum += sss_profile_eval(p, c, r) * 2.0 * r * ac * e * (v1 - v0) / n;
-    }
-    return sum;
-}
-
 /* Plane integral over the lit half-plane {x > 0} seen from (x, 0). */
 static double edge_I(const sss_profile *p, int c, double x, double total)
 {
-    return x >= 0.0 ? total - edge_J(p, c, x) : edge_J(p, c, -x);
+    return x >= 0.0 ? total - ref_edge_J(p, c, x) : ref_edge_J(p, c, -x);
 }
 
 static void check_edge(const char *label, const sss_reference_object *obj)

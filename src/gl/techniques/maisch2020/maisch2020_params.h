@@ -68,6 +68,11 @@
     X(offscreen_splats, SSS_GL_PARAM_BOOL, 1, 0, 1,                                                               \
       "also splat surface outside the view (front-facing parts off the image, which neither part "                \
       "gathers otherwise: colour drifts under zoom); 0: off (the paper: the back side only)")
+#define M20_OFFSCREEN_PIECES(X)                                                                                   \
+    X(offscreen_pieces, SSS_GL_PARAM_FLOAT, 0.5, 0, 100,                                                           \
+      "offscreen_splats: a splat-mesh triangle not wholly in the view is cut into pieces, one splat each, until "  \
+      "each is no wider than a translucency pixel or a 16th of the image (the larger), or than this times its "    \
+      "distance from the view (a zoomed view can be smaller than one triangle); 0: one splat per triangle")
 #define M20_LAYERS_TO_REACH(X)                                                                                    \
     X(layers_to_reach, SSS_GL_PARAM_BOOL, 1, 0, 1,                                                                \
       "continue the pattern past `layers` until it covers the image or (support_cutoff) the kernel's support, "   \
@@ -87,7 +92,7 @@
     M20_TRANSLUCENCY(X) M20_DIVISOR(X) M20_GRAZING(X) M20_CULL_RULE(X) M20_IRRADIANCE_CULL(X) M20_DISC(X)         \
     M20_BICUBIC(X) M20_SHADOW_OFFSET(X) M20_FILTERED(X) M20_SPLAT_PREINTEGRATED(X) M20_SCREEN_BOUND(X)            \
     M20_OCCLUDED(X) M20_SPLIT(X) M20_GRAZING_SOURCES(X) M20_SUPPORT_CUTOFF(X) M20_OFFSCREEN(X)                    \
-    M20_LAYERS_TO_REACH(X) M20_LAYER_SPLIT(X) M20_OUTER_DIVISOR(X)
+    M20_LAYERS_TO_REACH(X) M20_LAYER_SPLIT(X) M20_OUTER_DIVISOR(X) M20_OFFSCREEN_PIECES(X)
 
 /* The screen-space part's (techniques/screen): the rows above that its pattern reads. */
 #define MAISCH2020_SCREEN_PARAMS(X)                                                                               \

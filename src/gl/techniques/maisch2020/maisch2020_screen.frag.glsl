@@ -127,13 +127,19 @@ vec3 cell(LutInfo L, vec3 xo, vec3 pos, vec3 irr, float a, float d_prev, float c
 // a / m at its own distance. The strip's length is capped at u_split widths: a pixel at a curved
 // silhouette covers only ~sqrt(2 R / w) widths of surface (R the curvature radius), not the
 // unbounded w / c of its tangent plane.
-vec3 oblique_pixel(LutInfo L, vec3 xo, vec3 p, vec3 n, float a)
+// The receiver's own pixel (own) is cut into an odd number of pieces, the odd count nearest to its
+// elongation (at most u_split): one piece is then centred on x_o. With an even count x_o lay where two
+// pieces meet, half a piece from each, and both discs (radius 0.56 of a piece's width) covered the
+// kernel's peak: a kernel shorter than a pixel was counted up to twice (Skin1 at 200 mm per unit on a
+// sphere, n.v 0.4-0.7: blue +12.8%, now +1.7%; the bunny's Skin1 sweep at fov 40: +11%).
+vec3 oblique_pixel(LutInfo L, vec3 xo, vec3 p, vec3 n, float a, bool own)
 {
     vec3 v = normalize(u_camera_pos.xyz - p);
     float nv = dot(n, v);
     float c = abs(nv);
     float e = min(1.0 / max(c, 1e-6), float(u_split)); // elongation of the (capped) strip
     int m = max(int(e + 0.5), 1);
+    if (own) m = min(2 * int(0.5 * e) + 1, u_split - 1 + u_split % 2); // odd, at most u_split
     // m = 1: one disc of area a at p (Eq. 6), by the same loop (llvmpipe would run both branches)
     float ae = m > 1 ? a * min(1.0, c * float(u_split)) : a; // area of the capped strip
     float len = sqrt(ae * e);                                 // its length: w e, w^2 = ae / e
@@ -163,7 +169,7 @@ vec3 inner_sum(LutInfo L, vec3 xo, float id, ivec2 px, ivec2 size0, float h)
             // the fraction of the render pixel inside the square (1 but at its edge for even k)
             float a = P.w * clamp(h + 0.5 - float(abs(dx)), 0.0, 1.0) * clamp(h + 0.5 - float(abs(dy)), 0.0, 1.0);
 #if FOOTPRINT_SPLIT
-            sum += I.rgb * oblique_pixel(L, xo, P.xyz, texelFetch(t_nrm, q, 0).xyz, a);
+            sum += I.rgb * oblique_pixel(L, xo, P.xyz, texelFetch(t_nrm, q, 0).xyz, a, dx == 0 && dy == 0);
 #else
             float r = length(P.xyz - xo);
             sum += I.rgb * a * lut_eval(L, r, u_preintegrated != 0 ? a : 0.0);

@@ -17,8 +17,15 @@
 //  - u_offscreen (a departure, docs/maisch2020.md): also the front-facing part of a triangle that
 //    projects outside the image (off the view frustum's sides): the screen-space pass gathers only
 //    surface on the image, so without it the kernel's light from beyond the image's edge is lost, more
-//    the more the camera zooms in. Tested on the same 16 sub-triangles; splats whose reach misses the
-//    image get an empty quad (maisch2020_splat.vert.glsl).
+//    the more the camera zooms in. Tested on the same 16 sub-triangles. A triangle not wholly inside the
+//    view is first cut (midpoint subdivision, one splat per piece) until each piece is no wider than a
+//    translucency pixel or a 16th of the image (the larger) at its depth, or than u_piece_ratio times
+//    its distance from the view:
+//    a splat-mesh triangle can be as large as the zoomed view, and one splat for it put its off-image
+//    part's area at the mean of its centroids (often on the image: the screen-space part counted that
+//    surface too), with F_t E of one point and the self-shadowing offset of the whole triangle (a plane
+//    under a close point light: 2.4x the reference). Pieces farther from the view than the kernel's
+//    reach are dropped (their quads would be empty: maisch2020_splat.vert.glsl).
 #include "common.glsl"
 
 layout(local_size_x = 64) in;
@@ -48,6 +55,8 @@ uniform int u_offscreen;         // 1: splat front-facing surface outside the im
 uniform float u_shadow_offset; // in units of sqrt(triangle area)
 uniform float u_grazing_sources; // > 0: Eq. 8's cut-off for splats (the screen pass gathers the rest)
 uniform int u_has_uv;          // the splat mesh has texture coordinates
+uniform int u_divisor;         // render pixels per translucency pixel
+uniform float u_piece_ratio;   // pieces off the view: largest size over distance from it (0: no pieces)
 
 // The G-buffer surface at p's projection: true when there is one, with how far it lies in front of p
 // along the view direction (negative: behind p).
@@ -84,27 +93,22 @@ void quarter(int i, inout vec3 a, inout vec3 b, inout vec3 c)
     else { a = bc; b = ca; c = ab; }
 }
 
-void main()
+// A lower bound of the distance from p to the view frustum (0 inside): the largest distance outside its
+// side planes (each through the camera, containing an image edge).
+float outside_view(vec3 p)
 {
-    uint t = gl_GlobalInvocationID.x;
-    if (t >= u_triangles) return;
-    Object o = objects[u_object];
-    Material m = materials[int(o.anim.y)];
-    vec3 p[3];
-    vec2 uv = vec2(0.0);
-    for (int k = 0; k < 3; k++) {
-        uint i = mesh_idx[3u * t + uint(k)];
-        if (u_has_uv != 0) uv += vec2(mesh_uv[2u * i], mesh_uv[2u * i + 1u]) / 3.0;
-        vec3 op = vec3(mesh_pos[3u * i], mesh_pos[3u * i + 1u], mesh_pos[3u * i + 2u]);
-        vec3 dn = vec3(0.0, 1.0, 0.0);
-        p[k] = (o.model * vec4(anim_deform(o, op, dn, u_camera_pos.w), 1.0)).xyz;
-    }
-    vec3 cr = cross(p[1] - p[0], p[2] - p[0]);
-    float len = robust_length(cr);
-    if (!(len > 0.0)) return;
-    vec3 n = cr / len;
-    float area = 0.5 * len;
-    vec3 c = (p[0] + p[1] + p[2]) / 3.0;
+    vec3 q = (u_view * vec4(p, 1.0)).xyz;
+    vec2 t = vec2(1.0 / u_proj[0][0], 1.0 / u_proj[1][1]); // tan of the half field of view
+    vec2 out_d = (abs(q.xy) + t * q.z) / sqrt(1.0 + t * t);   // q.z = -depth
+    return max(0.0, max(out_d.x, out_d.y));
+}
+
+// One splat for the triangle part (a, b, d) of normal n and area `area` (uv: texture coordinates at its
+// centroid), by the culling rules above; nothing when they keep none of it.
+void splat_part(vec3 a, vec3 b, vec3 d, vec3 n, float area, vec2 uv, Material m)
+{
+    vec3 p[3] = vec3[3](a, b, d);
+    vec3 c = (a + b + d) / 3.0;
 
     // Splitting criteria (Eq. 2, Eq. 8) against the G-buffer at the projected centre.
     vec3 v = normalize(u_camera_pos.xyz - c);
@@ -130,10 +134,10 @@ void main()
         int count = 0;
         for (int i = 0; i < 4; i++)
             for (int j = 0; j < 4; j++) {
-                vec3 a = p[0], b = p[1], d = p[2];
-                quarter(i, a, b, d);
-                quarter(j, a, b, d);
-                vec3 q = (a + b + d) / 3.0;
+                vec3 qa = p[0], qb = p[1], qd = p[2];
+                quarter(i, qa, qb, qd);
+                quarter(j, qa, qb, qd);
+                vec3 q = (qa + qb + qd) / 3.0;
                 float dz;
                 bool occluded = u_occluded_margin > 0.0 && gbuffer_at(q, dz) && dz > margin;
                 if (occluded || (u_offscreen != 0 && off_image(q))) {
@@ -164,4 +168,74 @@ void main()
     uint slot = atomicAdd(cmd_instances, 1u);
     if (slot >= u_capacity) return;
     splats[slot] = Splat(vec4(c, area), vec4(n, float(u_object + 1)), vec4(et, sqrt(area / PI)));
+}
+
+#define MAX_DEPTH 8 // pieces: at most 4^8 per triangle (256 per edge)
+
+void main()
+{
+    uint t = gl_GlobalInvocationID.x;
+    if (t >= u_triangles) return;
+    Object o = objects[u_object];
+    Material m = materials[int(o.anim.y)];
+    vec3 p[3];
+    vec2 uvs[3] = vec2[3](vec2(0.0), vec2(0.0), vec2(0.0));
+    bool inside = true; // the triangle lies wholly in the view (convex: its corners do)
+    for (int k = 0; k < 3; k++) {
+        uint i = mesh_idx[3u * t + uint(k)];
+        if (u_has_uv != 0) uvs[k] = vec2(mesh_uv[2u * i], mesh_uv[2u * i + 1u]);
+        vec3 op = vec3(mesh_pos[3u * i], mesh_pos[3u * i + 1u], mesh_pos[3u * i + 2u]);
+        vec3 dn = vec3(0.0, 1.0, 0.0);
+        p[k] = (o.model * vec4(anim_deform(o, op, dn, u_camera_pos.w), 1.0)).xyz;
+        inside = inside && outside_view(p[k]) == 0.0;
+    }
+    vec3 cr = cross(p[1] - p[0], p[2] - p[0]);
+    float len = robust_length(cr);
+    if (!(len > 0.0)) return;
+    vec3 n = cr / len;
+    float area = 0.5 * len;
+    if (u_offscreen == 0 || !(u_piece_ratio > 0.0) || inside) {
+        splat_part(p[0], p[1], p[2], n, area, (uvs[0] + uvs[1] + uvs[2]) / 3.0, m);
+        return;
+    }
+    // Off the view (partly or wholly): depth-first over the midpoint subdivision, pieces as barycentric
+    // corners (b, c weights; a = 1 - b - c) so that positions and texture coordinates follow.
+    float edge = max(length(p[1] - p[0]), max(length(p[2] - p[1]), length(p[0] - p[2])));
+    vec2 stack[3 * (3 * MAX_DEPTH + 1)];
+    int level[3 * MAX_DEPTH + 1];
+    stack[0] = vec2(0.0), stack[1] = vec2(1.0, 0.0), stack[2] = vec2(0.0, 1.0);
+    level[0] = 0;
+    int top = 1;
+    while (top > 0) {
+        top--;
+        vec2 w[3] = vec2[3](stack[3 * top], stack[3 * top + 1], stack[3 * top + 2]);
+        int l = level[top];
+        vec3 q[3];
+        bool in_view = true;
+        for (int k = 0; k < 3; k++) {
+            q[k] = p[0] + w[k].x * (p[1] - p[0]) + w[k].y * (p[2] - p[0]);
+            in_view = in_view && outside_view(q[k]) == 0.0;
+        }
+        vec3 centre = (q[0] + q[1] + q[2]) / 3.0;
+        float size = edge / float(1 << l), a = area / float(1 << (2 * l));
+        float dist = max(outside_view(centre) - size, 0.0); // to the view, from the piece's nearest point
+        if (dist > m.spec.w + sqrt(a / PI)) continue; // beyond the reach of every receiver
+        // the smallest piece: a translucency pixel, and a 16th of the image (finer pieces along the
+        // image's edge changed no image at 256 x 256 but made a 384 x 384 bust 9x the splats)
+        float depth = max(-(u_view * vec4(centre, 1.0)).z, u_misc.w);
+        float smallest = max(float(u_divisor), max(u_viewport.x, u_viewport.y) / 16.0) * u_camera_fwd.w * depth;
+        if (!in_view && l < MAX_DEPTH && size > max(smallest, u_piece_ratio * dist)) {
+            vec2 ab = 0.5 * (w[0] + w[1]), bc = 0.5 * (w[1] + w[2]), ca = 0.5 * (w[2] + w[0]);
+            vec2 kids[12] = vec2[12](w[0], ab, ca, ab, w[1], bc, ca, bc, w[2], bc, ca, ab);
+            for (int k = 0; k < 4; k++) {
+                stack[3 * top] = kids[3 * k], stack[3 * top + 1] = kids[3 * k + 1], stack[3 * top + 2] = kids[3 * k + 2];
+                level[top] = l + 1;
+                top++;
+            }
+            continue;
+        }
+        vec2 wc = (w[0] + w[1] + w[2]) / 3.0;
+        vec2 uv = uvs[0] + wc.x * (uvs[1] - uvs[0]) + wc.y * (uvs[2] - uvs[0]);
+        splat_part(q[0], q[1], q[2], n, a, uv, m);
+    }
 }

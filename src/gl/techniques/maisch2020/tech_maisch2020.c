@@ -6,6 +6,7 @@
  * renderer's shared passes), then here: (4) translucency = splat generation/culling (compute) +
  * receivers + additive splatting at 1/divisor resolution, (5) bicubic upsampling, (6) screen-space
  * pattern, (7) combination. */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -27,11 +28,13 @@ static const sss_gl_param_value paper[] = {
     {"lut_energy", 0},           /* r_max from Q(r_max) = 1e-7 alone (section 7.1) */
     {"splat_energy", 1},         /* splats reach r_max */
     {"offscreen_splats", 0},     /* splats: surface hidden on screen, not off it */
+    {"offscreen_pieces", 0},     /* one splat per splat-mesh triangle */
     {"layers_to_reach", 0},      /* 4.2: ten layers */
     {"outer_divisor", 1},        /* the whole pattern at every pixel */
 };
 
 #define SPLAT_BYTES 48 /* three vec4: centre + area, normal + object, F_t E + disc radius */
+#define SPLAT_LIMIT (1u << 21) /* most splats the buffer grows to (96 MB) */
 
 typedef struct maisch_state {
     GLuint prog_gen, prog_recv, prog_splat, prog_up, prog_combine;
@@ -119,6 +122,15 @@ static sss_result make_targets(const gl_tech_ctx *c, maisch_state *s, const mais
     return gl_check(c->gl, "maisch2020: targets", err);
 }
 
+/* A splat buffer of cap splats (its contents are made again each frame). */
+static void resize_splats(maisch_state *s, unsigned cap)
+{
+    if (s->splats) glDeleteBuffers(1, &s->splats);
+    glCreateBuffers(1, &s->splats);
+    glNamedBufferStorage(s->splats, (GLsizeiptr)SPLAT_BYTES * (cap ? cap : 1), NULL, 0);
+    s->capacity = cap;
+}
+
 static sss_result maisch2020_create(const gl_tech_ctx *c, void *state, sss_error *err)
 {
     maisch_state *s = state;
@@ -129,9 +141,7 @@ static sss_result maisch2020_create(const gl_tech_ctx *c, void *state, sss_error
     if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "maisch2020_upsample.frag.glsl", NULL, &s->prog_up, err);
     if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "combine.frag.glsl", NULL, &s->prog_combine, err);
     if (res != SSS_OK) return res;
-    s->capacity = c->gs->splat_total;
-    glCreateBuffers(1, &s->splats);
-    glNamedBufferStorage(s->splats, (GLsizeiptr)SPLAT_BYTES * (s->capacity ? s->capacity : 1), NULL, 0);
+    resize_splats(s, c->gs->splat_total);
     glCreateBuffers(1, &s->cmd);
     glNamedBufferStorage(s->cmd, 4 * sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
     return make_targets(c, s, p, err);
@@ -155,11 +165,12 @@ static sss_result maisch2020_resize(const gl_tech_ctx *c, void *state, sss_error
 static void set_i(GLuint prog, const char *name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
 static void set_f(GLuint prog, const char *name, float v) { glUniform1f(glGetUniformLocation(prog, name), v); }
 
-static sss_result pass_splats(const gl_tech_ctx *c, maisch_state *s, const maisch2020_params *p, sss_error *err)
+/* Splat generation (maisch2020_splat_generate.comp.glsl) into the buffer; returns how many splats it made,
+ * which may exceed the capacity (those beyond it were not stored). */
+static unsigned generate_splats(const gl_tech_ctx *c, maisch_state *s, const maisch2020_params *p)
 {
     const GLuint reset[4] = {4, 0, 0, 0}; /* triangle strip of 4 vertices per instance */
     glNamedBufferSubData(s->cmd, 0, sizeof reset, reset);
-    gl_timer_begin(c->timer, "splat_cull");
     glUseProgram(s->prog_gen);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_SPLATS, s->splats);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_SPLAT_COUNT, s->cmd);
@@ -170,10 +181,38 @@ static sss_result pass_splats(const gl_tech_ctx *c, maisch_state *s, const maisc
     set_f(s->prog_gen, "u_shadow_offset", (float)p->splat_shadow_offset);
     set_f(s->prog_gen, "u_occluded_margin", (float)p->occluded_margin);
     set_i(s->prog_gen, "u_offscreen", (int)p->offscreen_splats);
+    set_f(s->prog_gen, "u_piece_ratio", (float)p->offscreen_pieces);
+    set_i(s->prog_gen, "u_divisor", divisor(c, p));
     set_f(s->prog_gen, "u_grazing_sources", (float)p->grazing_sources);
     glUniform1ui(glGetUniformLocation(s->prog_gen, "u_capacity"), s->capacity);
     gl_dispatch_splat_triangles(c, s->prog_gen);
-    sss_result res = gl_check(c->gl, "maisch2020: splat generation", err);
+    GLuint cmd[4] = {0, 0, 0, 0};
+    glGetNamedBufferSubData(s->cmd, 0, sizeof cmd, cmd);
+    return cmd[1];
+}
+
+/* Pass 4's splats: one per splat-mesh triangle, or with offscreen_pieces several for a triangle not wholly
+ * in the view, so the buffer grows (up to SPLAT_LIMIT) when a frame makes more than it holds, and that
+ * frame's splats are made again; beyond the limit the last ones are dropped. */
+static sss_result make_splats(const gl_tech_ctx *c, maisch_state *s, const maisch2020_params *p, sss_error *err)
+{
+    unsigned made = generate_splats(c, s, p);
+    if (made > s->capacity && s->capacity < SPLAT_LIMIT) {
+        double want = fmax(1.25 * made, 2.0 * s->capacity);
+        resize_splats(s, want < (double)SPLAT_LIMIT ? (unsigned)want : SPLAT_LIMIT);
+        made = generate_splats(c, s, p);
+    }
+    if (made > s->capacity) { /* draw the stored ones only */
+        GLuint stored = s->capacity;
+        glNamedBufferSubData(s->cmd, sizeof(GLuint), sizeof stored, &stored);
+    }
+    return gl_check(c->gl, "maisch2020: splat generation", err);
+}
+
+static sss_result pass_splats(const gl_tech_ctx *c, maisch_state *s, const maisch2020_params *p, sss_error *err)
+{
+    gl_timer_begin(c->timer, "splat_cull");
+    sss_result res = make_splats(c, s, p, err);
     if (res != SSS_OK) return res;
 
     gl_timer_begin(c->timer, "translucency");
