@@ -234,7 +234,7 @@ static void noise_note(sbuf *b, const sss_eval_results *res)
         const sss_eval_scene *es = &res->scenes[s];
         sb_puts(b, s ? "; " : "");
         sb_esc(b, es->name);
-        if (es->has_noise) sb_printf(b, " DSSIM %.4f, FLIP %.4f", es->noise_dssim, es->noise_flip);
+        if (es->has_noise) sb_printf(b, " DSSIM %.2g, FLIP %.2g", es->noise_dssim, es->noise_flip);
         else sb_puts(b, " not estimated");
     }
     sb_puts(b, ").</p>\n");
