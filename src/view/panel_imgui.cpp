@@ -520,7 +520,7 @@ static void begin_docked(viewer *v)
     ImGuiIO &io = ImGui::GetIO();
     float scale = io.DisplayFramebufferScale.x > 0.0f ? io.DisplayFramebufferScale.x : 1.0f;
     float w = (float)v->dock_width / scale, width = io.DisplaySize.x, height = io.DisplaySize.y;
-    float lo = VIEW_PANEL_MIN_WIDTH / scale, hi = fmaxf(lo, (float)(v->win_width - VIEW_IMAGE_MIN_WIDTH) / scale);
+    float lo = VIEW_PANEL_MIN_WIDTH / scale, hi = fmaxf(lo, (float)(v->win_width - v->image_min) / scale);
     ImGui::SetNextWindowPos(ImVec2(width, 0.0f), ImGuiCond_Always, ImVec2(1.0f, 0.0f));
     ImGui::SetNextWindowSize(ImVec2(w, height), ImGuiCond_Always);
     ImGui::SetNextWindowSizeConstraints(ImVec2(lo, height), ImVec2(hi, height));

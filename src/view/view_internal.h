@@ -174,8 +174,9 @@ void view_colour_bar_ticks(int width, double range, int unit, view_ticks *out);
 #define VIEW_PANEL_MIN_WIDTH 160 /* framebuffer pixels */
 #define VIEW_IMAGE_MIN_WIDTH 64
 /* The panel's width in a window win_width pixels wide: 0 when it is not shown, else want clamped to
- * [VIEW_PANEL_MIN_WIDTH, win_width - VIEW_IMAGE_MIN_WIDTH] (the image keeps its minimum first). */
-int view_dock_width(int win_width, double want, int shown);
+ * [VIEW_PANEL_MIN_WIDTH, win_width - image_min] (the image keeps its minimum first: VIEW_IMAGE_MIN_WIDTH,
+ * or the width asked for when that is smaller, viewer.image_min). */
+int view_dock_width(int win_width, double want, int shown, int image_min);
 
 /* ---- Overlay text geometry (overlay_text.c) --------------------------------------------------- */
 

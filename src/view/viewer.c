@@ -35,7 +35,7 @@ static int layout(viewer *v, int *image_w, int *image_h)
     if (fw < 1 || fh < 1) return 0;
     v->win_width = fw;
     v->win_height = fh;
-    v->dock_width = view_dock_width(fw, v->panel_want, v->overlay && v->panel);
+    v->dock_width = view_dock_width(fw, v->panel_want, v->overlay && v->panel, v->image_min);
     *image_w = fw - v->dock_width;
     *image_h = fh;
     return 1;
@@ -558,6 +558,7 @@ static sss_result load_inputs(viewer *v, view_script *script, sss_error *err)
 static void start_panel(viewer *v)
 {
     sss_error perr = {0};
+    v->image_min = VIEW_IMAGE_MIN_WIDTH;
     if (view_panel_create(v, &perr) != SSS_OK) {
         view_message(v, "panel: %s (the text overlay instead)", perr.message);
         return;
@@ -565,8 +566,9 @@ static void start_panel(viewer *v)
     int ww = 0, wh = 0, fw = 0, fh = 0;
     glfwGetWindowSize(v->window, &ww, &wh);
     sss_gl_window_size(v->ctx, &fw, &fh);
+    if (fw >= 1 && fw < VIEW_IMAGE_MIN_WIDTH) v->image_min = fw; /* --width 40 stays 40 */
     if (!v->overlay || ww < 1 || fw < 1) return;
-    int dock = view_dock_width(fw + (int)v->panel_want, v->panel_want, 1);
+    int dock = view_dock_width(fw + (int)v->panel_want, v->panel_want, 1, v->image_min);
     glfwSetWindowSize(v->window, ww + (int)lround(dock * (double)ww / fw), wh);
 }
 

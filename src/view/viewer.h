@@ -81,6 +81,7 @@ struct viewer {
     char kernel_cut[1024];  /* sss_gl_kernel_cut_warnings of the technique shown (empty: none) */
     double message_until;
     int overlay, help;
+    int image_min;         /* the image's least width: VIEW_IMAGE_MIN_WIDTH, or the width asked for if smaller */
     double panel_want;     /* the panel's width as dragged or set (framebuffer pixels; view_dock_width
                             * fits it to the window) */
     int panel_section, panel_op; /* a section request for the panel (VIEW_SECTION_*), -1: none */

@@ -172,15 +172,16 @@ static void test_error_map_ticks(void)
 
 static void test_layout(void)
 {
-    CHECK(view_dock_width(800, 330.0, 1) == 330);
-    CHECK(view_dock_width(800, 330.0, 0) == 0);
-    CHECK(view_dock_width(800, 10.0, 1) == VIEW_PANEL_MIN_WIDTH);
-    CHECK(view_dock_width(800, NAN, 1) == VIEW_PANEL_MIN_WIDTH);
-    CHECK(view_dock_width(300, 330.0, 1) == 300 - VIEW_IMAGE_MIN_WIDTH); /* the image keeps its minimum */
-    CHECK(view_dock_width(VIEW_IMAGE_MIN_WIDTH, 330.0, 1) == 0);
+    CHECK(view_dock_width(800, 330.0, 1, VIEW_IMAGE_MIN_WIDTH) == 330);
+    CHECK(view_dock_width(800, 330.0, 0, VIEW_IMAGE_MIN_WIDTH) == 0);
+    CHECK(view_dock_width(800, 10.0, 1, VIEW_IMAGE_MIN_WIDTH) == VIEW_PANEL_MIN_WIDTH);
+    CHECK(view_dock_width(800, NAN, 1, VIEW_IMAGE_MIN_WIDTH) == VIEW_PANEL_MIN_WIDTH);
+    CHECK(view_dock_width(300, 330.0, 1, VIEW_IMAGE_MIN_WIDTH) == 300 - VIEW_IMAGE_MIN_WIDTH); /* the image keeps its minimum */
+    CHECK(view_dock_width(40 + 330, 330.0, 1, 40) == 330); /* an image asked 40 wide keeps 40, not 64 */
+    CHECK(view_dock_width(VIEW_IMAGE_MIN_WIDTH, 330.0, 1, VIEW_IMAGE_MIN_WIDTH) == 0);
     for (int win = 1; win < 2000; win += 13)
         for (double want = 0.0; want < 1500.0; want += 97.0) {
-            int d = view_dock_width(win, want, 1);
+            int d = view_dock_width(win, want, 1, VIEW_IMAGE_MIN_WIDTH);
             CHECK_MSG(d >= 0 && (win - d >= VIEW_IMAGE_MIN_WIDTH || d == 0), "window %d, want %g: panel %d", win, want, d);
         }
 }
