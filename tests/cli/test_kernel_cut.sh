@@ -3,7 +3,8 @@
 # a magenta torus (tube radius 0.35, mean chord 2 x 0.35 = 0.7, 0.698 for its 48 segments) with a mean free path of 1 in red and blue spreads
 # half of its light beyond 0.7: ssss names the object, its material and itself on stderr and still
 # writes the image (exit 0); with a mean free path of 0.01 it says nothing, and maisch2020, which
-# carries light across the object, never warns; --quiet silences the warning.
+# carries light across the object, never warns; --quiet silences the warning. `sss view` (under Xvfb)
+# logs the same warning for ssss and clears it on switching to maisch2020 (no second warning).
 # Usage: bash test_kernel_cut.sh <sss-binary> <repo-root>
 set -u
 SSS=$1
@@ -29,5 +30,15 @@ grep -q "warning" "$T/err" && fail "short mfp, ssss warns: $(cat "$T/err")"
 grep -q "warning" "$T/err" && fail "maisch2020 warns: $(cat "$T/err")"
 "$SSS" render "$T/long.json" --technique ssss -o "$T/q.png" --quiet 2>"$T/err" || fail "render --quiet failed"
 [ -s "$T/err" ] && fail "--quiet still warns: $(cat "$T/err")"
+if command -v xvfb-run >/dev/null 2>&1; then
+    printf 'frames 1\ntechnique maisch2020\nframes 1\n' >"$T/switch.txt"
+    (cd "$T" && xvfb-run -a env LSAN_OPTIONS=exitcode=0 "$SSS" view "$T/long.json" --technique ssss \
+        --script "$T/switch.txt") >"$T/view.log" 2>&1 || fail "sss view failed: $(tail -n 2 "$T/view.log")"
+    n=$(grep -c "sss view: warning: object 0 (reflectance 0.8 0.2 0.8, mfp 1 0.05 1): .* ssss carries" "$T/view.log")
+    [ "$n" = 1 ] && ! grep -q "maisch2020 carries" "$T/view.log" ||
+        fail "sss view: $n ssss warnings: $(grep warning "$T/view.log")"
+else
+    echo "note: xvfb-run missing, viewer check skipped"
+fi
 [ "$fails" -eq 0 ] || exit 1
 echo "ok"
