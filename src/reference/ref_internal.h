@@ -265,6 +265,9 @@ typedef struct ref_object {
     float (*indirect)[3];  /* T (subsurface) or E (diffuse) of bounces 2..N */
     ref_tree itree;        /* subsurface: the transport samples with their indirect T A, for the pixels */
     float iabs_tol[3];
+    ref_tree stree;        /* subsurface: the transport samples with T A of bounces 1..N-1 (final gathers) */
+    float stol[3];
+    _Atomic unsigned char *sent_state; /* per sample: 2 once its exit_sum is computed (ref_bounce.c) */
     uint64_t base;         /* index of its first sample among all objects' */
     int gather;            /* gather rays (links) per sample */
     uint32_t *link_target; /* gather links: bs_count x gather, the hit sample (all objects') or UINT32_MAX */
@@ -278,6 +281,8 @@ typedef struct ref_bsample {
     float direct[3];   /* T (E) of bounce 1 */
     float t[3];        /* T (E) of the current bounce */
     float exit[3];     /* M (E) of the previous bounce */
+    float t_before[3]; /* T (E) of bounces 1..N-1 summed */
+    float exit_sum[3]; /* their M (E): what the pixels' final gathers see leave here */
 } ref_bsample;
 
 typedef struct ref_camera {
@@ -305,6 +310,7 @@ typedef struct ref_ctx {
     int near_probes;          /* probe rays per camera sample for the near part */
     int transport;            /* bounces > 1 (ref_bounce.c) */
     int gather_subsurface, gather_diffuse; /* gather rays per surface sample */
+    int gather_camera;        /* final-gather rays per camera sample */
     /* progress: a phase maps its own fraction [0, 1] to [phase_lo, phase_hi] of the whole */
     sss_reference_progress_fn progress;
     void *user;
@@ -382,11 +388,14 @@ void ref_indirect_sum(const ref_ctx *ctx, size_t o, const float xo[3], double ou
 /* Bounces 2..N at the samples of every object (after their direct T, E and trees exist); rebuilds
  * the subsurface trees with T_1 + T_2 + ... */
 sss_result ref_bounces_run(ref_ctx *ctx, sss_error *err);
-/* The indirect T (E) of bounces 2..N at a point of triangle prim of object o (barycentrics u, v of
- * its 2nd and 3rd vertices); zero without samples, and for a diffuse object seen from the side
- * `facing` (may be NULL) opposite to its normal. */
-void ref_indirect_at(const ref_ctx *ctx, size_t o, unsigned prim, double u, double v, const double facing[3],
-                     double out[3]);
+/* Bounces 2..N at surface point p by a final gather (the last bounce at the point itself, so that the
+ * image does not show the transport samples' cells): k x k = rays (rounded up to a square) stratified
+ * cosine-distributed rays about the unit geometric normal ng (the side the light arrives on), stratum
+ * of strata interleaving them over a pixel's camera samples as in ref_irradiance; each adds what the
+ * surface it reaches sends back after bounces 1..N-1 (exit_sum, with the mirror chain at subsurface
+ * hits). eta > 0: a subsurface point, the light enters with 1 - F_r (T); else E. */
+void ref_final_gather(const ref_ctx *ctx, const double p[3], const double ng[3], double eta, int rays, int stratum,
+                      int strata, ref_rng *rng, double out[3]);
 
 /* Reports the current phase's fraction (stage NULL: the phase's own); thread-safe, throttled to
  * ~10 calls per second unless force. */

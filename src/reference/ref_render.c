@@ -37,6 +37,7 @@ typedef struct surface_hit {
     unsigned geom, prim;
     double u, v; /* barycentrics of the triangle's 2nd and 3rd vertices */
     double p[3], ng[3], ns[3];
+    int back; /* seen from behind its triangles' winding (normals flipped) */
 } surface_hit;
 
 /* Position and normals of a hit on object g; normals face `facing` (the side the ray came from). */
@@ -69,7 +70,8 @@ static void decode_hit(const ref_ctx *ctx, unsigned g, const struct RTCRayHit *r
     } else {
         memcpy(hit->ns, hit->ng, sizeof hit->ns);
     }
-    if (v3_dot(hit->ng, wo) < 0.0) {
+    hit->back = v3_dot(hit->ng, wo) < 0.0;
+    if (hit->back) {
         /* Seen from behind (open meshes): shade that side. */
         for (int c = 0; c < 3; c++) hit->ng[c] = -hit->ng[c], hit->ns[c] = -hit->ns[c];
     }
@@ -113,36 +115,28 @@ static int probe_irradiance(const ref_ctx *ctx, const ref_object *obj, const sur
     surface_hit y;
     decode_hit(ctx, x->geom, &rh, n, &y);
     ref_irradiance(ctx, y.p, y.ng, y.ns, obj->eta, area_n, env_n, 0, 1, rng, val);
-    if (ctx->transport) { /* bounces 2..N at the probe's point */
-        double ind[3];
-        ref_indirect_at(ctx, x->geom, y.prim, y.u, y.v, NULL, ind);
-        for (int c = 0; c < 3; c++) val[c] += ind[c];
-    }
     double jac = 1.0 / fmax(fabs(v3_dot(y.ng, n)), 0.1);
     for (int c = 0; c < 3; c++) val[c] *= jac;
     return 1;
 }
 
-/* T at x_o itself: direct, plus bounces 2..N. */
+/* The direct T at x_o itself. */
 static void irradiance_at_hit(const ref_ctx *ctx, const ref_object *obj, const surface_hit *x, ref_rng *rng,
                               double T[3])
 {
     ref_irradiance(ctx, x->p, x->ng, x->ns, obj->eta, ctx->area_samples_camera, ctx->env_samples_camera, 0, 1,
                    rng, T);
-    if (ctx->transport) {
-        double ind[3];
-        ref_indirect_at(ctx, x->geom, x->prim, x->u, x->v, NULL, ind);
-        for (int c = 0; c < 3; c++) T[c] += ind[c];
-    }
 }
 
 /* Near part below R0 (docs/physics.md §1): int over the surface within R0 of S_near(|y - x_o|) T(y) dA, by
  * ctx->near_probes probe rays as PBRT samples its BSSRDF: radii from the binned S_near (stratified),
  * angles from a randomised Kronecker sequence. Self-normalised, so that a constant T gives exactly
  * near * T; a probe that finds no surface uses T(x_o). (A probe count that adapts to the first
- * probes' agreement would be biased: a small lit part missed by them would never be looked for.) */
-static void near_part(const ref_ctx *ctx, const ref_object *obj, const surface_hit *x, ref_rng *rng,
-                      double out[3])
+ * probes' agreement would be biased: a small lit part missed by them would never be looked for.)
+ * The probes see the direct T; bounces 2..N enter as t_ind, their final gather at x_o itself (smooth
+ * on the scale of R0 but for contacts: interreflected light has no hard shadows). */
+static void near_part(const ref_ctx *ctx, const ref_object *obj, const surface_hit *x, const double t_ind[3],
+                      ref_rng *rng, double out[3])
 {
     const ref_profile *pf = &obj->prof;
     double total = pf->near_cdf[REF_NEAR_BINS];
@@ -199,6 +193,7 @@ static void near_part(const ref_ctx *ctx, const ref_object *obj, const surface_h
             }
             out[c] = pf->near[c] * Tx[c];
         }
+        if (ctx->transport) out[c] += pf->near[c] * t_ind[c];
     }
 }
 
@@ -260,13 +255,15 @@ static void add_mirror(const ref_ctx *ctx, const surface_hit *hit, const double 
 
 /* The subsurface radiance at a hit towards -dir, docs/physics.md §1:
  * L = F_t(x_o) / (pi c) * [near part + sum_i T_i A_i S_far(|x_i - x_o|)]; returns F_r(x_o). */
-static double shade_subsurface(const ref_ctx *ctx, const surface_hit *hit, const double dir[3], ref_rng *rng,
-                               shade_counters *cnt, far_cache *fc, double L[3])
+static double shade_subsurface(const ref_ctx *ctx, const surface_hit *hit, const double dir[3], int stratum,
+                               int strata, ref_rng *rng, shade_counters *cnt, far_cache *fc, double L[3])
 {
     const ref_object *obj = &ctx->objects[hit->geom];
     const double *p = hit->p;
-    double near[3], far[3] = {0, 0, 0};
-    near_part(ctx, obj, hit, rng, near);
+    double near[3], far[3] = {0, 0, 0}, t_ind[3] = {0, 0, 0};
+    if (ctx->transport)
+        ref_final_gather(ctx, p, hit->ng, obj->eta, ctx->gather_camera, stratum, strata, rng, t_ind);
+    near_part(ctx, obj, hit, t_ind, rng, near);
     if (obj->tree.point_count > 0) {
         double d[3] = {p[0] - fc->center.p[0], p[1] - fc->center.p[1], p[2] - fc->center.p[2]};
         if (fc->valid && fc->center.geom == hit->geom && v3_len(d) <= obj->prof.r0 &&
@@ -311,15 +308,15 @@ static void shade(const ref_ctx *ctx, const double org[3], const double dir[3], 
         double E[3];
         ref_irradiance(ctx, hit.p, hit.ng, hit.ns, 0.0, ctx->area_samples_camera, ctx->env_samples_camera, stratum,
                        strata, rng, E);
-        if (ctx->transport) {
+        if (ctx->transport && !hit.back) { /* the transport holds the light on the normal's side only */
             double Ei[3];
-            ref_indirect_at(ctx, hit.geom, hit.prim, hit.u, hit.v, hit.ng, Ei);
+            ref_final_gather(ctx, hit.p, hit.ng, 0.0, ctx->gather_camera, stratum, strata, rng, Ei);
             for (int c = 0; c < 3; c++) E[c] += Ei[c];
         }
         for (int c = 0; c < 3; c++) L[c] = obj->src->reflectance[c] / REF_PI * E[c];
         return;
     }
-    double fr = shade_subsurface(ctx, &hit, dir, rng, cnt, fc, L);
+    double fr = shade_subsurface(ctx, &hit, dir, stratum, strata, rng, cnt, fc, L);
     if (ctx->desc.specular && depth < MIRROR_DEPTH) add_mirror(ctx, &hit, dir, fr, depth, stratum, strata, rng, cnt, L);
 }
 
@@ -383,6 +380,7 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
     ctx.transport = ctx.desc.bounces != 1;
     ctx.gather_subsurface = draft ? 4 : 16;
     ctx.gather_diffuse = draft ? 16 : 64;
+    ctx.gather_camera = ((draft ? 64 : 256) + nb - 1) / nb; /* per pixel, spread over its base samples */
     int saved_threads = omp_get_max_threads();
     if (ctx.desc.threads > 0) omp_set_num_threads(ctx.desc.threads);
 
