@@ -381,13 +381,22 @@ static sss_result fill_tree(ref_object *ro, int which, double rel, ref_tree *tre
 }
 
 /* M at sample i of a subsurface object from a tree over its samples' T (which): the tree sum of S_far
- * plus the near part with T at the sample itself. */
+ * plus the near part, int_0^R0 S_near 2 pi r dr times the area-weighted mean T of the samples within
+ * R0 (the near part's own support: the same second-order quadrature as T at the sample alone, but
+ * each sample's T is a gather of few rays, and a sample's own noise would pass into its exitance
+ * whole; for short mean free paths the near part is most of M). */
 static void exitance_at(const ref_object *ro, const ref_tree *tree, const float tol[3], int which, size_t i,
                         float out[3])
 {
-    double far[3] = {0, 0, 0};
+    double far[3] = {0, 0, 0}, ta[3] = {0, 0, 0}, a = 0.0;
     ref_tree_sum_angle(tree, &ro->prof, ro->bs[i].p, tol, BOUNCE_TREE_ANGLE, far, NULL);
-    for (int c = 0; c < 3; c++) out[c] = (float)(far[c] + ro->prof.near[c] * t_value(ro, i, which, c));
+    for (uint64_t k = ro->nb_offset[i]; k < ro->nb_offset[i + 1]; k++) {
+        const ref_bsample *s = &ro->bs[ro->nb_index[k]];
+        a += s->area;
+        for (int c = 0; c < 3; c++) ta[c] += (double)s->area * t_value(ro, ro->nb_index[k], which, c);
+    }
+    for (int c = 0; c < 3; c++)
+        out[c] = (float)(far[c] + ro->prof.near[c] * (a > 0.0 ? ta[c] / a : t_value(ro, i, which, c)));
 }
 
 /* What the samples' T (E) of the current bounce send out into exit, at the samples a link reaches
@@ -515,6 +524,8 @@ static sss_result build_links(ref_ctx *ctx, uint8_t **needed, sss_error *err)
         ro->link_weight = malloc(sizeof(float) * links);
         if (!ro->indirect || !ro->link_target || !ro->link_weight)
             return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (%zu bounce links)", links);
+        sss_result r = ro->subsurface ? ref_neighbours_build(ro, ro->prof.r0, err) : SSS_OK;
+        if (r != SSS_OK) return r;
         const int64_t n = (int64_t)ro->bs_count;
 #pragma omp parallel for schedule(dynamic, 64)
         for (int64_t i = 0; i < n; i++) sample_links(ctx, o, (size_t)i);
@@ -544,20 +555,21 @@ void ref_indirect_sum(const ref_ctx *ctx, size_t o, const float xo[3], double ou
         ref_tree_sum_angle(&ro->itree, &ro->prof, xo, ro->iabs_tol, BOUNCE_TREE_ANGLE, out, visits);
 }
 
-void ref_final_gather(const ref_ctx *ctx, const double p[3], const double ng[3], double eta, int rays, int stratum,
-                      int strata, ref_rng *rng, double out[3])
+void ref_final_gather(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3], double eta,
+                      int rays, int stratum, int strata, ref_rng *rng, double out[3])
 {
     int m = strata > 1 ? (int)lround(sqrt((double)strata)) : 1, k = (int)ceil(sqrt((double)(rays > 1 ? rays : 1)));
     if (m < 1) m = 1;
     int si = stratum % m, sj = (stratum / m) % m;
     double t1[3], t2[3], po[3], acc[3] = {0, 0, 0};
-    tangent_frame(ng, t1, t2);
+    tangent_frame(ns, t1, t2);
     ref_offset(ctx, p, ng, po);
     for (int a1 = 0; a1 < k; a1++)
         for (int a2 = 0; a2 < k; a2++) {
             double u1 = (a1 + (si + ref_rng_uniform(rng)) / m) / k, u2 = (a2 + (sj + ref_rng_uniform(rng)) / m) / k;
-            double dir[3], factor[LINKS_PER_RAY], cz = cosine_dir(ng, t1, t2, u1, u2, dir);
+            double dir[3], factor[LINKS_PER_RAY], cz = cosine_dir(ns, t1, t2, u1, u2, dir);
             uint32_t target[LINKS_PER_RAY];
+            if (!(v3_dot(dir, ng) > 0.0)) continue; /* below the surface itself: no light (as PBRT-v3's BSDFs) */
             gather_ray(ctx, po, dir, rng, target, factor);
             double w = REF_PI / (k * k) * (eta > 0.0 ? 1.0 - sss_fresnel_dielectric(cz, 1.0, eta) : 1.0);
             for (int j = 0; j < LINKS_PER_RAY; j++) {

@@ -265,6 +265,8 @@ typedef struct ref_object {
     float (*indirect)[3];  /* T (subsurface) or E (diffuse) of bounces 2..N */
     ref_tree itree;        /* subsurface: the transport samples with their indirect T A, for the pixels */
     float iabs_tol[3];
+    uint64_t *nb_offset;   /* subsurface: transport sample i's neighbours within R0 are nb_index[nb_offset[i] ..] */
+    uint32_t *nb_index;
     ref_tree stree;        /* subsurface: the transport samples with T A of bounces 1..N-1 (final gathers) */
     float stol[3];
     _Atomic unsigned char *sent_state; /* per sample: 2 once its exit_sum is computed (ref_bounce.c) */
@@ -383,6 +385,9 @@ void ref_transport_spacing(ref_ctx *ctx);
  * diameter <= ro->tspacing (on one side of thin parts), T the area-weighted mean; ro->cluster_of
  * maps the samples to them. */
 sss_result ref_transport_cluster(ref_ctx *ctx, size_t o, sss_error *err);
+/* The transport samples within radius of each one of subsurface object ro, on its side of thin parts
+ * (normals within 60 degrees), itself included (ref_neighbours.c). */
+sss_result ref_neighbours_build(ref_object *ro, double radius, sss_error *err);
 /* Sum over the transport samples of T_ind A S_far(|x - x_o|) (zero without them). */
 void ref_indirect_sum(const ref_ctx *ctx, size_t o, const float xo[3], double out[3], uint64_t *visits);
 /* Bounces 2..N at the samples of every object (after their direct T, E and trees exist); rebuilds
@@ -390,12 +395,13 @@ void ref_indirect_sum(const ref_ctx *ctx, size_t o, const float xo[3], double ou
 sss_result ref_bounces_run(ref_ctx *ctx, sss_error *err);
 /* Bounces 2..N at surface point p by a final gather (the last bounce at the point itself, so that the
  * image does not show the transport samples' cells): k x k = rays (rounded up to a square) stratified
- * cosine-distributed rays about the unit geometric normal ng (the side the light arrives on), stratum
- * of strata interleaving them over a pixel's camera samples as in ref_irradiance; each adds what the
- * surface it reaches sends back after bounces 1..N-1 (exit_sum, with the mirror chain at subsurface
- * hits). eta > 0: a subsurface point, the light enters with 1 - F_r (T); else E. */
-void ref_final_gather(const ref_ctx *ctx, const double p[3], const double ng[3], double eta, int rays, int stratum,
-                      int strata, ref_rng *rng, double out[3]);
+ * rays cosine-distributed about the unit shading normal ns (smooth across the facets; rays below the
+ * unit geometric normal ng, the side the light arrives on, see nothing), stratum of strata
+ * interleaving them over a pixel's camera samples as in ref_irradiance; each adds what the surface it
+ * reaches sends back after bounces 1..N-1 (exit_sum, with the mirror chain at subsurface hits).
+ * eta > 0: a subsurface point, the light enters with 1 - F_r (T); else E. */
+void ref_final_gather(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3], double eta,
+                      int rays, int stratum, int strata, ref_rng *rng, double out[3]);
 
 /* Reports the current phase's fraction (stage NULL: the phase's own); thread-safe, throttled to
  * ~10 calls per second unless force. */

@@ -428,6 +428,8 @@ void ref_ctx_free(ref_ctx *ctx)
         ref_tree_free(&ctx->objects[o].itree);
         ref_tree_free(&ctx->objects[o].stree);
         free((void *)ctx->objects[o].sent_state);
+        free(ctx->objects[o].nb_offset);
+        free(ctx->objects[o].nb_index);
         free(ctx->objects[o].tri_offset);
         free(ctx->objects[o].cluster_of);
         free(ctx->objects[o].bs);

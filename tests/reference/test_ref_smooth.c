@@ -166,8 +166,87 @@ static void test_disc_near_field(void)
     tmesh_free(&floor), tmesh_free(&disc);
 }
 
+/* The image of scenes/sphere_floor.json at 64 x 48, draft, with the given bounces and density. */
+static int render_sphere_floor(const sss_scene *scene, int bounces, double density, sss_image *img)
+{
+    sss_reference_desc d;
+    memset(&d, 0, sizeof d);
+    d.quality = SSS_REFERENCE_DRAFT;
+    d.bounces = bounces;
+    d.density = density;
+    sss_error err;
+    if (sss_reference_render(scene, &d, img, NULL, NULL, NULL, &err) == SSS_OK) return 1;
+    fprintf(stderr, "render failed: %s\n", err.message);
+    return 0;
+}
+
+/* Whether pixel i and its 8 neighbours show the floor (the camera ray meets y = 0 within the floor's
+ * 16 x 16 units) without any direct light (all channels zero in the --bounces 1 image). */
+static int shadowed_floor(const sss_camera_basis *cb, const sss_image *direct, int x, int y)
+{
+    for (int k = 0; k < 9; k++) {
+        int xx = x + k % 3 - 1, yy = y + k / 3 - 1;
+        double o[3], d[3];
+        sss_camera_ray(cb, xx + 0.5, yy + 0.5, o, d);
+        double t = -o[1] / d[1];
+        if (!(t > 0.0) || fabs(o[0] + t * d[0]) > 8.0 || fabs(o[2] + t * d[2]) > 8.0) return 0;
+        for (int c = 0; c < 3; c++)
+            if (img_at(direct, xx, yy, c) != 0.0) return 0;
+    }
+    return 1;
+}
+
+static void test_two_densities(void)
+{
+    sss_scene scene;
+    sss_error err;
+    if (sss_scene_load(SSS_SOURCE_DIR "/scenes/sphere_floor.json", NULL, &scene, &err) != SSS_OK) {
+        CHECK_MSG(0, "%s", err.message);
+        return;
+    }
+    scene.camera.width = 64, scene.camera.height = 48;
+    sss_image direct, img[2];
+    int ok = render_sphere_floor(&scene, 1, 1.0, &direct);
+    ok = ok && render_sphere_floor(&scene, 0, 1.0, &img[0]) && render_sphere_floor(&scene, 0, 4.0, &img[1]);
+    sss_camera_basis cb;
+    ok = ok && sss_camera_basis_init(&scene.camera, &cb, &err) == SSS_OK;
+    if (!ok) {
+        CHECK(0);
+        sss_scene_free(&scene);
+        return;
+    }
+    const int W = direct.width, H = direct.height;
+    double hf2[3] = {0}, level[3] = {0};
+    int n = 0;
+    for (int y = 2; y < H - 2; y++)
+        for (int x = 2; x < W - 2; x++) {
+            if (!shadowed_floor(&cb, &direct, x, y)) continue;
+            n++;
+            for (int c = 0; c < 3; c++) {
+                /* the difference minus its 3 x 3 mean */
+                double diff = img_at(&img[1], x, y, c) - img_at(&img[0], x, y, c), mean = 0.0;
+                for (int k = 0; k < 9; k++)
+                    mean += (img_at(&img[1], x + k % 3 - 1, y + k / 3 - 1, c) -
+                             img_at(&img[0], x + k % 3 - 1, y + k / 3 - 1, c)) / 9.0;
+                hf2[c] += (diff - mean) * (diff - mean);
+                level[c] += img_at(&img[0], x, y, c);
+            }
+        }
+    CHECK_MSG(n > 100, "only %d pixels of shadowed floor", n);
+    for (int c = 0; c < 3; c++) {
+        double rel = sqrt(hf2[c] / n) / (level[c] / n);
+        printf("sphere over floor, shadowed floor (%d px), channel %d: high-frequency part of density 4 - 1: "
+               "%.2f%% rms of the light there\n", n, c, 100.0 * rel);
+        CHECK_MSG(rel < 0.09, "channel %d: the difference between densities has %.2f%% rms of structure", c,
+                  100.0 * rel);
+    }
+    sss_image_free(&direct), sss_image_free(&img[0]), sss_image_free(&img[1]);
+    sss_scene_free(&scene);
+}
+
 int main(void)
 {
     test_disc_near_field();
+    test_two_densities();
     return CHECK_DONE();
 }
