@@ -556,10 +556,11 @@ void ref_indirect_sum(const ref_ctx *ctx, size_t o, const float xo[3], double ou
 }
 
 void ref_final_gather(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3], double eta,
-                      int rays, int stratum, int strata, ref_rng *rng, double out[3])
+                      int pixel_rays, int stratum, int strata, ref_rng *rng, double out[3])
 {
-    int m = strata > 1 ? (int)lround(sqrt((double)strata)) : 1, k = (int)ceil(sqrt((double)(rays > 1 ? rays : 1)));
+    int m = strata > 1 ? (int)lround(sqrt((double)strata)) : 1;
     if (m < 1) m = 1;
+    int k = ((int)ceil(sqrt((double)(pixel_rays > 1 ? pixel_rays : 1))) + m - 1) / m; /* (k m)^2 >= pixel_rays */
     int si = stratum % m, sj = (stratum / m) % m;
     double t1[3], t2[3], po[3], acc[3] = {0, 0, 0};
     tangent_frame(ns, t1, t2);

@@ -312,7 +312,7 @@ typedef struct ref_ctx {
     int near_probes;          /* probe rays per camera sample for the near part */
     int transport;            /* bounces > 1 (ref_bounce.c) */
     int gather_subsurface, gather_diffuse; /* gather rays per surface sample */
-    int gather_camera;        /* final-gather rays per camera sample */
+    int gather_pixel;         /* final-gather rays per pixel (its base samples; as many again where refined) */
     /* progress: a phase maps its own fraction [0, 1] to [phase_lo, phase_hi] of the whole */
     sss_reference_progress_fn progress;
     void *user;
@@ -394,14 +394,15 @@ void ref_indirect_sum(const ref_ctx *ctx, size_t o, const float xo[3], double ou
  * the subsurface trees with T_1 + T_2 + ... */
 sss_result ref_bounces_run(ref_ctx *ctx, sss_error *err);
 /* Bounces 2..N at surface point p by a final gather (the last bounce at the point itself, so that the
- * image does not show the transport samples' cells): k x k = rays (rounded up to a square) stratified
- * rays cosine-distributed about the unit shading normal ns (smooth across the facets; rays below the
- * unit geometric normal ng, the side the light arrives on, see nothing), stratum of strata
- * interleaving them over a pixel's camera samples as in ref_irradiance; each adds what the surface it
- * reaches sends back after bounces 1..N-1 (exit_sum, with the mirror chain at subsurface hits).
- * eta > 0: a subsurface point, the light enters with 1 - F_r (T); else E. */
+ * image does not show the transport samples' cells): stratified rays cosine-distributed about the unit
+ * shading normal ns (smooth across the facets; rays below the unit geometric normal ng, the side the
+ * light arrives on, see nothing), each adding what the surface it reaches sends back after bounces
+ * 1..N-1 (exit_sum, with the mirror chain at subsurface hits). The camera samples of a pixel, stratum
+ * of strata (a square), take interleaved subsets of one stratified set of at least pixel_rays rays
+ * (as ref_irradiance's light samples). eta > 0: a subsurface point, the light enters with 1 - F_r
+ * (T); else E. */
 void ref_final_gather(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3], double eta,
-                      int rays, int stratum, int strata, ref_rng *rng, double out[3]);
+                      int pixel_rays, int stratum, int strata, ref_rng *rng, double out[3]);
 
 /* Reports the current phase's fraction (stage NULL: the phase's own); thread-safe, throttled to
  * ~10 calls per second unless force. */

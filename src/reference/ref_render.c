@@ -262,7 +262,7 @@ static double shade_subsurface(const ref_ctx *ctx, const surface_hit *hit, const
     const double *p = hit->p;
     double near[3], far[3] = {0, 0, 0}, t_ind[3] = {0, 0, 0};
     if (ctx->transport)
-        ref_final_gather(ctx, p, hit->ng, hit->ns, obj->eta, ctx->gather_camera, stratum, strata, rng, t_ind);
+        ref_final_gather(ctx, p, hit->ng, hit->ns, obj->eta, ctx->gather_pixel, stratum, strata, rng, t_ind);
     near_part(ctx, obj, hit, t_ind, rng, near);
     if (obj->tree.point_count > 0) {
         double d[3] = {p[0] - fc->center.p[0], p[1] - fc->center.p[1], p[2] - fc->center.p[2]};
@@ -310,7 +310,7 @@ static void shade(const ref_ctx *ctx, const double org[3], const double dir[3], 
                        strata, rng, E);
         if (ctx->transport && !hit.back) { /* the transport holds the light on the normal's side only */
             double Ei[3];
-            ref_final_gather(ctx, hit.p, hit.ng, hit.ns, 0.0, ctx->gather_camera, stratum, strata, rng, Ei);
+            ref_final_gather(ctx, hit.p, hit.ng, hit.ns, 0.0, ctx->gather_pixel, stratum, strata, rng, Ei);
             for (int c = 0; c < 3; c++) E[c] += Ei[c];
         }
         for (int c = 0; c < 3; c++) L[c] = obj->src->reflectance[c] / REF_PI * E[c];
@@ -380,7 +380,7 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
     ctx.transport = ctx.desc.bounces != 1;
     ctx.gather_subsurface = draft ? 4 : 16;
     ctx.gather_diffuse = draft ? 16 : 64;
-    ctx.gather_camera = ((draft ? 64 : 256) + nb - 1) / nb; /* per pixel, spread over its base samples */
+    ctx.gather_pixel = draft ? 64 : 256;
     int saved_threads = omp_get_max_threads();
     if (ctx.desc.threads > 0) omp_set_num_threads(ctx.desc.threads);
 
