@@ -208,7 +208,8 @@ typedef struct sss_reference_stats {
     double seconds_total;
     /* Interreflection: bounces computed (1 = single event), the samples that carry them (all
      * objects), and per bounce k (index k - 1) its seconds and its light entering the surfaces
-     * relative to bounce 1 (index 0: the direct samples, seconds_samples, 1.0). */
+     * relative to bounce 1 (index 0: the direct samples, seconds_samples, 1.0; the last bounce's
+     * seconds include the trees the pixels use, seconds_pixels the pixels' final gathers). */
     uint32_t bounces;
     uint64_t transport_samples;
     double seconds_bounce[SSS_REFERENCE_MAX_BOUNCES];

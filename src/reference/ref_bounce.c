@@ -644,11 +644,13 @@ sss_result ref_bounces_run(ref_ctx *ctx, sss_error *err)
         if (ctx->desc.bounces == 0 && !(fraction >= SSS_REFERENCE_BOUNCE_STOP)) break;
     }
     for (size_t o = 0; next && o < n_obj; o++) free(next[o]);
+    double t2 = sss_time_seconds(); /* the trees the pixels use count towards the last bounce */
     for (size_t o = 0; r == SSS_OK && o < n_obj; o++)
         if (ctx->objects[o].bs_count) r = sent_prepare(&ctx->objects[o], needed + ctx->objects[o].base, err);
     free(next);
     free(light);
     free(needed);
     if (r == SSS_OK) r = build_indirect_trees(ctx, err);
+    ctx->stats.seconds_bounce[ctx->stats.bounces - 1] += sss_time_seconds() - t2;
     return r;
 }

@@ -6,8 +6,9 @@
 #include "reference/ref_internal.h"
 
 typedef struct sample_info {
-    int64_t geom;  /* -1: miss */
-    double n[3];   /* geometric normal facing the camera */
+    int64_t geom;       /* -1: miss */
+    double n[3];        /* geometric normal facing the camera */
+    double gathered[3]; /* the final gather's part of the radiance (its noise must not refine pixels) */
 } sample_info;
 
 /* Extra per-thread counters. */
@@ -256,7 +257,8 @@ static void add_mirror(const ref_ctx *ctx, const surface_hit *hit, const double 
 /* The subsurface radiance at a hit towards -dir, docs/physics.md §1:
  * L = F_t(x_o) / (pi c) * [near part + sum_i T_i A_i S_far(|x_i - x_o|)]; returns F_r(x_o). */
 static double shade_subsurface(const ref_ctx *ctx, const surface_hit *hit, const double dir[3], int stratum,
-                               int strata, ref_rng *rng, shade_counters *cnt, far_cache *fc, double L[3])
+                               int strata, ref_rng *rng, shade_counters *cnt, far_cache *fc, double L[3],
+                               double gathered[3])
 {
     const ref_object *obj = &ctx->objects[hit->geom];
     const double *p = hit->p;
@@ -280,7 +282,10 @@ static double shade_subsurface(const ref_ctx *ctx, const surface_hit *hit, const
     double cos_o = fabs(v3_dot(hit->ns, dir));
     double fr = sss_fresnel_dielectric(cos_o, 1.0, obj->eta);
     double k = (1.0 - fr) / (REF_PI * obj->c_norm);
-    for (int c = 0; c < 3; c++) L[c] = k * (near[c] + far[c]);
+    for (int c = 0; c < 3; c++) {
+        L[c] = k * (near[c] + far[c]);
+        gathered[c] = k * obj->prof.near[c] * t_ind[c];
+    }
     return fr;
 }
 
@@ -290,6 +295,7 @@ static void shade(const ref_ctx *ctx, const double org[3], const double dir[3], 
 {
     surface_hit hit;
     L[0] = L[1] = L[2] = 0.0;
+    memset(info, 0, sizeof *info);
     info->geom = -1;
     int kind = trace_camera(ctx, org, dir, &hit);
     if (kind == 0) {
@@ -311,12 +317,12 @@ static void shade(const ref_ctx *ctx, const double org[3], const double dir[3], 
         if (ctx->transport && !hit.back) { /* the transport holds the light on the normal's side only */
             double Ei[3];
             ref_final_gather(ctx, hit.p, hit.ng, hit.ns, 0.0, ctx->gather_pixel, stratum, strata, rng, Ei);
-            for (int c = 0; c < 3; c++) E[c] += Ei[c];
+            for (int c = 0; c < 3; c++) E[c] += Ei[c], info->gathered[c] = obj->src->reflectance[c] / REF_PI * Ei[c];
         }
         for (int c = 0; c < 3; c++) L[c] = obj->src->reflectance[c] / REF_PI * E[c];
         return;
     }
-    double fr = shade_subsurface(ctx, &hit, dir, stratum, strata, rng, cnt, fc, L);
+    double fr = shade_subsurface(ctx, &hit, dir, stratum, strata, rng, cnt, fc, L, info->gathered);
     if (ctx->desc.specular && depth < MIRROR_DEPTH) add_mirror(ctx, &hit, dir, fr, depth, stratum, strata, rng, cnt, L);
 }
 
@@ -327,14 +333,16 @@ static int tone8(double x, double scale)
     return (int)lround(255.0 * sss_srgb_encode(v));
 }
 
-/* Whether a pixel's base samples agree (same surface, similar normals, close 8-bit values). */
+/* Whether a pixel's base samples agree (same surface, similar normals, close 8-bit values but for
+ * the final gather's noise: refinement is for edges). */
 static int samples_agree(const double (*L)[3], const sample_info *info, int n, double scale)
 {
     for (int s = 1; s < n; s++) {
         if (info[s].geom != info[0].geom) return 0;
         if (info[0].geom >= 0 && v3_dot(info[s].n, info[0].n) < 0.9) return 0;
         for (int c = 0; c < 3; c++)
-            if (abs(tone8(L[s][c], scale) - tone8(L[0][c], scale)) > 2) return 0;
+            if (abs(tone8(L[s][c] - info[s].gathered[c], scale) - tone8(L[0][c] - info[0].gathered[c], scale)) > 2)
+                return 0;
     }
     return 1;
 }
