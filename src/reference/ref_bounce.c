@@ -555,8 +555,8 @@ void ref_indirect_sum(const ref_ctx *ctx, size_t o, const float xo[3], double ou
         ref_tree_sum_angle(&ro->itree, &ro->prof, xo, ro->iabs_tol, BOUNCE_TREE_ANGLE, out, visits);
 }
 
-void ref_final_gather(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3], double eta,
-                      int pixel_rays, int stratum, int strata, ref_rng *rng, double out[3])
+int ref_final_gather(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3], double eta,
+                     int pixel_rays, int stratum, int strata, ref_rng *rng, double out[3])
 {
     int m = strata > 1 ? (int)lround(sqrt((double)strata)) : 1;
     if (m < 1) m = 1;
@@ -581,6 +581,7 @@ void ref_final_gather(const ref_ctx *ctx, const double p[3], const double ng[3],
             }
         }
     for (int c = 0; c < 3; c++) out[c] = isfinite(acc[c]) && acc[c] > 0.0 ? acc[c] : 0.0;
+    return k * k;
 }
 
 /* Light of bounce k relative to bounce 2, the first interreflected one (or to STOP x bounce 1 when

@@ -400,9 +400,9 @@ sss_result ref_bounces_run(ref_ctx *ctx, sss_error *err);
  * 1..N-1 (exit_sum, with the mirror chain at subsurface hits). The camera samples of a pixel, stratum
  * of strata (a square), take interleaved subsets of one stratified set of at least pixel_rays rays
  * (as ref_irradiance's light samples). eta > 0: a subsurface point, the light enters with 1 - F_r
- * (T); else E. */
-void ref_final_gather(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3], double eta,
-                      int pixel_rays, int stratum, int strata, ref_rng *rng, double out[3]);
+ * (T); else E. Returns the number of rays of this sample. */
+int ref_final_gather(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3], double eta,
+                     int pixel_rays, int stratum, int strata, ref_rng *rng, double out[3]);
 
 /* Reports the current phase's fraction (stage NULL: the phase's own); thread-safe, throttled to
  * ~10 calls per second unless force. */

@@ -5,12 +5,6 @@
 
 #include "reference/ref_internal.h"
 
-typedef struct sample_info {
-    int64_t geom;       /* -1: miss */
-    double n[3];        /* geometric normal facing the camera */
-    double gathered[3]; /* the final gather's part of the radiance (its noise must not refine pixels) */
-} sample_info;
-
 /* Extra per-thread counters. */
 typedef struct shade_counters {
     uint64_t visits, lookups;
@@ -40,6 +34,16 @@ typedef struct surface_hit {
     double p[3], ng[3], ns[3];
     int back; /* seen from behind its triangles' winding (normals flipped) */
 } surface_hit;
+
+/* One camera sample: what the refinement of its pixel needs. */
+typedef struct sample_info {
+    int64_t geom;     /* -1: miss */
+    double n[3];      /* geometric normal facing the camera */
+    /* its final gather (gather rays, 0: none): the radiance holds coef * t_ind */
+    int gather;
+    double eta, coef[3], t_ind[3];
+    surface_hit hit;
+} sample_info;
 
 /* Position and normals of a hit on object g; normals face `facing` (the side the ray came from). */
 static void decode_hit(const ref_ctx *ctx, unsigned g, const struct RTCRayHit *rh, const double facing[3],
@@ -258,13 +262,14 @@ static void add_mirror(const ref_ctx *ctx, const surface_hit *hit, const double 
  * L = F_t(x_o) / (pi c) * [near part + sum_i T_i A_i S_far(|x_i - x_o|)]; returns F_r(x_o). */
 static double shade_subsurface(const ref_ctx *ctx, const surface_hit *hit, const double dir[3], int stratum,
                                int strata, ref_rng *rng, shade_counters *cnt, far_cache *fc, double L[3],
-                               double gathered[3])
+                               sample_info *info)
 {
     const ref_object *obj = &ctx->objects[hit->geom];
     const double *p = hit->p;
     double near[3], far[3] = {0, 0, 0}, t_ind[3] = {0, 0, 0};
     if (ctx->transport)
-        ref_final_gather(ctx, p, hit->ng, hit->ns, obj->eta, ctx->gather_pixel, stratum, strata, rng, t_ind);
+        info->gather = ref_final_gather(ctx, p, hit->ng, hit->ns, obj->eta, ctx->gather_pixel, stratum, strata, rng,
+                                        t_ind);
     near_part(ctx, obj, hit, t_ind, rng, near);
     if (obj->tree.point_count > 0) {
         double d[3] = {p[0] - fc->center.p[0], p[1] - fc->center.p[1], p[2] - fc->center.p[2]};
@@ -284,8 +289,11 @@ static double shade_subsurface(const ref_ctx *ctx, const surface_hit *hit, const
     double k = (1.0 - fr) / (REF_PI * obj->c_norm);
     for (int c = 0; c < 3; c++) {
         L[c] = k * (near[c] + far[c]);
-        gathered[c] = k * obj->prof.near[c] * t_ind[c];
+        info->coef[c] = k * obj->prof.near[c];
+        info->t_ind[c] = t_ind[c];
     }
+    info->eta = obj->eta;
+    info->hit = *hit;
     return fr;
 }
 
@@ -315,14 +323,15 @@ static void shade(const ref_ctx *ctx, const double org[3], const double dir[3], 
         ref_irradiance(ctx, hit.p, hit.ng, hit.ns, 0.0, ctx->area_samples_camera, ctx->env_samples_camera, stratum,
                        strata, rng, E);
         if (ctx->transport && !hit.back) { /* the transport holds the light on the normal's side only */
-            double Ei[3];
-            ref_final_gather(ctx, hit.p, hit.ng, hit.ns, 0.0, ctx->gather_pixel, stratum, strata, rng, Ei);
-            for (int c = 0; c < 3; c++) E[c] += Ei[c], info->gathered[c] = obj->src->reflectance[c] / REF_PI * Ei[c];
+            info->gather = ref_final_gather(ctx, hit.p, hit.ng, hit.ns, 0.0, ctx->gather_pixel, stratum, strata, rng,
+                                            info->t_ind);
+            for (int c = 0; c < 3; c++) E[c] += info->t_ind[c], info->coef[c] = obj->src->reflectance[c] / REF_PI;
+            info->hit = hit;
         }
         for (int c = 0; c < 3; c++) L[c] = obj->src->reflectance[c] / REF_PI * E[c];
         return;
     }
-    double fr = shade_subsurface(ctx, &hit, dir, stratum, strata, rng, cnt, fc, L, info->gathered);
+    double fr = shade_subsurface(ctx, &hit, dir, stratum, strata, rng, cnt, fc, L, info);
     if (ctx->desc.specular && depth < MIRROR_DEPTH) add_mirror(ctx, &hit, dir, fr, depth, stratum, strata, rng, cnt, L);
 }
 
@@ -333,18 +342,40 @@ static int tone8(double x, double scale)
     return (int)lround(255.0 * sss_srgb_encode(v));
 }
 
-/* Whether a pixel's base samples agree (same surface, similar normals, close 8-bit values but for
- * the final gather's noise: refinement is for edges). */
-static int samples_agree(const double (*L)[3], const sample_info *info, int n, double scale)
+/* Whether a pixel's base samples agree (same surface, similar normals, 8-bit values within 2), with
+ * (gathered) or without (the edges: geometry and direct light) their final gathers' light. */
+static int samples_agree(const double (*L)[3], const sample_info *info, int n, double scale, int gathered)
 {
     for (int s = 1; s < n; s++) {
         if (info[s].geom != info[0].geom) return 0;
         if (info[0].geom >= 0 && v3_dot(info[s].n, info[0].n) < 0.9) return 0;
-        for (int c = 0; c < 3; c++)
-            if (abs(tone8(L[s][c] - info[s].gathered[c], scale) - tone8(L[0][c] - info[0].gathered[c], scale)) > 2)
-                return 0;
+        for (int c = 0; c < 3; c++) {
+            double a = L[s][c], b = L[0][c];
+            if (!gathered) a -= info[s].coef[c] * info[s].t_ind[c], b -= info[0].coef[c] * info[0].t_ind[c];
+            if (abs(tone8(a, scale) - tone8(b, scale)) > 2) return 0;
+        }
     }
     return 1;
+}
+
+/* A pixel whose base samples differ only by their final gathers' noise: each sample gathers again at
+ * its own hit with REGATHER times its rays, and its gathered light becomes the mean of all its rays
+ * (where a bright surface fills a small solid angle, as the lit side of an object seen from its
+ * shadow, 256 rays a pixel leave single bright pixels; this spends more only there). */
+#define REGATHER 3
+
+static void regather(const ref_ctx *ctx, const sample_info *info, int n, ref_rng *rng, double sum[3])
+{
+    for (int s = 0; s < n; s++) {
+        const sample_info *si = &info[s];
+        if (!si->gather) continue;
+        double t[3];
+        int rays = ref_final_gather(ctx, si->hit.p, si->hit.ng, si->hit.ns, si->eta, REGATHER * ctx->gather_pixel, s,
+                                    n, rng, t);
+        for (int c = 0; c < 3; c++)
+            sum[c] += si->coef[c] * (si->t_ind[c] * si->gather + t[c] * rays) / (si->gather + rays) -
+                      si->coef[c] * si->t_ind[c];
+    }
 }
 
 #define MAX_BASE_SIDE 64
@@ -442,8 +473,11 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
                         sum[c] += L[s][c];
                     }
                 }
-                int total = n;
-                if (!ctx.desc.no_adaptive && n > 1 && !samples_agree((const double(*)[3])L, info, n, scale)) {
+                int total = n, refine = !ctx.desc.no_adaptive && n > 1;
+                if (refine && samples_agree((const double(*)[3])L, info, n, scale, 0) &&
+                    !samples_agree((const double(*)[3])L, info, n, scale, 1)) {
+                    regather(&ctx, info, n, &rng, sum);
+                } else if (refine && !samples_agree((const double(*)[3])L, info, n, scale, 0)) {
                     adaptive++;
                     for (int s = 0; s < ka * ka; s++) {
                         double dir[3], Ls[3];
