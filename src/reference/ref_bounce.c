@@ -216,6 +216,18 @@ static int64_t transport_index(const ref_object *o, unsigned prim, double u, dou
     return k >= 0 && o->cluster_of ? (int64_t)o->cluster_of[k] : k;
 }
 
+double ref_indirect_share(const ref_ctx *ctx, size_t o, unsigned prim, double u, double v, const double direct[3])
+{
+    const ref_object *ro = &ctx->objects[o];
+    int64_t k = ro->indirect ? transport_index(ro, prim, u, v) : -1;
+    if (k < 0) return 1.0;
+    const float *ti = ro->indirect[k], *td = ro->bs[k].direct;
+    double ind = 0.2126 * ti[0] + 0.7152 * ti[1] + 0.0722 * ti[2];
+    double dir = direct ? 0.2126 * direct[0] + 0.7152 * direct[1] + 0.0722 * direct[2]
+                        : 0.2126 * td[0] + 0.7152 * td[1] + 0.0722 * td[2];
+    return dir > 0.0 ? ind / (ind + dir) : 1.0;
+}
+
 /* What one ray sees at its first hit: the link (the sample there, and the factor from that sample's
  * exitance M (subsurface: the lobe F_t(cos theta) / (pi c)) or irradiance E (diffuse, its normal's
  * side: 1 / pi; the reflectance is applied per channel in the bounces) to the radiance towards the

@@ -393,6 +393,10 @@ void ref_indirect_sum(const ref_ctx *ctx, size_t o, const float xo[3], double ou
 /* Bounces 2..N at the samples of every object (after their direct T, E and trees exist); rebuilds
  * the subsurface trees with T_1 + T_2 + ... */
 sss_result ref_bounces_run(ref_ctx *ctx, sss_error *err);
+/* The share of bounces 2..N in the light (luminance) at the point (u, v) of triangle prim of object o,
+ * from its transport sample: T_ind / (T_ind + T_direct) there, with `direct` (may be NULL) in place of
+ * the sample's direct T (E); 1 without a sample or direct light. For the final gather's budget. */
+double ref_indirect_share(const ref_ctx *ctx, size_t o, unsigned prim, double u, double v, const double direct[3]);
 /* Bounces 2..N at surface point p by a final gather (the last bounce at the point itself, so that the
  * image does not show the transport samples' cells): stratified rays cosine-distributed about the unit
  * shading normal ns (smooth across the facets; rays below the unit geometric normal ng, the side the

@@ -258,6 +258,26 @@ static void add_mirror(const ref_ctx *ctx, const surface_hit *hit, const double 
     for (int c = 0; c < 3; c++) L[c] += fr * Lr[c];
 }
 
+/* The final gather's rays for a pixel whose light is `share` indirect: gather_pixel where it is all
+ * indirect, and in proportion to share^2 elsewhere (the gather's noise relative to the pixel, share /
+ * sqrt(rays), stays that of a wholly indirect pixel; lit parts need few: a lit floor is ~10% indirect),
+ * at least a sixteenth. The share comes from the transport samples, so the count does not depend on
+ * the gather itself and the estimate stays unbiased. */
+static int gather_rays(const ref_ctx *ctx, double share)
+{
+    double n = ceil(ctx->gather_pixel * share * share), lo = ctx->gather_pixel / 16;
+    return (int)fmin(ctx->gather_pixel, fmax(lo, isfinite(n) ? n : lo));
+}
+
+/* The near part's share of the profile's plane integral (luminance): what of a subsurface pixel's
+ * indirect light its final gather carries. */
+static double near_share(const ref_object *obj)
+{
+    const double *n = obj->prof.near, *t = obj->prof.total;
+    double total = 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
+    return total > 0.0 ? fmin(1.0, fmax(0.0, (0.2126 * n[0] + 0.7152 * n[1] + 0.0722 * n[2]) / total)) : 1.0;
+}
+
 /* The subsurface radiance at a hit towards -dir, docs/physics.md §1:
  * L = F_t(x_o) / (pi c) * [near part + sum_i T_i A_i S_far(|x_i - x_o|)]; returns F_r(x_o). */
 static double shade_subsurface(const ref_ctx *ctx, const surface_hit *hit, const double dir[3], int stratum,
@@ -267,9 +287,11 @@ static double shade_subsurface(const ref_ctx *ctx, const surface_hit *hit, const
     const ref_object *obj = &ctx->objects[hit->geom];
     const double *p = hit->p;
     double near[3], far[3] = {0, 0, 0}, t_ind[3] = {0, 0, 0};
-    if (ctx->transport)
-        info->gather = ref_final_gather(ctx, p, hit->ng, hit->ns, obj->eta, ctx->gather_pixel, stratum, strata, rng,
-                                        t_ind);
+    if (ctx->transport) {
+        double share = near_share(obj) * ref_indirect_share(ctx, hit->geom, hit->prim, hit->u, hit->v, NULL);
+        info->gather = ref_final_gather(ctx, p, hit->ng, hit->ns, obj->eta, gather_rays(ctx, share), stratum, strata,
+                                        rng, t_ind);
+    }
     near_part(ctx, obj, hit, t_ind, rng, near);
     if (obj->tree.point_count > 0) {
         double d[3] = {p[0] - fc->center.p[0], p[1] - fc->center.p[1], p[2] - fc->center.p[2]};
@@ -323,8 +345,9 @@ static void shade(const ref_ctx *ctx, const double org[3], const double dir[3], 
         ref_irradiance(ctx, hit.p, hit.ng, hit.ns, 0.0, ctx->area_samples_camera, ctx->env_samples_camera, stratum,
                        strata, rng, E);
         if (ctx->transport && !hit.back) { /* the transport holds the light on the normal's side only */
-            info->gather = ref_final_gather(ctx, hit.p, hit.ng, hit.ns, 0.0, ctx->gather_pixel, stratum, strata, rng,
-                                            info->t_ind);
+            double share = ref_indirect_share(ctx, hit.geom, hit.prim, hit.u, hit.v, E);
+            info->gather = ref_final_gather(ctx, hit.p, hit.ng, hit.ns, 0.0, gather_rays(ctx, share), stratum, strata,
+                                            rng, info->t_ind);
             for (int c = 0; c < 3; c++) E[c] += info->t_ind[c], info->coef[c] = obj->src->reflectance[c] / REF_PI;
             info->hit = hit;
         }
@@ -370,8 +393,8 @@ static void regather(const ref_ctx *ctx, const sample_info *info, int n, ref_rng
         const sample_info *si = &info[s];
         if (!si->gather) continue;
         double t[3];
-        int rays = ref_final_gather(ctx, si->hit.p, si->hit.ng, si->hit.ns, si->eta, REGATHER * ctx->gather_pixel, s,
-                                    n, rng, t);
+        int rays = ref_final_gather(ctx, si->hit.p, si->hit.ng, si->hit.ns, si->eta, REGATHER * si->gather * n, s, n,
+                                    rng, t);
         for (int c = 0; c < 3; c++)
             sum[c] += si->coef[c] * (si->t_ind[c] * si->gather + t[c] * rays) / (si->gather + rays) -
                       si->coef[c] * si->t_ind[c];
