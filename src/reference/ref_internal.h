@@ -313,6 +313,7 @@ typedef struct ref_ctx {
     int transport;            /* bounces > 1 (ref_bounce.c) */
     int gather_subsurface, gather_diffuse; /* gather rays per surface sample */
     int gather_pixel;         /* final-gather rays per pixel (its base samples; as many again where refined) */
+    int gather_refine;        /* final-gather rays per subsurface transport sample after the bounces */
     /* progress: a phase maps its own fraction [0, 1] to [phase_lo, phase_hi] of the whole */
     sss_reference_progress_fn progress;
     void *user;

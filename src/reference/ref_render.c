@@ -443,6 +443,7 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
     ctx.gather_subsurface = draft ? 4 : 16;
     ctx.gather_diffuse = draft ? 16 : 64;
     ctx.gather_pixel = draft ? 64 : 256;
+    ctx.gather_refine = draft ? 12 : 48;
     int saved_threads = omp_get_max_threads();
     if (ctx.desc.threads > 0) omp_set_num_threads(ctx.desc.threads);
 
