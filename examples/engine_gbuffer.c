@@ -1,7 +1,7 @@
 /* examples/engine_gbuffer.c — a minimal deferred "engine" that runs an sss technique as a pass over
  * its own G-buffer (sss/gl_pass.h, docs/integration.md).
  *
- *   engine_gbuffer SCENE.json -o OUT.png [--technique T] [--frames N]
+ *   engine_gbuffer SCENE.json -o OUT.png [--technique T] [--frames N] [--depth-only]
  *
  * --frames N renders N frames and prints the median wall time of the engine's frame and of the sss
  * pass in it (glFinish around each; the first frames include shader compilation).
@@ -310,6 +310,7 @@ typedef struct engine {
     GLuint shadow[MAX_LIGHTS], shadow_depth[MAX_LIGHTS], fbo_shadow;
     float light_vp[MAX_LIGHTS][16], texel[MAX_LIGHTS];
     double center[3], radius;
+    int depth_only; /* --depth-only: the pass gets the depth buffer instead of world positions */
 } engine;
 
 static void upload(mesh_gpu *g, const sss_mesh *m)
@@ -544,8 +545,10 @@ static sss_result render_frame(engine *e, sss_gl_pass *pass, sss_gl_pass_frame *
     glBindVertexArray(e->vao_empty);
     glDrawArrays(GL_TRIANGLES, 0, 3);
 
-    /* The subsurface pass reads the engine's textures and writes e->out. */
-    f->position = e->pos;
+    /* The subsurface pass reads the engine's textures and writes e->out. An engine that keeps depth
+     * rather than world positions hands its depth buffer over instead (--depth-only). */
+    f->position = e->depth_only ? 0 : e->pos;
+    f->depth = e->depth_only ? e->depth : 0;
     f->normal = e->nrm;
     f->albedo = e->albedo;
     f->irradiance = e->irr;
@@ -594,17 +597,19 @@ static int write_output(engine *e, const char *path, sss_error *err)
 int main(int argc, char **argv)
 {
     const char *scene_path = NULL, *output = NULL, *technique = NULL;
-    int frames = 1;
+    int frames = 1, depth_only = 0;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) output = argv[++i];
         else if (strcmp(argv[i], "--frames") == 0 && i + 1 < argc && atoi(argv[i + 1]) >= 1 && atoi(argv[i + 1]) <= 1000)
             frames = atoi(argv[++i]);
         else if (strcmp(argv[i], "--technique") == 0 && i + 1 < argc) technique = argv[++i];
+        else if (strcmp(argv[i], "--depth-only") == 0) depth_only = 1;
         else if (argv[i][0] != '-' && !scene_path) scene_path = argv[i];
         else scene_path = NULL, i = argc;
     }
     if (!scene_path || !output) {
-        fprintf(stderr, "usage: %s SCENE.json -o OUT.png [--technique T] [--frames N (1..1000)]\n", argv[0]);
+        fprintf(stderr, "usage: %s SCENE.json -o OUT.png [--technique T] [--frames N (1..1000)] [--depth-only]\n",
+                argv[0]);
         return 2;
     }
     sss_error err = {0};
@@ -623,6 +628,7 @@ int main(int argc, char **argv)
     engine e;
     memset(&e, 0, sizeof e);
     e.scene = &scene;
+    e.depth_only = depth_only;
     e.width = scene.camera.width;
     e.height = scene.camera.height;
     int status = 1;

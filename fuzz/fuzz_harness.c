@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gl/env_cut.h"
+#include "gl/core/env_cut.h"
 #include "sss/gltf.h"
 #include "sss/image.h"
 #include "sss/material.h"

@@ -9,7 +9,7 @@ set -euo pipefail
 PKGS=(
   build-essential cmake pkg-config git
   libmeshoptimizer-dev libcjson-dev libstb-dev libjpeg62-turbo-dev libopenexr-dev liblapacke-dev
-  libcairo2-dev libembree-dev
+  libcairo2-dev libembree-dev libdraco-dev
   libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev libimgui-dev xvfb xauth
   python3-dev python3-numpy python3-setuptools
 )

@@ -10,6 +10,8 @@
 
 #include <stddef.h>
 
+#include "sss/api.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -33,24 +35,24 @@ typedef struct sss_error {
 } sss_error;
 
 /* Sets err (if non-NULL) to code and a printf-formatted message; returns code. */
-sss_result sss_error_set(sss_error *err, sss_result code, const char *fmt, ...)
+SSS_API sss_result sss_error_set(sss_error *err, sss_result code, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
 
 /* Prefixes an existing message with "prefix: " (used to add a file name to a lower-level error). */
-void sss_error_prefix(sss_error *err, const char *prefix);
+SSS_API void sss_error_prefix(sss_error *err, const char *prefix);
 
 /* A short, static English name of a result code ("parse error", ...). */
-const char *sss_result_string(sss_result code);
+SSS_API const char *sss_result_string(sss_result code);
 
 /* Monotonic clock in seconds, for timings printed by tools and benchmarks. */
-double sss_time_seconds(void);
+SSS_API double sss_time_seconds(void);
 
 /* The median of count values (the mean of the middle two for an even count; 0 for count <= 0). Sorts
  * values in place (ascending), so values[0] and values[count - 1] are then the extremes. */
-double sss_median(double *values, int count);
+SSS_API double sss_median(double *values, int count);
 
 #ifdef __cplusplus
 }

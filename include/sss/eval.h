@@ -83,7 +83,7 @@ typedef enum sss_eval_kind {
     SSS_EVAL_SAM_SWEEP    /* the sam technique at one back-side sample count (Maisch & Ropinski 2017, Fig. 10) */
 } sss_eval_kind;
 
-const char *sss_eval_kind_name(sss_eval_kind kind); /* "quality", "timing", "sam_sweep" */
+SSS_API const char *sss_eval_kind_name(sss_eval_kind kind); /* "quality", "timing", "sam_sweep" */
 
 typedef struct sss_eval_pass {
     char name[32];
@@ -134,8 +134,12 @@ typedef struct sss_eval_reference {
 
 typedef struct sss_eval_scene {
     char *path;                       /* as given, without the @T suffix */
-    char name[128];                   /* file stem, plus "@T" when a time was given */
-    char stem[128];                   /* file stem */
+    char name[128];                   /* stem, plus "@T" when a time was given */
+    char stem[128];                   /* the scene's name in the outputs (sheet_<stem>.png, ...): its
+                                         file stem, or, when another scene of the run has the same
+                                         file stem and time, the file stem with its folders' names
+                                         ("s-d1" for d1/s.json, "s-a-x" for a/x/s.json) */
+    char file_stem[128];              /* the scene file's name without its extension */
     double time;
     int has_time;
     int width, height;                /* camera size */
@@ -178,19 +182,19 @@ typedef struct sss_eval_results {
 /* Runs the evaluation. Fails (nothing to free) on invalid arguments, a scene that cannot be loaded
  * (the message names the file), an EXR that cannot be saved, or out of memory; technique failures
  * and reference failures are results, not errors. */
-sss_result sss_eval_run(const char *const *scenes, int scene_count, const sss_eval_desc *desc,
-                        const sss_eval_callbacks *cb, sss_eval_results *out, sss_error *err);
-void sss_eval_results_free(sss_eval_results *res);
+SSS_API sss_result sss_eval_run(const char *const *scenes, int scene_count, const sss_eval_desc *desc,
+                                const sss_eval_callbacks *cb, sss_eval_results *out, sss_error *err);
+SSS_API void sss_eval_results_free(sss_eval_results *res);
 
 /* Checks a technique spec's syntax ("name[:param=value...]", value a finite number); the name and
  * parameters are not looked up. */
-sss_result sss_eval_check_spec(const char *spec, sss_error *err);
+SSS_API sss_result sss_eval_check_spec(const char *spec, sss_error *err);
 /* Parses "WxH[,WxH...]" (each 11..16384, the SSIM window needs 11). *out is malloc'ed. */
-sss_result sss_eval_parse_sizes(const char *text, sss_eval_size **out, int *count, sss_error *err);
+SSS_API sss_result sss_eval_parse_sizes(const char *text, sss_eval_size **out, int *count, sss_error *err);
 /* The cached reference's file name: "<dir>/<stem>_<w>x<h>.exr", with "_t<T>" before ".exr" when a
  * time was given (T printed with %g). */
-int sss_eval_reference_path(const char *dir, const char *stem, int width, int height, int has_time, double time,
-                            char *out, size_t cap);
+SSS_API int sss_eval_reference_path(const char *dir, const char *stem, int width, int height, int has_time,
+                                    double time, char *out, size_t cap);
 
 /* ---- Output ---------------------------------------------------------------------------------- */
 
@@ -199,26 +203,26 @@ int sss_eval_reference_path(const char *dir, const char *stem, int width, int he
  * plot_flip.png, plot_passes.png, plot_sam_rmse.png (only when the SAM sweep ran: without points it
  * would be an empty plot; the report says why it is missing), plot_resolution.png and report.html.
  * Files are written atomically. */
-sss_result sss_eval_write_all(const sss_eval_results *res, const char *out_dir, sss_error *err);
+SSS_API sss_result sss_eval_write_all(const sss_eval_results *res, const char *out_dir, sss_error *err);
 
-sss_result sss_eval_write_json(const sss_eval_results *res, const char *path, sss_error *err);
-sss_result sss_eval_write_csv(const sss_eval_results *res, const char *path, sss_error *err);
+SSS_API sss_result sss_eval_write_json(const sss_eval_results *res, const char *path, sss_error *err);
+SSS_API sss_result sss_eval_write_csv(const sss_eval_results *res, const char *path, sss_error *err);
 /* The comparison sheet of one scene (Maisch & Ropinski 2020, Fig. 7): the reference large, each technique with its
  * label, DSSIM, FLIP and milliseconds, its per-pixel DSSIM map (R, G, B = the channels' DSSIM) and FLIP map
  * with colour bars, and zoomed crops of its worst-FLIP window and of the scene's silhouette window. */
-sss_result sss_eval_write_sheet(const sss_eval_results *res, int scene, const char *path, sss_error *err);
+SSS_API sss_result sss_eval_write_sheet(const sss_eval_results *res, int scene, const char *path, sss_error *err);
 /* Plots (PNG): DSSIM (and FLIP) per technique per scene (grouped bars, Maisch & Ropinski 2020, Fig. 10); stacked milliseconds
  * per pass (Maisch & Ropinski 2020, Fig. 11); SAM RMSE against back-side samples (Maisch & Ropinski 2017, Fig. 10; says "sam not
  * available" when it is not); total frame time against resolution (one panel per scene, a line per
  * technique). */
-sss_result sss_eval_plot_dssim(const sss_eval_results *res, const char *path, sss_error *err);
-sss_result sss_eval_plot_flip(const sss_eval_results *res, const char *path, sss_error *err);
-sss_result sss_eval_plot_passes(const sss_eval_results *res, const char *path, sss_error *err);
-sss_result sss_eval_plot_sam(const sss_eval_results *res, const char *path, sss_error *err);
-sss_result sss_eval_plot_resolution(const sss_eval_results *res, const char *path, sss_error *err);
+SSS_API sss_result sss_eval_plot_dssim(const sss_eval_results *res, const char *path, sss_error *err);
+SSS_API sss_result sss_eval_plot_flip(const sss_eval_results *res, const char *path, sss_error *err);
+SSS_API sss_result sss_eval_plot_passes(const sss_eval_results *res, const char *path, sss_error *err);
+SSS_API sss_result sss_eval_plot_sam(const sss_eval_results *res, const char *path, sss_error *err);
+SSS_API sss_result sss_eval_plot_resolution(const sss_eval_results *res, const char *path, sss_error *err);
 /* report.html: one page, images embedded as base64 data URIs, CSS inline, no scripts. Reads the PNGs
  * named above from out_dir (missing ones are left out with a note). */
-sss_result sss_eval_write_report(const sss_eval_results *res, const char *out_dir, sss_error *err);
+SSS_API sss_result sss_eval_write_report(const sss_eval_results *res, const char *out_dir, sss_error *err);
 
 #ifdef __cplusplus
 }

@@ -45,32 +45,34 @@ typedef struct sss_export_pbrt_desc {
 
 /* Writes out_path (e.g. "scene.pbrt") and one binary PLY per object beside it
  * ("<stem>_objN.ply"). All files are written atomically; on failure none is left behind. */
-sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *desc, const char *out_path,
-                           sss_error *err);
+SSS_API sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *desc, const char *out_path,
+                                   sss_error *err);
+
+/* The extension that carries a subsurface material's scattering in an exported glTF. */
+typedef enum sss_export_gltf_scatter {
+    SSS_EXPORT_GLTF_VOLUME_SCATTER = 0, /* KHR_materials_volume_scatter + KHR_materials_diffuse_transmission */
+    SSS_EXPORT_GLTF_SCATTER = 1         /* KHR_materials_scatter (the draft replacing both) +
+                                         * KHR_materials_transmission */
+} sss_export_gltf_scatter;
 
 typedef struct sss_export_gltf_desc {
     double time;        /* pose of animated objects (seconds); default 0 */
     int skipped_lights; /* out: area and environment lights, which glTF's punctual lights cannot hold */
+    sss_export_gltf_scatter scatter_extension; /* default SSS_EXPORT_GLTF_VOLUME_SCATTER */
 } sss_export_gltf_desc;
 
 /* Writes the scene as one binary glTF 2.0 file (docs/gltf.md, "Export"): one node and mesh per object
  * (world space, posed at desc->time), subsurface materials as KHR_materials_volume +
- * KHR_materials_volume_scatter + KHR_materials_ior + KHR_materials_diffuse_transmission (the
- * importer's mapping inverted: sss_gltf_load of the file gives back the coefficients), diffuse ones
+ * KHR_materials_ior + the scattering extension of desc->scatter_extension (the importer's mapping
+ * inverted: sss_gltf_load of the file gives back the coefficients), diffuse ones
  * as baseColorFactor, the camera (yfov, aspectRatio), point, spot and directional lights as
  * KHR_lights_punctual (intensities 1:1), albedo textures as embedded PNG baseColorTextures (8-bit
  * sRGB: exact for textures read from PNG or JPEG; HDR values clip at 1). Not written: profiles other
  * than PBD, the render settings, area and environment lights (glTF 2.0 has neither: counted in
  * desc->skipped_lights). The scene must have been loaded with its meshes (textures decoded). desc may
  * be NULL. Written atomically. */
-sss_result sss_export_gltf(const sss_scene *scene, sss_export_gltf_desc *desc, const char *out_path,
-                           sss_error *err);
-
-/* The PBRT-v3 light-to-world matrix (row-major 4x4) of an environment light with the given rotate_y,
- * so that PBRT's infinite-light lookup (u = phi/2pi about +z, v = theta/pi from +z) shows the
- * equirectangular map where docs/scene-format.md puts it (+y up, u = 0.5 at -z, u growing towards +x...
- * exactly as sss_reference's environment lookup). Exposed for tests. */
-void sss_export_pbrt_env_light_to_world(double rotate_y_degrees, double m[16]);
+SSS_API sss_result sss_export_gltf(const sss_scene *scene, sss_export_gltf_desc *desc, const char *out_path,
+                                   sss_error *err);
 
 #ifdef __cplusplus
 }

@@ -50,8 +50,8 @@ typedef struct sss_gl_context sss_gl_context;
 /* Creates a context and makes it current. Errors name what is missing: an EGL client extension or
  * platform, EGL_KHR_no_config_context / EGL_KHR_surfaceless_context, the GL version, the display of a
  * window (with a hint to use `sss render`). Never aborts. */
-sss_result sss_gl_context_create(const sss_gl_context_desc *desc, sss_gl_context **out, sss_error *err);
-void sss_gl_context_destroy(sss_gl_context *ctx);
+SSS_API sss_result sss_gl_context_create(const sss_gl_context_desc *desc, sss_gl_context **out, sss_error *err);
+SSS_API void sss_gl_context_destroy(sss_gl_context *ctx);
 
 /* Wraps the context the caller made current on this thread (an engine's own, from EGL, GLFW, SDL,
  * Qt, ...) without owning it: the renderer and sss/gl_pass.h then use it. Checks that a context is
@@ -61,7 +61,7 @@ void sss_gl_context_destroy(sss_gl_context *ctx);
  * again; for other window systems it only reports whether some context is current (keep yours
  * current while sss works). No debug callback is installed (the caller's stays), window helpers are
  * no-ops. */
-sss_result sss_gl_context_adopt_current(sss_gl_context **out, sss_error *err);
+SSS_API sss_result sss_gl_context_adopt_current(sss_gl_context **out, sss_error *err);
 
 typedef struct sss_gl_context_info {
     const char *platform; /* "EGL surfaceless (Mesa)", "EGL device", "GLFW window" */
@@ -71,13 +71,17 @@ typedef struct sss_gl_context_info {
 } sss_gl_context_info;
 
 /* Strings stay valid while the context lives. */
-void sss_gl_context_get_info(const sss_gl_context *ctx, sss_gl_context_info *out);
-int sss_gl_context_make_current(sss_gl_context *ctx); /* 1 on success */
+SSS_API void sss_gl_context_get_info(const sss_gl_context *ctx, sss_gl_context_info *out);
+SSS_API int sss_gl_context_make_current(sss_gl_context *ctx); /* 1 on success */
+/* The driver's view of video memory (GL_NVX_gpu_memory_info: NVIDIA): total dedicated and currently
+ * available bytes, 1 on success (the context is made current). Returns 0 and sets both to 0 where the
+ * extension is not offered (Mesa, llvmpipe). */
+SSS_API int sss_gl_context_video_memory(sss_gl_context *ctx, size_t *total_bytes, size_t *available_bytes);
 
 /* Window helpers (no-ops / 1 on headless contexts). */
-int sss_gl_window_should_close(sss_gl_context *ctx); /* also polls events */
-void sss_gl_window_swap(sss_gl_context *ctx);
-void sss_gl_window_size(sss_gl_context *ctx, int *width, int *height);
+SSS_API int sss_gl_window_should_close(sss_gl_context *ctx); /* also polls events */
+SSS_API void sss_gl_window_swap(sss_gl_context *ctx);
+SSS_API void sss_gl_window_size(sss_gl_context *ctx, int *width, int *height);
 
 /* ---- Techniques and parameters --------------------------------------------------------------- */
 
@@ -103,13 +107,13 @@ typedef struct sss_gl_technique_info {
 } sss_gl_technique_info;
 
 /* Registered techniques, in a fixed order. */
-int sss_gl_technique_count(void);
-const sss_gl_technique_info *sss_gl_technique_at(int index);     /* NULL out of range */
-const sss_gl_technique_info *sss_gl_technique_find(const char *name); /* NULL when unknown */
+SSS_API int sss_gl_technique_count(void);
+SSS_API const sss_gl_technique_info *sss_gl_technique_at(int index);     /* NULL out of range */
+SSS_API const sss_gl_technique_info *sss_gl_technique_find(const char *name); /* NULL when unknown */
 
 /* Parameters shared by every technique (shadow map sizes, light sampling of area and environment
  * lights, LUT construction, splat meshes, timing). Accepted by sss_gl_renderer_set_param too. */
-const sss_gl_param_info *sss_gl_shared_params(int *count);
+SSS_API const sss_gl_param_info *sss_gl_shared_params(int *count);
 
 /* Presets: the shared parameter "preset" sets every parameter of the technique, its own and the shared
  * ones, to the preset's values: SSS_GL_PRESET_MEASURED (0, the defaults: what measures best on the
@@ -120,10 +124,10 @@ const sss_gl_param_info *sss_gl_shared_params(int *count);
 #define SSS_GL_PRESET_PAPER 1
 /* The value a parameter (technique or shared) takes under preset=paper for a technique: the paper's
  * where it departs from the default, else the default. NaN for an unknown technique or parameter. */
-double sss_gl_paper_value(const char *technique, const char *param);
+SSS_API double sss_gl_paper_value(const char *technique, const char *param);
 /* Parses the text of a parameter value (--param NAME=TEXT): a finite number, or for "preset" also the
  * names "paper" and "measured". SSS_ERROR_INVALID_ARGUMENT naming the parameter otherwise. */
-sss_result sss_gl_param_parse(const char *name, const char *text, double *out, sss_error *err);
+SSS_API sss_result sss_gl_param_parse(const char *name, const char *text, double *out, sss_error *err);
 
 /* ---- Renderer -------------------------------------------------------------------------------- */
 
@@ -168,9 +172,9 @@ typedef struct sss_gl_renderer_desc {
  * parameter values and data file; it computes them otherwise. Errors as sss_gl_renderer_create's for the
  * technique and parameters, the LUT builder's, prefixed "kernel LUT", and the map builder's, prefixed
  * "sam". */
-sss_result sss_gl_tables_build(const struct sss_scene *scene, const sss_gl_renderer_desc *desc, sss_gl_tables **out,
-                               sss_error *err);
-void sss_gl_tables_free(sss_gl_tables *tables); /* NULL is accepted */
+SSS_API sss_result sss_gl_tables_build(const struct sss_scene *scene, const sss_gl_renderer_desc *desc,
+                                       sss_gl_tables **out, sss_error *err);
+SSS_API void sss_gl_tables_free(sss_gl_tables *tables); /* NULL is accepted */
 
 typedef struct sss_gl_renderer sss_gl_renderer;
 
@@ -178,18 +182,18 @@ typedef struct sss_gl_renderer sss_gl_renderer;
  * The scene must outlive the renderer. Errors: unknown technique or parameter (the message lists the
  * known ones), parameter out of range, supersample outside 0..4 or a supersampled size beyond the GL's
  * GL_MAX_TEXTURE_SIZE / GL_MAX_VIEWPORT_DIMS, a resource the GL cannot provide. */
-sss_result sss_gl_renderer_create(sss_gl_context *ctx, const struct sss_scene *scene,
-                                  const sss_gl_renderer_desc *desc, sss_gl_renderer **out, sss_error *err);
-void sss_gl_renderer_destroy(sss_gl_renderer *r);
+SSS_API sss_result sss_gl_renderer_create(sss_gl_context *ctx, const struct sss_scene *scene,
+                                          const sss_gl_renderer_desc *desc, sss_gl_renderer **out, sss_error *err);
+SSS_API void sss_gl_renderer_destroy(sss_gl_renderer *r);
 
 /* Changes one parameter (takes effect at the next render; may rebuild resources). */
-sss_result sss_gl_renderer_set_param(sss_gl_renderer *r, const char *name, double value, sss_error *err);
+SSS_API sss_result sss_gl_renderer_set_param(sss_gl_renderer *r, const char *name, double value, sss_error *err);
 /* Re-reads the lights of the scene the renderer was created with (it keeps using that sss_scene: edit
  * its lights[] in place, e.g. move, turn, recolour, rotate the environment) without rebuilding shadow
  * maps, LUTs or programs; takes effect at the next render, which equals a new renderer's. The lights
  * must keep their number and kinds (the same virtual lights and shadow-map slots): otherwise
  * SSS_ERROR_INVALID_ARGUMENT, nothing changes, and a new renderer is needed. */
-sss_result sss_gl_renderer_update_lights(sss_gl_renderer *r, sss_error *err);
+SSS_API sss_result sss_gl_renderer_update_lights(sss_gl_renderer *r, sss_error *err);
 /* New materials for the same geometry, without uploading meshes, lights, shadow maps or programs again:
  * the material records and kernel LUTs are rebuilt (from `tables` when given, as desc.tables; else
  * computed here) and the technique refreshes what it derived from materials (ssss its kernels,
@@ -204,24 +208,24 @@ sss_result sss_gl_renderer_update_lights(sss_gl_renderer *r, sss_error *err);
  * difference when the geometry differs (nothing changes: create a new renderer); the LUT builder's
  * (prefixed "kernel LUT"). On any error the renderer keeps drawing its previous scene (no pointer to
  * `scene` remains). */
-sss_result sss_gl_renderer_update_materials(sss_gl_renderer *r, const struct sss_scene *scene,
-                                            const sss_gl_tables *tables, sss_error *err);
-double sss_gl_renderer_get_param(const sss_gl_renderer *r, const char *name); /* NaN when unknown */
+SSS_API sss_result sss_gl_renderer_update_materials(sss_gl_renderer *r, const struct sss_scene *scene,
+                                                    const sss_gl_tables *tables, sss_error *err);
+SSS_API double sss_gl_renderer_get_param(const sss_gl_renderer *r, const char *name); /* NaN when unknown */
 /* Sizes are the output's (what sss_gl_renderer_read returns); passes render at supersample x them. */
-sss_result sss_gl_renderer_resize(sss_gl_renderer *r, int width, int height, sss_error *err);
-void sss_gl_renderer_size(const sss_gl_renderer *r, int *width, int *height);
+SSS_API sss_result sss_gl_renderer_resize(sss_gl_renderer *r, int width, int height, sss_error *err);
+SSS_API void sss_gl_renderer_size(const sss_gl_renderer *r, int *width, int *height);
 /* Changes the SSAA factor (1..SSS_GL_MAX_SUPERSAMPLE; 0 -> 1) at the same output size: the frame
  * targets are rebuilt, the next render uses it. Errors as for sss_gl_renderer_create; on error the
  * renderer keeps its previous factor. */
-sss_result sss_gl_renderer_set_supersample(sss_gl_renderer *r, int supersample, sss_error *err);
-int sss_gl_renderer_get_supersample(const sss_gl_renderer *r); /* 1 when off (0 for NULL) */
+SSS_API sss_result sss_gl_renderer_set_supersample(sss_gl_renderer *r, int supersample, sss_error *err);
+SSS_API int sss_gl_renderer_get_supersample(const sss_gl_renderer *r); /* 1 when off (0 for NULL) */
 
 /* Renders one frame at time t (seconds; animations use it) into the renderer's linear target. */
-sss_result sss_gl_renderer_render(sss_gl_renderer *r, double time, sss_error *err);
+SSS_API sss_result sss_gl_renderer_render(sss_gl_renderer *r, double time, sss_error *err);
 /* Reads the last frame as linear RGB (top row first). out must have been created with the renderer's
  * (output) size; with supersampling it is the box-filtered image. Non-finite values are reported as
  * SSS_ERROR_NUMERIC (they never reach a file). */
-sss_result sss_gl_renderer_read(sss_gl_renderer *r, sss_image *out, sss_error *err);
+SSS_API sss_result sss_gl_renderer_read(sss_gl_renderer *r, sss_image *out, sss_error *err);
 /* Reads a named intermediate buffer for tests and debugging, as linear RGB at its own size (out is
  * created by the call; free with sss_image_free): "reflected", "irradiance", "translucency",
  * "translucency_full", "screen", "final" (the output image, as sss_gl_renderer_read), "supersampled"
@@ -229,9 +233,9 @@ sss_result sss_gl_renderer_read(sss_gl_renderer *r, sss_image *out, sss_error *e
  * the same as "final"), "object_id" (the G-buffer's object index + 1 in every channel, 0 where no
  * object covers the pixel). Intermediate buffers are at the supersampled size. Unknown or unavailable
  * names are errors. */
-sss_result sss_gl_renderer_read_buffer(sss_gl_renderer *r, const char *name, sss_image *out, sss_error *err);
+SSS_API sss_result sss_gl_renderer_read_buffer(sss_gl_renderer *r, const char *name, sss_image *out, sss_error *err);
 /* Draws the last frame, tone mapped with the scene's exposure, to the window's back buffer. */
-sss_result sss_gl_renderer_present(sss_gl_renderer *r, sss_error *err);
+SSS_API sss_result sss_gl_renderer_present(sss_gl_renderer *r, sss_error *err);
 
 #define SSS_GL_MAX_PASSES 24
 
@@ -248,7 +252,7 @@ typedef struct sss_gl_timings {
 } sss_gl_timings;
 
 /* Timings of the last frame (pass_count 0 when timing is off). */
-void sss_gl_renderer_timings(const sss_gl_renderer *r, sss_gl_timings *out);
+SSS_API void sss_gl_renderer_timings(const sss_gl_renderer *r, sss_gl_timings *out);
 
 /* ---- Frame-time statistics ------------------------------------------------------------------
  * The first frames of a renderer are slower than the rest (shader compilation and JIT, first touches of
@@ -270,12 +274,12 @@ typedef struct sss_gl_timing_series {
 } sss_gl_timing_series;
 
 /* warmup >= 0 frames to drop, then room for timed_frames >= 1 (about 200 bytes per frame). */
-sss_result sss_gl_timing_series_init(sss_gl_timing_series *s, int warmup, int timed_frames, sss_error *err);
+SSS_API sss_result sss_gl_timing_series_init(sss_gl_timing_series *s, int warmup, int timed_frames, sss_error *err);
 /* Adds one frame's timings (from sss_gl_renderer_timings); the first `warmup` frames are dropped. */
-void sss_gl_timing_series_add(sss_gl_timing_series *s, const sss_gl_timings *frame);
+SSS_API void sss_gl_timing_series_add(sss_gl_timing_series *s, const sss_gl_timings *frame);
 /* Median per pass and of the totals over the timed frames (pass_count 0 before the first). */
-void sss_gl_timing_series_median(const sss_gl_timing_series *s, sss_gl_timings *out);
-void sss_gl_timing_series_free(sss_gl_timing_series *s);
+SSS_API void sss_gl_timing_series_median(const sss_gl_timing_series *s, sss_gl_timings *out);
+SSS_API void sss_gl_timing_series_free(sss_gl_timing_series *s);
 
 typedef struct sss_gl_stats {
     size_t texture_bytes;       /* all textures the renderer owns (shared passes + technique) */
@@ -287,9 +291,24 @@ typedef struct sss_gl_stats {
     unsigned splat_total;       /* triangles of the splat meshes */
     unsigned splat_drawn;       /* splats that survived culling in the last frame */
     int material_count, light_count, virtual_light_count, object_count;
+    /* fragment shader invocations of the last frame's shell splatting (chen2012, dss: a pipeline-statistics
+     * query, which waits for the frame); -1 when not counted (other techniques, no such query, no frame) */
+    long long splat_fragments;
 } sss_gl_stats;
 
-void sss_gl_renderer_stats(sss_gl_renderer *r, sss_gl_stats *out);
+SSS_API void sss_gl_renderer_stats(sss_gl_renderer *r, sss_gl_stats *out);
+
+/* GPU memory a renderer holds now, counted where the GL allocates and frees storage (logical sizes:
+ * texels x the bits of the format, buffer sizes; drivers add padding): the technique's own textures and
+ * buffers (its passes' targets, splat buffers, tables) and the shared frame targets (G-buffer,
+ * illumination and their mip chains, the linear result, the SSAA output). Scene data (meshes, LUTs,
+ * shadow maps) is in neither. Either pointer may be NULL; a NULL renderer gives 0. */
+SSS_API void sss_gl_renderer_gpu_memory(const sss_gl_renderer *r, size_t *technique_bytes, size_t *frame_bytes);
+
+/* GPU bytes held now by the textures and buffers sss created on this thread's contexts (everything a
+ * renderer, pass or viewer made, scene data included), counted as for sss_gl_stats: the difference
+ * across sss_gl_renderer_create is what one renderer holds; after every _destroy it is back where it was. */
+SSS_API size_t sss_gl_allocated_bytes(void);
 
 #ifdef __cplusplus
 }

@@ -56,20 +56,20 @@ typedef struct sss_lut {
                               texels[3 * (j * size + i) + channel]; row j = 0 is A = 0 (R_d itself) */
 } sss_lut;
 
-sss_result sss_lut_build(const sss_profile *profile, const sss_lut_desc *desc, sss_lut *out,
-                         sss_error *err);
-void sss_lut_free(sss_lut *lut);
+SSS_API sss_result sss_lut_build(const sss_profile *profile, const sss_lut_desc *desc, sss_lut *out,
+                                 sss_error *err);
+SSS_API void sss_lut_free(sss_lut *lut);
 /* r_max of the source-function cut-off for a material (Maisch & Ropinski 2020, section 7.1). */
-double sss_lut_r_max(const sss_material *m, double source_cutoff);
+SSS_API double sss_lut_r_max(const sss_material *m, double source_cutoff);
 /* (r, A) that texel (i, j) stands for. */
-double sss_lut_texel_r(const sss_lut *lut, int i);
-double sss_lut_texel_area(const sss_lut *lut, int j);
+SSS_API double sss_lut_texel_r(const sss_lut *lut, int i);
+SSS_API double sss_lut_texel_area(const sss_lut *lut, int j);
 /* Bilinear lookup with clamping, as a GPU sampler with the same axes does. */
-void sss_lut_lookup(const sss_lut *lut, double r, double area, double out[3]);
+SSS_API void sss_lut_lookup(const sss_lut *lut, double r, double area, double out[3]);
 /* R'_d(r, A) at one point by the build's ring integration with R_d evaluated directly (no table) and
  * finer panels: slow (~1e4 profile evaluations), a reference for checks and for other modules'
  * tests. out = R_d(r) for A = 0; zeros for negative or non-finite input. */
-void sss_lut_exact(const sss_profile *profile, double r, double area, double out[3]);
+SSS_API void sss_lut_exact(const sss_profile *profile, double r, double area, double out[3]);
 
 /* ---- Separable kernels (Jimenez et al. 2019) ------------------------------------------------------------ */
 
@@ -87,9 +87,9 @@ typedef struct sss_separable_kernel {
 
 /* The pre-integrated 1D kernel a_p(x) = integral of R_d(sqrt(x^2 + y^2)) dy (Jimenez et al. 2019, Eq. 4).
  * Its integral over x is ||R_d||_1. An adaptive quadrature per call (~1e3 profile evaluations). */
-double sss_kernel_preintegrated_eval(const sss_profile *profile, int channel, double x);
+SSS_API double sss_kernel_preintegrated_eval(const sss_profile *profile, int channel, double x);
 /* The same for the three channels at once (one quadrature). */
-void sss_kernel_preintegrated_eval_rgb(const sss_profile *profile, double x, double out[3]);
+SSS_API void sss_kernel_preintegrated_eval_rgb(const sss_profile *profile, double x, double out[3]);
 
 /* Discretised a_p / ||R_d||_1 (Eq. 5): tap positions importance-sample the dominant channel (the one
  * with the widest a_p): tap k sits at the quantile (k + 1/2) / taps of its a_p restricted to
@@ -97,12 +97,12 @@ void sss_kernel_preintegrated_eval_rgb(const sss_profile *profile, double x, dou
  * the tap's interval (midpoints between taps; the outer taps' intervals reach to -inf / +inf, so no
  * energy is lost) divided by the channel's plane integral. taps >= 1 and odd (0 -> 7); range <= 0 ->
  * the radius holding 99.9% of the dominant channel's a_p. ~0.1 s for the PBD profile. */
-sss_result sss_kernel_preintegrated(const sss_profile *profile, int taps, double range,
-                                    sss_separable_kernel *out, sss_error *err);
+SSS_API sss_result sss_kernel_preintegrated(const sss_profile *profile, int taps, double range,
+                                            sss_separable_kernel *out, sss_error *err);
 /* The artist model's a_m, discretised the same way. */
-sss_result sss_kernel_artist(const sss_artist_params *params, int taps, sss_separable_kernel *out,
-                             sss_error *err);
-void sss_separable_kernel_free(sss_separable_kernel *k);
+SSS_API sss_result sss_kernel_artist(const sss_artist_params *params, int taps, sss_separable_kernel *out,
+                                     sss_error *err);
+SSS_API void sss_separable_kernel_free(sss_separable_kernel *k);
 
 /* Rank-N SVD approximation of the profile discretised on a grid x grid raster of half-width extent:
  * cells of side h = 2 extent / grid, centres at -extent + (i + 1/2) h, each holding the integral of
@@ -127,9 +127,9 @@ typedef struct sss_svd_kernel {
 } sss_svd_kernel;
 
 /* grid in [1, 1024], extent > 0, rank in [1, grid]. */
-sss_result sss_kernel_svd(const sss_profile *profile, int grid, double extent, int rank,
-                          sss_svd_kernel *out, sss_error *err);
-void sss_svd_kernel_free(sss_svd_kernel *k);
+SSS_API sss_result sss_kernel_svd(const sss_profile *profile, int grid, double extent, int rank,
+                                  sss_svd_kernel *out, sss_error *err);
+SSS_API void sss_svd_kernel_free(sss_svd_kernel *k);
 
 /* Guided rank-1 approximation (Jimenez et al. 2019, Appendix A, Eq. 8-9): the a_s minimising
  *   int Gamma(x, y) (R_d(x, y) - a(x) a(y))^2 dx dy  subject to  ||a||_1^2 = ||R_d||_1,
@@ -141,13 +141,8 @@ void sss_svd_kernel_free(sss_svd_kernel *k);
  * or near scattering; b (1 / length^2) the width of the axes Gamma ignores. Gamma gets a floor of 1e-3
  * of its maximum so that a is determined on the axes. out: 3 * grid values, out[channel * grid + i]
  * (densities, 1 / length). grid in [2, 512]; ~grid^2 * iterations work. */
-sss_result sss_kernel_guided(const sss_profile *profile, int grid, double extent, double k, double b,
-                             double *out, sss_error *err);
-/* The discretised objective of Eq. 8 (with the floor, the same cell averages of R_d) for one
- * channel's a (grid values): sum_ij (Gamma_ij + floor) (avg R_d_ij - a_i a_j)^2 h^2. NAN on bad input
- * (grid outside [1, 512]) or without memory. For checking optimality. */
-double sss_kernel_guided_objective(const sss_profile *profile, int grid, double extent, double k, double b,
-                                   int channel, const double *a);
+SSS_API sss_result sss_kernel_guided(const sss_profile *profile, int grid, double extent, double k, double b,
+                                     double *out, sss_error *err);
 
 #ifdef __cplusplus
 }

@@ -32,18 +32,18 @@ extern "C" {
 /* Unpolarised dielectric Fresnel reflectance for light arriving with cosine cos_theta_i on the eta_i
  * side of an interface to eta_t (PBRT-v3 FrDielectric: a negative cosine means the light arrives from
  * the eta_t side, and the indices are swapped). Total internal reflection returns 1. */
-double sss_fresnel_dielectric(double cos_theta_i, double eta_i, double eta_t);
+SSS_API double sss_fresnel_dielectric(double cos_theta_i, double eta_i, double eta_t);
 
 /* First and second Fresnel moments, PBRT-v3's polynomial fits (docs/physics.md §1). */
-double sss_fresnel_moment1(double eta);
-double sss_fresnel_moment2(double eta);
+SSS_API double sss_fresnel_moment1(double eta);
+SSS_API double sss_fresnel_moment2(double eta);
 
 /* Diffuse Fresnel reflectance F_dr of the classical dipole (Mertens et al. 2003, Table 1). */
-double sss_fresnel_diffuse_reflectance(double eta);
+SSS_API double sss_fresnel_diffuse_reflectance(double eta);
 
 /* PBRT-v3's normalisation c = 1 - 2 FM1(1/eta) of S_w (docs/physics.md §1); 4 C_phi(1/eta) = c, so the
  * exit constant of the subsurface integral is c_o = F_t(x_o) / (pi c). */
-double sss_bssrdf_normalization(double eta);
+SSS_API double sss_bssrdf_normalization(double eta);
 
 /* ---- Measured media (docs/physics.md §2.3; mm^-1) -------------------------------------------------- */
 
@@ -53,9 +53,9 @@ typedef struct sss_measured_medium {
     double sigma_a[3];       /* absorption, mm^-1 */
 } sss_measured_medium;
 
-size_t sss_measured_medium_count(void);
-const sss_measured_medium *sss_measured_medium_at(size_t index);   /* NULL past the end */
-const sss_measured_medium *sss_measured_medium_find(const char *name); /* case-insensitive; NULL if unknown */
+SSS_API size_t sss_measured_medium_count(void);
+SSS_API const sss_measured_medium *sss_measured_medium_at(size_t index);   /* NULL past the end */
+SSS_API const sss_measured_medium *sss_measured_medium_find(const char *name); /* case-insensitive; NULL if unknown */
 
 /* ---- Material parameters ------------------------------------------------------------------- */
 
@@ -68,18 +68,18 @@ typedef struct sss_material {
 
 /* PBRT `subsurface` with "name": measured coefficients x scale, g = 0 (sigma_s = sigma_s').
  * Errors: unknown name (the message lists the known ones), scale <= 0 or not finite, eta out of range. */
-sss_result sss_material_from_medium(const char *name, double scale, double eta, sss_material *out,
-                                    sss_error *err);
+SSS_API sss_result sss_material_from_medium(const char *name, double scale, double eta, sss_material *out,
+                                            sss_error *err);
 
 /* PBRT `subsurface` with explicit coefficients (per scene unit before scale).
  * Errors: negative or non-finite coefficients, sigma_a + sigma_s == 0 in a channel, scale <= 0, eta or g
  * out of range. */
-sss_result sss_material_from_coefficients(const double sigma_a[3], const double sigma_s[3], double scale,
-                                          double eta, double g, sss_material *out, sss_error *err);
+SSS_API sss_result sss_material_from_coefficients(const double sigma_a[3], const double sigma_s[3], double scale,
+                                                  double eta, double g, sss_material *out, sss_error *err);
 
 /* Checks a filled material (finite, non-negative, sigma_t in [SSS_SIGMA_T_MIN, SSS_SIGMA_T_MAX], eta
  * and g in range). The constructors below validate their result with it. */
-sss_result sss_material_validate(const sss_material *m, sss_error *err);
+SSS_API sss_result sss_material_validate(const sss_material *m, sss_error *err);
 
 #ifdef __cplusplus
 }

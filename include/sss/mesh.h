@@ -39,7 +39,7 @@ typedef struct sss_mesh {
 #define SSS_MESH_FROM_FILE_NORMALS 1u
 #define SSS_MESH_FROM_FILE_UVS 2u
 
-void sss_mesh_free(sss_mesh *mesh);
+SSS_API void sss_mesh_free(sss_mesh *mesh);
 
 /* Reads .ply (ascii, binary_little_endian, binary_big_endian) or .obj by extension. Rejects: NaN/Inf
  * coordinates, indices out of range, wrong element counts, truncated data, empty meshes.
@@ -50,25 +50,25 @@ void sss_mesh_free(sss_mesh *mesh);
  * l and other non-geometry statements are ignored, unknown ones rejected. File normals are normalised;
  * missing or zero ones are replaced by area-weighted normals. On error *out is zeroed. Messages:
  * "<file>: line N: ..." (ascii, OBJ, headers), "<file>: face K: ..." / "vertex K" (binary). */
-sss_result sss_mesh_read(const char *path, sss_mesh *out, sss_error *err);
+SSS_API sss_result sss_mesh_read(const char *path, sss_mesh *out, sss_error *err);
 /* The same from memory (for fuzzing and embedded data); name is used in messages. */
-sss_result sss_mesh_parse_ply(const void *data, size_t size, const char *name, sss_mesh *out,
-                              sss_error *err);
-sss_result sss_mesh_parse_obj(const void *data, size_t size, const char *name, sss_mesh *out,
-                              sss_error *err);
+SSS_API sss_result sss_mesh_parse_ply(const void *data, size_t size, const char *name, sss_mesh *out,
+                                      sss_error *err);
+SSS_API sss_result sss_mesh_parse_obj(const void *data, size_t size, const char *name, sss_mesh *out,
+                                      sss_error *err);
 /* Binary little-endian PLY with positions, normals and (if present) UVs; written atomically. */
-sss_result sss_mesh_write_ply(const char *path, const sss_mesh *mesh, sss_error *err);
+SSS_API sss_result sss_mesh_write_ply(const char *path, const sss_mesh *mesh, sss_error *err);
 
 /* Area-weighted vertex normals (replaces mesh->normals, allocating them if NULL); a vertex without a
  * non-degenerate incident triangle gets +y. */
-sss_result sss_mesh_compute_normals(sss_mesh *mesh, sss_error *err);
+SSS_API sss_result sss_mesh_compute_normals(sss_mesh *mesh, sss_error *err);
 /* Per-vertex area: one third of each incident triangle's area. areas holds vertex_count floats. */
-void sss_mesh_vertex_areas(const sss_mesh *mesh, float *areas);
-double sss_mesh_surface_area(const sss_mesh *mesh);
-void sss_mesh_bounds(const sss_mesh *mesh, float min[3], float max[3]);
+SSS_API void sss_mesh_vertex_areas(const sss_mesh *mesh, float *areas);
+SSS_API double sss_mesh_surface_area(const sss_mesh *mesh);
+SSS_API void sss_mesh_bounds(const sss_mesh *mesh, float min[3], float max[3]);
 /* Signed volume by the divergence theorem (sum of det(a, b, c) / 6): positive for a closed mesh
  * wound counter-clockwise seen from outside; only an approximation when the mesh has holes. */
-double sss_mesh_signed_volume(const sss_mesh *mesh);
+SSS_API double sss_mesh_signed_volume(const sss_mesh *mesh);
 
 /* Edge statistics of the index mesh. A mesh is closed when every edge has exactly two triangles. */
 typedef struct sss_mesh_topology {
@@ -78,7 +78,7 @@ typedef struct sss_mesh_topology {
     uint64_t degenerate_triangles; /* repeated index or zero area */
 } sss_mesh_topology;
 
-sss_result sss_mesh_topology_compute(const sss_mesh *mesh, sss_mesh_topology *out, sss_error *err);
+SSS_API sss_result sss_mesh_topology_compute(const sss_mesh *mesh, sss_mesh_topology *out, sss_error *err);
 
 /* Vertex adjacency in compressed rows: the neighbours of v are
  * neighbors[offsets[v] .. offsets[v + 1]), sorted, without duplicates or v itself. */
@@ -88,8 +88,8 @@ typedef struct sss_mesh_adjacency {
     uint32_t *neighbors; /* offsets[vertex_count] */
 } sss_mesh_adjacency;
 
-sss_result sss_mesh_adjacency_build(const sss_mesh *mesh, sss_mesh_adjacency *out, sss_error *err);
-void sss_mesh_adjacency_free(sss_mesh_adjacency *adj);
+SSS_API sss_result sss_mesh_adjacency_build(const sss_mesh *mesh, sss_mesh_adjacency *out, sss_error *err);
+SSS_API void sss_mesh_adjacency_free(sss_mesh_adjacency *adj);
 
 /* Procedural shapes of docs/scene-format.md, centred at the origin, with exact normals, CCW outward winding.
  * sphere: icosahedron subdivided `subdivisions` (0..8) times, 20 * 4^s triangles, closed, no UVs.
@@ -99,18 +99,18 @@ void sss_mesh_adjacency_free(sss_mesh_adjacency *adj);
  *   radius / 3 (so `radius` is its extent in the xy-plane), `segments` (3..4096) along the knot and
  *   max(3, segments / 8) around the tube, closed, no UVs; 0 < tube <= radius / 6.
  * plane: two triangles, UVs (u along +x, v along -z). box: 24 vertices (flat faces), UVs per face. */
-sss_result sss_mesh_sphere(double radius, int subdivisions, sss_mesh *out, sss_error *err);
-sss_result sss_mesh_torus(double major, double minor, int segments, sss_mesh *out, sss_error *err);
-sss_result sss_mesh_trefoil(double radius, double tube, int segments, sss_mesh *out, sss_error *err);
-sss_result sss_mesh_plane(double size, sss_mesh *out, sss_error *err); /* xz square facing +y */
-sss_result sss_mesh_box(const double size[3], sss_mesh *out, sss_error *err);
+SSS_API sss_result sss_mesh_sphere(double radius, int subdivisions, sss_mesh *out, sss_error *err);
+SSS_API sss_result sss_mesh_torus(double major, double minor, int segments, sss_mesh *out, sss_error *err);
+SSS_API sss_result sss_mesh_trefoil(double radius, double tube, int segments, sss_mesh *out, sss_error *err);
+SSS_API sss_result sss_mesh_plane(double size, sss_mesh *out, sss_error *err); /* xz square facing +y */
+SSS_API sss_result sss_mesh_box(const double size[3], sss_mesh *out, sss_error *err);
 
 /* Simplifies to at most target_triangles (meshoptimizer; falls back to sloppy simplification when the
  * topology-preserving one cannot reach the target). Degenerate triangles and unused vertices are
  * dropped, normals recomputed (area-weighted), UVs kept. A target at or above the count copies the
  * mesh. SSS_ERROR_NUMERIC when no non-empty result within the target exists (tiny targets). */
-sss_result sss_mesh_simplify(const sss_mesh *mesh, uint32_t target_triangles, sss_mesh *out,
-                             sss_error *err);
+SSS_API sss_result sss_mesh_simplify(const sss_mesh *mesh, uint32_t target_triangles, sss_mesh *out,
+                                     sss_error *err);
 
 #ifdef __cplusplus
 }

@@ -28,15 +28,15 @@ typedef struct sss_dipole {
 } sss_dipole;
 
 /* sigma_s_prime = sigma_s (1 - g). */
-void sss_dipole_init(sss_dipole *d, double sigma_a, double sigma_s_prime, double eta);
-double sss_dipole_rd(const sss_dipole *d, double r);
+SSS_API void sss_dipole_init(sss_dipole *d, double sigma_a, double sigma_s_prime, double eta);
+SSS_API double sss_dipole_rd(const sss_dipole *d, double r);
 /* Closed form of the plane integral: alpha'/2 (e^(-sigma_tr z_r) + e^(-sigma_tr z_v)). */
-double sss_dipole_total_reflectance(const sss_dipole *d);
+SSS_API double sss_dipole_total_reflectance(const sss_dipole *d);
 /* Exact importance sampling of R_d(r) 2 pi r (Mertens et al. 2003, section 4): u_source picks the real or the
  * virtual source, u_radius inverts that source's radial CDF by Newton iteration on u. */
-double sss_dipole_sample_radius(const sss_dipole *d, double u_source, double u_radius);
+SSS_API double sss_dipole_sample_radius(const sss_dipole *d, double u_source, double u_radius);
 /* Density of r (per unit length, integrates to 1 over [0, inf)) of sss_dipole_sample_radius. */
-double sss_dipole_pdf_radius(const sss_dipole *d, double r);
+SSS_API double sss_dipole_pdf_radius(const sss_dipole *d, double r);
 
 /* ---- Photon Beam Diffusion table (PBRT-v3 BSSRDFTable + ComputeBeamDiffusionBSSRDF) -------- */
 
@@ -53,39 +53,39 @@ typedef struct sss_pbd_table {
 } sss_pbd_table;
 
 /* Builds the table for a relative index eta and anisotropy g (about 100 kB; caller allocates it). */
-sss_result sss_pbd_table_build(double eta, double g, sss_pbd_table *table, sss_error *err);
+SSS_API sss_result sss_pbd_table_build(double eta, double g, sss_pbd_table *table, sss_error *err);
 
 /* S_r(r) of one channel for coefficients in scene units, exactly as PBRT-v3 TabulatedBSSRDF::Sr:
  * Catmull-Rom in (rho, r sigma_t), divided by 2 pi r_opt (when r_opt > 0), times sigma_t^2, >= 0.
  * At r = 0 this returns the limit r -> 0+ (PBRT returns 0 there: an artefact of storing 2 pi r S): on
  * [0, r_1] the spline through the stored 2 pi r S is t f_1 + O(t^2), t = r_opt / r_1, so the limit is
  * the albedo-interpolated S at the first non-zero node r_1 = 0.0025, times sigma_t^2. */
-double sss_pbd_sr(const sss_pbd_table *table, double sigma_a, double sigma_s, double r);
+SSS_API double sss_pbd_sr(const sss_pbd_table *table, double sigma_a, double sigma_s, double r);
 /* rho_eff for a single-scattering albedo rho (Catmull-Rom in the table's albedos). */
-double sss_pbd_rho_eff(const sss_pbd_table *table, double rho);
+SSS_API double sss_pbd_rho_eff(const sss_pbd_table *table, double rho);
 /* The albedo rho whose rho_eff is the given value (PBRT InvertCatmullRom); clamps to the table. */
-double sss_pbd_invert_rho_eff(const sss_pbd_table *table, double rho_eff);
+SSS_API double sss_pbd_invert_rho_eff(const sss_pbd_table *table, double rho_eff);
 /* Importance sampling of r ~ R_d(r) 2 pi r (PBRT SampleCatmullRom2D); returns < 0 when the profile
  * is zero (an albedo of 0). */
-double sss_pbd_sample_radius(const sss_pbd_table *table, double sigma_a, double sigma_s, double u);
+SSS_API double sss_pbd_sample_radius(const sss_pbd_table *table, double sigma_a, double sigma_s, double u);
 /* Density of r (per unit length) of sss_pbd_sample_radius. */
-double sss_pbd_pdf_radius(const sss_pbd_table *table, double sigma_a, double sigma_s, double r);
+SSS_API double sss_pbd_pdf_radius(const sss_pbd_table *table, double sigma_a, double sigma_s, double r);
 
 /* PBRT `kdsubsurface`: coefficients from the multiple-scattering albedo (each in (0, 1)) and the mean
  * free path (scene units, > 0) by inverting rho_eff (PBRT SubsurfaceFromDiffuse). */
-sss_result sss_material_from_reflectance(const sss_pbd_table *table, const double reflectance[3],
-                                         const double mfp[3], double eta, sss_material *out,
-                                         sss_error *err);
+SSS_API sss_result sss_material_from_reflectance(const sss_pbd_table *table, const double reflectance[3],
+                                                 const double mfp[3], double eta, sss_material *out,
+                                                 sss_error *err);
 
 /* ---- Gaussian profiles ---------------------------------------------------------------------- */
 
 /* Normalised 2D Gaussian of variance v: e^(-r^2 / 2v) / (2 pi v). */
-double sss_gaussian_2d(double variance, double r);
+SSS_API double sss_gaussian_2d(double variance, double r);
 
 /* d'Eon et al. 2007 six-Gaussian skin fit (docs/physics.md §2.4), variances in mm^2. */
 #define SSS_GAUSS6_TERMS 6
-extern const double sss_gauss6_variance_mm2[SSS_GAUSS6_TERMS];
-extern const double sss_gauss6_weight[3][SSS_GAUSS6_TERMS];
+extern SSS_API const double sss_gauss6_variance_mm2[SSS_GAUSS6_TERMS];
+extern SSS_API const double sss_gauss6_weight[3][SSS_GAUSS6_TERMS];
 
 /* Artist-friendly separable model (Jimenez et al. 2019, Eq. 6): a_m(x) = w G(x, sigma_n) + (1 - w) G(x, sigma_f),
  * sigma_n = near * s, sigma_f = far * s, G(x, sigma) = e^(-x^2 / 2 sigma^2) / (sqrt(2 pi) sigma)
@@ -100,8 +100,8 @@ typedef struct sss_artist_params {
 
 /* Presets of Jimenez et al. 2019, Table 2 (s in mm): "single-layer", "multi-layer", "production".
  * Returns SSS_ERROR_INVALID_ARGUMENT for an unknown name. */
-sss_result sss_artist_preset(const char *name, sss_artist_params *out, sss_error *err);
-double sss_artist_eval_1d(const sss_artist_params *p, int channel, double x); /* a_m(x) */
+SSS_API sss_result sss_artist_preset(const char *name, sss_artist_params *out, sss_error *err);
+SSS_API double sss_artist_eval_1d(const sss_artist_params *p, int channel, double x); /* a_m(x) */
 
 /* ---- One radial profile for all the kernel builders ----------------------------------------- */
 
@@ -121,16 +121,33 @@ typedef struct sss_profile {
 
 /* table is required for SSS_PROFILE_PBD and must match the material's eta and g. m is validated for
  * PBD and DIPOLE; for GAUSS6 it may be NULL. Sets gauss6_mm_per_unit = 1 (assign it afterwards). */
-sss_result sss_profile_init(sss_profile *p, sss_profile_model model, const sss_material *m,
-                            const sss_pbd_table *table, sss_error *err);
-double sss_profile_eval(const sss_profile *p, int channel, double r);     /* R_d(r), >= 0 */
-void sss_profile_eval_rgb(const sss_profile *p, double r, double out[3]);
-double sss_profile_total(const sss_profile *p, int channel);             /* plane integral */
+SSS_API sss_result sss_profile_init(sss_profile *p, sss_profile_model model, const sss_material *m,
+                                    const sss_pbd_table *table, sss_error *err);
+SSS_API double sss_profile_eval(const sss_profile *p, int channel, double r);     /* R_d(r), >= 0 */
+SSS_API void sss_profile_eval_rgb(const sss_profile *p, double r, double out[3]);
+SSS_API double sss_profile_total(const sss_profile *p, int channel);             /* plane integral */
 /* Radius within which the given fraction (e.g. 0.999) of the channel's plane integral lies: closed-form
  * CDF + bisection for DIPOLE and GAUSS6 (fraction capped at 1 - 1e-12); for PBD the table's inverse CDF
  * (PBRT Sample_Sr), and fraction >= 1 gives the table's last radius. 0 for fraction <= 0 or a zero
  * profile. */
-double sss_profile_radius_for_fraction(const sss_profile *p, int channel, double fraction);
+SSS_API double sss_profile_radius_for_fraction(const sss_profile *p, int channel, double fraction);
+/* The reach of a profile: the largest radius over the three channels within which `fraction` of each
+ * channel's plane integral lies (sss_profile_radius_for_fraction), non-finite radii left out; 0 when none
+ * is finite and positive. */
+SSS_API double sss_profile_reach(const sss_profile *p, double fraction);
+
+/* A measured medium ready to evaluate (what `sss profile`, `sss lut` and `sss kernel` take): its
+ * coefficients at `scale` and `eta` (sss_material_from_medium), the PBD table for them (model PBD: built
+ * and owned here; NULL for the dipole) and the profile, which borrows the table. Release with
+ * sss_medium_profile_free (also after a failed init: out is then empty). */
+typedef struct sss_medium_profile {
+    sss_material material;
+    sss_pbd_table *table;
+    sss_profile profile;
+} sss_medium_profile;
+SSS_API sss_result sss_medium_profile_init(sss_medium_profile *out, const char *medium, double scale, double eta,
+                                           sss_profile_model model, sss_error *err);
+SSS_API void sss_medium_profile_free(sss_medium_profile *p);
 
 #ifdef __cplusplus
 }

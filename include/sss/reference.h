@@ -223,9 +223,9 @@ typedef void (*sss_reference_progress_fn)(void *user, double fraction, const cha
 /* Renders a loaded scene (objects posed at desc->time with the scene module's shared deformation).
  * out is allocated (camera width x height) and must be freed with sss_image_free; on failure it is
  * left empty. stats and progress may be NULL. Environment maps are read with sss_image_read. */
-sss_result sss_reference_render(const sss_scene *scene, const sss_reference_desc *desc, sss_image *out,
-                                sss_reference_progress_fn progress, void *user,
-                                sss_reference_stats *stats, sss_error *err);
+SSS_API sss_result sss_reference_render(const sss_scene *scene, const sss_reference_desc *desc, sss_image *out,
+                                        sss_reference_progress_fn progress, void *user,
+                                        sss_reference_stats *stats, sss_error *err);
 
 /* ---- The scene-independent description the renderer works on -------------------------------- */
 
@@ -257,9 +257,9 @@ typedef struct sss_reference_world {
     double exposure;                /* display exposure: the adaptive-sampling threshold uses it */
 } sss_reference_world;
 
-sss_result sss_reference_render_world(const sss_reference_world *world, const sss_reference_desc *desc,
-                                      sss_image *out, sss_reference_progress_fn progress, void *user,
-                                      sss_reference_stats *stats, sss_error *err);
+SSS_API sss_result sss_reference_render_world(const sss_reference_world *world, const sss_reference_desc *desc,
+                                              sss_image *out, sss_reference_progress_fn progress, void *user,
+                                              sss_reference_stats *stats, sss_error *err);
 
 /* ---- Conventions shared with the other renderers ---------------------------------------------- */
 
@@ -268,15 +268,15 @@ sss_result sss_reference_render_world(const sss_reference_world *world, const ss
  * row, is  m = (sin theta sin phi, cos theta, -sin theta cos phi),  phi = 2 pi (u - 0.5), theta = pi v;
  * the world direction is R_y(rotate_y) m, a right-handed rotation about +y (positive angles move the
  * map's -z towards -x), i.e. the same formula with phi = 2 pi (u - 0.5) - rad(rotate_y). */
-void sss_reference_env_direction(double u, double v, double rotate_y_degrees, double dir[3]);
+SSS_API void sss_reference_env_direction(double u, double v, double rotate_y_degrees, double dir[3]);
 /* Its inverse: dir need not be unit; u in [0, 1), v in [0, 1]. */
-void sss_reference_env_uv(const double dir[3], double rotate_y_degrees, double *u, double *v);
+SSS_API void sss_reference_env_uv(const double dir[3], double rotate_y_degrees, double *u, double *v);
 
 /* Spot light falloff of PBRT-v3 (lights/spot.cpp): with cos_total = cos(cone_angle), cos_start =
  * cos(cone_angle - cone_delta) and cos_theta the cosine between the spot's axis and the direction
  * from the light to the lit point: 0 below cos_total, 1 above cos_start, delta^4 in between with
  * delta = (cos_theta - cos_total) / (cos_start - cos_total). (PBRT-v4 uses smoothstep instead.) */
-double sss_reference_spot_falloff(double cone_angle_degrees, double cone_delta_degrees, double cos_theta);
+SSS_API double sss_reference_spot_falloff(double cone_angle_degrees, double cone_delta_degrees, double cos_theta);
 
 #ifdef __cplusplus
 }

@@ -12,7 +12,7 @@
  * 3.4), and the versioned .sam file (docs/sam_format.md). Optionally the links point to the vertices
  * of a lower-tessellation back-side mesh (section 4.4 and the paper's appendix; desc->backside,
  * desc->backside_triangles), which the map then carries (file version 2).
- * Does not: lighting, GL (the `sam` technique, src/gl/sam/tech_sam.c, evaluates Eq. 12 on the GPU).
+ * Does not: lighting, GL (the `sam` technique, src/gl/techniques/sam/tech_sam.c, evaluates Eq. 12 on the GPU).
  *
  * Units: positions in scene units; form factors K are dimensionless (an area times R_d): the
  * translucency of Eq. 12 is sum_k L_d(v_k) K_k with L_d = F_t E, so the exit radiance is
@@ -56,21 +56,21 @@ typedef struct sss_sam_profile_table {
 } sss_sam_profile_table;
 
 /* energy in (0, 1): 0 -> 0.9999. size 0 -> 4096 (at least 16). */
-sss_result sss_sam_profile_table_build(const sss_profile *profile, double energy, int size,
-                                       sss_sam_profile_table *out, sss_error *err);
-void sss_sam_profile_table_free(sss_sam_profile_table *t);
-void sss_sam_profile_table_eval(const sss_sam_profile_table *t, double r, double out[3]);
+SSS_API sss_result sss_sam_profile_table_build(const sss_profile *profile, double energy, int size,
+                                               sss_sam_profile_table *out, sss_error *err);
+SSS_API void sss_sam_profile_table_free(sss_sam_profile_table *t);
+SSS_API void sss_sam_profile_table_eval(const sss_sam_profile_table *t, double r, double out[3]);
 /* An upper bound of R_r + R_g + R_b over every distance >= r. */
-double sss_sam_profile_table_bound(const sss_sam_profile_table *t, double r);
+SSS_API double sss_sam_profile_table_bound(const sss_sam_profile_table *t, double r);
 
 /* ---- Geometry ---------------------------------------------------------------------------------- */
 
 /* Eq. 16: F'_i = sum over the fan of |(v_ij-1 - v_i) x (v_ij - v_i)| / 6 (a third of each incident
  * triangle). areas holds vertex_count floats. */
-void sss_sam_fan_areas(const sss_mesh *mesh, float *areas);
+SSS_API void sss_sam_fan_areas(const sss_mesh *mesh, float *areas);
 
 /* Eq. 13 and 14: x_i lies behind the tangent plane at x_o and the normals face apart. */
-int sss_sam_is_back(const float xo[3], const float no[3], const float xi[3], const float ni[3]);
+SSS_API int sss_sam_is_back(const float xo[3], const float no[3], const float xi[3], const float ni[3]);
 
 /* A kernel k(x_o, x_i) with three channels (R_d of each colour, or a test function). */
 typedef void (*sss_sam_kernel_fn)(const double xo[3], const double xi[3], void *user, double out[3]);
@@ -78,14 +78,14 @@ typedef void (*sss_sam_kernel_fn)(const double xo[3], const double xi[3], void *
 /* (1 / |A|) int_A int_B k(x_o, x_i) dx_i dx_o over two regions given as triangle soups (9 floats per
  * triangle), by `samples` pairs of a 4D Kronecker sequence with a random shift from seed. This is
  * Eq. 11 when A and B are reduced fans. Errors: empty or zero-area region, samples out of range. */
-sss_result sss_sam_region_integral(const float *tris_a, size_t count_a, const float *tris_b, size_t count_b,
-                                   uint32_t samples, uint64_t seed, sss_sam_kernel_fn kernel, void *user,
-                                   double out[3], sss_error *err);
+SSS_API sss_result sss_sam_region_integral(const float *tris_a, size_t count_a, const float *tris_b, size_t count_b,
+                                           uint32_t samples, uint64_t seed, sss_sam_kernel_fn kernel, void *user,
+                                           double out[3], sss_error *err);
 
 /* The reduced fan of vertex v (Fig. 2) as a triangle soup: two triangles (v, mid(v, b), centroid) and
  * (v, centroid, mid(v, c)) per incident triangle (v, b, c). tris receives 9 * 2 * (incident triangles)
  * floats, at most capacity triangles; returns the number of triangles of the fan. */
-size_t sss_sam_reduced_fan(const sss_mesh *mesh, uint32_t v, float *tris, size_t capacity);
+SSS_API size_t sss_sam_reduced_fan(const sss_mesh *mesh, uint32_t v, float *tris, size_t capacity);
 
 /* ---- Building ---------------------------------------------------------------------------------- */
 
@@ -144,16 +144,16 @@ typedef struct sss_sam {
 
 /* Builds the map for a mesh in scene units (apply the object's transform first) and a profile whose
  * material is in the same units. The mesh needs normals. stats may be NULL. */
-sss_result sss_sam_build(const sss_mesh *mesh, const sss_profile *profile, const sss_sam_desc *desc, sss_sam *out,
-                         sss_sam_stats *stats, sss_error *err);
-void sss_sam_free(sss_sam *sam);
+SSS_API sss_result sss_sam_build(const sss_mesh *mesh, const sss_profile *profile, const sss_sam_desc *desc,
+                                 sss_sam *out, sss_sam_stats *stats, sss_error *err);
+SSS_API void sss_sam_free(sss_sam *sam);
 
 /* The mesh the links point to: a view (no copy; do not free) of the map's back-side mesh, or a zeroed
  * mesh when the map has none (the links then index the map's own mesh). Returns whether it has one. */
-int sss_sam_back_mesh(const sss_sam *sam, sss_mesh *view);
+SSS_API int sss_sam_back_mesh(const sss_sam *sam, sss_mesh *view);
 
 /* FNV-1a 64 over the vertex and triangle counts, positions and indices (little-endian bytes). */
-uint64_t sss_sam_mesh_hash(const sss_mesh *mesh);
+SSS_API uint64_t sss_sam_mesh_hash(const sss_mesh *mesh);
 
 /* ---- Deformation (section 3.4) ------------------------------------------------------------------ */
 
@@ -161,21 +161,21 @@ uint64_t sss_sam_mesh_hash(const sss_mesh *mesh);
  * each link moves to the one-ring neighbour (or stays) with the largest F'_j R_d(|v_j - v_o|) among
  * those that pass Eq. 13-14 and are not already linked from v_o; K' is kept. fan_area receives the
  * deformed F' (vertex_count floats; may be NULL). Returns the number of links that moved. */
-uint64_t sss_sam_update(sss_sam *sam, const sss_mesh *deformed, const sss_mesh_adjacency *adj,
-                        const sss_sam_profile_table *table, float *fan_area);
+SSS_API uint64_t sss_sam_update(sss_sam *sam, const sss_mesh *deformed, const sss_mesh_adjacency *adj,
+                                const sss_sam_profile_table *table, float *fan_area);
 /* The approximate form factors of Eq. 15 for the (deformed) mesh: K'_ok F'_k R_d(|v_k - v_o|) per
  * channel, 0 for unused slots and for links that fail Eq. 13-14; out holds vertex_count * n * 3. */
-void sss_sam_approximate(const sss_sam *sam, const sss_mesh *mesh, const float *fan_area,
-                         const sss_sam_profile_table *table, float *out);
+SSS_API void sss_sam_approximate(const sss_sam *sam, const sss_mesh *mesh, const float *fan_area,
+                                 const sss_sam_profile_table *table, float *out);
 /* The two above for a map with a back-side mesh (sss_sam_update and sss_sam_approximate do nothing
  * for such a map: they return 0 / write zeros): `back` is the deformed back-side mesh (same topology
  * as the map's), back_adj its adjacency, back_fan_area receives / holds its deformed F' (may be NULL:
  * the rest areas). With back NULL they are sss_sam_update and sss_sam_approximate. */
-uint64_t sss_sam_update_back(sss_sam *sam, const sss_mesh *deformed, const sss_mesh *back,
-                             const sss_mesh_adjacency *back_adj, const sss_sam_profile_table *table,
-                             float *back_fan_area);
-void sss_sam_approximate_back(const sss_sam *sam, const sss_mesh *mesh, const sss_mesh *back,
-                              const float *back_fan_area, const sss_sam_profile_table *table, float *out);
+SSS_API uint64_t sss_sam_update_back(sss_sam *sam, const sss_mesh *deformed, const sss_mesh *back,
+                                     const sss_mesh_adjacency *back_adj, const sss_sam_profile_table *table,
+                                     float *back_fan_area);
+SSS_API void sss_sam_approximate_back(const sss_sam *sam, const sss_mesh *mesh, const sss_mesh *back,
+                                      const float *back_fan_area, const sss_sam_profile_table *table, float *out);
 
 /* ---- Scene objects ------------------------------------------------------------------------------- */
 
@@ -184,16 +184,16 @@ struct sss_scene_object;
 
 /* The mesh a map of a scene object is built on: its mesh at rest (no animation) with its transform
  * applied, in scene units (sss_scene_object_world_mesh without the animation). */
-sss_result sss_sam_object_mesh(const struct sss_scene_object *obj, sss_mesh *out, sss_error *err);
+SSS_API sss_result sss_sam_object_mesh(const struct sss_scene_object *obj, sss_mesh *out, sss_error *err);
 /* The profile of a subsurface object's material (its model; artist profiles use PBD, as the GL LUT). */
-sss_result sss_sam_object_profile(const struct sss_scene_object *obj, sss_profile *out, sss_error *err);
+SSS_API sss_result sss_sam_object_profile(const struct sss_scene_object *obj, sss_profile *out, sss_error *err);
 /* Builds the map of scene object `index` (desc->transform is set to the object's). Errors name the
  * scene and the object: out of range, not subsurface. */
-sss_result sss_sam_build_object(const struct sss_scene *scene, size_t index, const sss_sam_desc *desc, sss_sam *out,
-                                sss_sam_stats *stats, sss_error *err);
+SSS_API sss_result sss_sam_build_object(const struct sss_scene *scene, size_t index, const sss_sam_desc *desc,
+                                        sss_sam *out, sss_sam_stats *stats, sss_error *err);
 /* Reads `path` and checks it against scene object `index` (mesh, material, model, transform). */
-sss_result sss_sam_read_object(const char *path, const struct sss_scene *scene, size_t index, sss_sam *out,
-                               sss_error *err);
+SSS_API sss_result sss_sam_read_object(const char *path, const struct sss_scene *scene, size_t index, sss_sam *out,
+                                       sss_error *err);
 
 /* ---- Files -------------------------------------------------------------------------------------- */
 
@@ -203,18 +203,18 @@ sss_result sss_sam_read_object(const char *path, const struct sss_scene *scene, 
  * (maps with a back-side mesh) adds to the header the back-side mesh's vertex and triangle counts,
  * hash and whether it has UVs, and before the checksum its positions, normals, UVs, fan areas and
  * indices (docs/sam_format.md). Maps without one are written as version 1. */
-sss_result sss_sam_write(const char *path, const sss_sam *sam, sss_error *err);
+SSS_API sss_result sss_sam_write(const char *path, const sss_sam *sam, sss_error *err);
 /* Reads versions 1 and 2. Checks magic, version, sizes (before allocating: the file size must equal
  * what the header implies), the checksum, link indices (against the back-side mesh in version 2), the
  * back-side mesh's indices and hash, and finite values. */
-sss_result sss_sam_read(const char *path, sss_sam *out, sss_error *err);
+SSS_API sss_result sss_sam_read(const char *path, sss_sam *out, sss_error *err);
 /* The same checks on a .sam file held in memory (size bytes); messages name `name` (NULL: "<memory>").
  * On failure *out is left empty. */
-sss_result sss_sam_decode(const void *data, size_t size, const char *name, sss_sam *out, sss_error *err);
+SSS_API sss_result sss_sam_decode(const void *data, size_t size, const char *name, sss_sam *out, sss_error *err);
 /* Whether a map belongs to this mesh, material, profile model and transform (NULL: identity); the
  * message names `name` (the .sam file) and what differs. */
-sss_result sss_sam_check(const sss_sam *sam, const sss_mesh *mesh, const sss_material *material,
-                         sss_profile_model model, const double *transform, const char *name, sss_error *err);
+SSS_API sss_result sss_sam_check(const sss_sam *sam, const sss_mesh *mesh, const sss_material *material,
+                                 sss_profile_model model, const double *transform, const char *name, sss_error *err);
 
 #ifdef __cplusplus
 }

@@ -97,25 +97,25 @@ typedef struct sss_camera_basis {
 
 /* Validates the camera (finite vectors, look_at != position, up not parallel to the view direction,
  * fov in [SSS_SCENE_FOV_MIN, 180), width and height in 1..SSS_SCENE_MAX_IMAGE_SIZE) and builds its basis. */
-sss_result sss_camera_basis_init(const sss_camera *camera, sss_camera_basis *basis, sss_error *err);
+SSS_API sss_result sss_camera_basis_init(const sss_camera *camera, sss_camera_basis *basis, sss_error *err);
 
 /* Primary ray through the raster point (px, py) = (x + dx, y + dy): pixel (x, y) covers
  * [x, x + 1) x [y, y + 1), x to the right, y DOWN (row 0 is the top row of the image, as stored);
  * (x + 0.5, y + 0.5) is the pixel centre. origin = the camera position, direction unit length. */
-void sss_camera_ray(const sss_camera_basis *basis, double px, double py, double origin[3],
-                    double direction[3]);
+SSS_API void sss_camera_ray(const sss_camera_basis *basis, double px, double py, double origin[3],
+                            double direction[3]);
 
 /* Inverse of sss_camera_ray: the raster point of a world point. Returns 0 (and leaves raster
  * untouched) when p is not in front of the camera; *depth (may be NULL) receives the distance along
  * forward. */
-int sss_camera_project(const sss_camera_basis *basis, const double p[3], double raster[2], double *depth);
+SSS_API int sss_camera_project(const sss_camera_basis *basis, const double p[3], double raster[2], double *depth);
 
 /* OpenGL matrices (row-major, see above): the view matrix maps world to camera space (camera at the
  * origin looking down -z); the projection is the standard glFrustum-style perspective with the same
  * image-plane extents as sss_camera_ray (NDC x right, y up: raster y = (1 - ndc_y) / 2 * height).
  * 0 < z_near < z_far. */
-void sss_camera_view_matrix(const sss_camera_basis *basis, double m[16]);
-void sss_camera_projection_matrix(const sss_camera_basis *basis, double z_near, double z_far, double m[16]);
+SSS_API void sss_camera_view_matrix(const sss_camera_basis *basis, double m[16]);
+SSS_API void sss_camera_projection_matrix(const sss_camera_basis *basis, double z_near, double z_far, double m[16]);
 
 /* ---- Transforms ------------------------------------------------------------------------------ */
 
@@ -136,11 +136,11 @@ typedef struct sss_transform {
 /* Fills matrix and normal_matrix from translate, rotate, scale (which the caller set). Errors: zero
  * or non-finite axis, |scale| outside [SSS_SCENE_SCALE_MIN, SSS_SCENE_SCALE_MAX] or non-finite,
  * non-finite angle or translation. */
-sss_result sss_transform_update(sss_transform *t, sss_error *err);
-void sss_transform_identity(sss_transform *t);
-void sss_transform_point(const double m[16], const double p[3], double out[3]);
+SSS_API sss_result sss_transform_update(sss_transform *t, sss_error *err);
+SSS_API void sss_transform_identity(sss_transform *t);
+SSS_API void sss_transform_point(const double m[16], const double p[3], double out[3]);
 /* normal_matrix * n, normalised (a zero vector stays zero). */
-void sss_transform_normal(const double normal_matrix[9], const double n[3], double out[3]);
+SSS_API void sss_transform_normal(const double normal_matrix[9], const double n[3], double out[3]);
 
 /* ---- Animation (one definition for every renderer) -------------------------------------------- */
 
@@ -188,17 +188,17 @@ typedef struct sss_animation {
  *         phi_y = 2 rad(A) s h / H;
  *  wave:  a = (1, A (2 pi / W) cos(2 pi ((p.x - lo.x) / W + t / period)), 0), b = (0, 1, 0), c = (0, 0, 1).
  * The functions compute in double and store float. NONE copies p (and n). */
-void sss_animation_deform_point(const sss_animation *anim, const float bounds_min[3],
-                                const float bounds_max[3], double t, const float p[3], float out[3]);
-void sss_animation_deform_normal(const sss_animation *anim, const float bounds_min[3],
-                                 const float bounds_max[3], double t, const float p[3], const float n[3],
-                                 float out[3]);
+SSS_API void sss_animation_deform_point(const sss_animation *anim, const float bounds_min[3],
+                                        const float bounds_max[3], double t, const float p[3], float out[3]);
+SSS_API void sss_animation_deform_normal(const sss_animation *anim, const float bounds_min[3],
+                                         const float bounds_max[3], double t, const float p[3], const float n[3],
+                                         float out[3]);
 /* Validates an animation (known type, finite amplitude, finite period > 0). */
-sss_result sss_animation_validate(const sss_animation *anim, sss_error *err);
+SSS_API sss_result sss_animation_validate(const sss_animation *anim, sss_error *err);
 /* A deep copy of mesh with positions and normals deformed at time t (in the mesh's own space). */
-sss_result sss_animation_deform_mesh(const sss_animation *anim, const float bounds_min[3],
-                                     const float bounds_max[3], double t, const sss_mesh *mesh,
-                                     sss_mesh *out, sss_error *err);
+SSS_API sss_result sss_animation_deform_mesh(const sss_animation *anim, const float bounds_min[3],
+                                             const float bounds_max[3], double t, const sss_mesh *mesh,
+                                             sss_mesh *out, sss_error *err);
 
 /* ---- Materials -------------------------------------------------------------------------------- */
 
@@ -235,6 +235,8 @@ typedef struct sss_scene_material {
     sss_material optical;              /* resolved: per scene unit, scale applied; eta, g */
     const sss_pbd_table *table;        /* borrowed from the scene's cache, built for (eta, g) */
     sss_scene_profile profile;
+    sss_profile rd;                    /* resolved by the loader: R_d(r) of `optical` under `profile`
+                                        * (sss_scene_material_profile_model) and `table`, which it borrows */
     sss_artist_params artist;          /* ARTIST: s in scene units */
     char *texture;                     /* resolved path of `texture` (checked readable), or NULL */
     const sss_image *texture_image;    /* its decoded pixels in sss_scene.textures; NULL without a
@@ -245,7 +247,7 @@ typedef struct sss_scene_material {
 
 /* The sss_profile_model of a material's profile (ARTIST maps to PBD: the artist model lives in
  * sss_artist_params, evaluated by the techniques that accept it). */
-sss_profile_model sss_scene_material_profile_model(const sss_scene_material *m);
+SSS_API sss_profile_model sss_scene_material_profile_model(const sss_scene_material *m);
 
 /* ---- Objects ---------------------------------------------------------------------------------- */
 
@@ -286,22 +288,22 @@ typedef struct sss_scene_object {
 /* A world-space copy of the object's mesh at time t: the animation (object space, with the object's
  * bounds), then the transform (positions by matrix, normals by normal_matrix, winding flipped when
  * det M < 0). t is ignored without animation. */
-sss_result sss_scene_object_world_mesh(const sss_scene_object *obj, double t, sss_mesh *out,
-                                       sss_error *err);
+SSS_API sss_result sss_scene_object_world_mesh(const sss_scene_object *obj, double t, sss_mesh *out,
+                                               sss_error *err);
 /* The same for any mesh in the object's space (e.g. its splat mesh or a simplification of it). */
-sss_result sss_scene_object_pose_mesh(const sss_scene_object *obj, const sss_mesh *mesh, double t,
-                                      sss_mesh *out, sss_error *err);
+SSS_API sss_result sss_scene_object_pose_mesh(const sss_scene_object *obj, const sss_mesh *mesh, double t,
+                                              sss_mesh *out, sss_error *err);
 /* The box that holds the object's mesh (object space) at every time of its animation: its bounds,
  * padded by the twist's and bend's diagonal or the wave's amplitude. */
-void sss_scene_object_animated_bounds(const sss_scene_object *obj, float lo[3], float hi[3]);
+SSS_API void sss_scene_object_animated_bounds(const sss_scene_object *obj, float lo[3], float hi[3]);
 /* The largest |coordinate| of the object's world-space positions at any time (the animated box's
  * corners through the transform: exact bounds for an affine map); INFINITY when one is not finite.
  * The loader refuses objects beyond SSS_SCENE_MAX_WORLD_COORD: the real-time renderer works in
  * float, where products of larger coordinates (areas, depths) overflow to Inf and NaN. */
-double sss_scene_object_world_reach(const sss_scene_object *obj);
+SSS_API double sss_scene_object_world_reach(const sss_scene_object *obj);
 #define SSS_SCENE_MAX_WORLD_COORD 1e18
 /* A deep copy of a mesh (positions, normals, uvs, indices, source_flags). */
-sss_result sss_scene_mesh_copy(const sss_mesh *mesh, sss_mesh *out, sss_error *err);
+SSS_API sss_result sss_scene_mesh_copy(const sss_mesh *mesh, sss_mesh *out, sss_error *err);
 
 /* ---- Lights ----------------------------------------------------------------------------------- */
 
@@ -318,15 +320,22 @@ typedef struct sss_light {
     double position[3];  /* point, spot */
     double look_at[3];   /* spot (!= position) */
     double cone_angle, cone_delta; /* spot, degrees */
-    double intensity[3]; /* point, spot: W/sr, >= 0 */
+    double intensity[3]; /* point, spot: W/sr, 0..SSS_SCENE_MAX_LIGHT_VALUE */
     double direction[3]; /* directional: unit direction the light TRAVELS (normalised on load) */
-    double radiance[3];  /* directional (irradiance at normal incidence), area: >= 0 */
+    double radiance[3];  /* directional (irradiance at normal incidence), area: 0..SSS_SCENE_MAX_LIGHT_VALUE */
     double center[3], u[3], v[3]; /* area: half-extent vectors, non-zero and not parallel */
     int two_sided;       /* area, default 0: emits towards u x v only */
     char *file;          /* environment: resolved path */
-    double scale[3];     /* environment, default [1, 1, 1], >= 0 */
+    double scale[3];     /* environment, default [1, 1, 1], 0..SSS_SCENE_MAX_LIGHT_VALUE */
     double rotate_y;     /* environment, degrees, default 0 */
 } sss_light;
+
+/* The largest intensity, radiance or environment scale (per channel) the loader accepts; positions,
+ * look_at and area extents must be within the float range. The real-time renderer carries lights in
+ * float (at most 3.4e38) and multiplies them by 1/r^2, the profiles and the sum over lights: 3e38 already
+ * overflowed to NaN with a light 0.02 units from a surface; 1e30 leaves a factor 3.4e8 (a light 1e-4
+ * units away). docs/limits.md. */
+#define SSS_SCENE_MAX_LIGHT_VALUE 1e30
 
 /* ---- The scene -------------------------------------------------------------------------------- */
 
@@ -356,6 +365,10 @@ typedef struct sss_scene {
     size_t table_count;
     sss_scene_texture *textures; /* one per distinct texture file (empty with SSS_SCENE_SKIP_MESHES) */
     size_t texture_count;
+    char **files;    /* a glTF asset loaded as a scene: the files it is made of (sss_gltf_scene.files:
+                      * the asset, its external buffers and images); empty for a scene file, whose
+                      * files are name and the paths of its objects and lights */
+    size_t file_count;
 } sss_scene;
 
 /* Flags of sss_scene_load_desc. */
@@ -368,28 +381,28 @@ typedef struct sss_scene_load_desc {
 
 /* Loads a scene file. desc may be NULL (defaults). On failure *scene is left empty (zeroed) and err
  * names the file, the JSON path and the problem. Release with sss_scene_free. */
-sss_result sss_scene_load(const char *path, const sss_scene_load_desc *desc, sss_scene *scene,
-                          sss_error *err);
+SSS_API sss_result sss_scene_load(const char *path, const sss_scene_load_desc *desc, sss_scene *scene,
+                                  sss_error *err);
 /* The same from memory (size bytes; need not be NUL-terminated). base_dir: folder for relative paths
  * (NULL = "."); name: used in messages (NULL = "scene"). */
-sss_result sss_scene_parse(const char *json_text, size_t size, const char *base_dir, const char *name,
-                           const sss_scene_load_desc *desc, sss_scene *scene, sss_error *err);
-void sss_scene_free(sss_scene *scene);
+SSS_API sss_result sss_scene_parse(const char *json_text, size_t size, const char *base_dir, const char *name,
+                                   const sss_scene_load_desc *desc, sss_scene *scene, sss_error *err);
+SSS_API void sss_scene_free(sss_scene *scene);
 /* Replaces lights[index] of a loaded scene with one light given as JSON text (an element of the scene
  * file's "lights" array), checked as sss_scene_load checks it; messages read "<scene name>:
  * lights[index].<field>: ...". The light must keep its type, and an environment light its file (what a
  * renderer's sss_gl_renderer_update_lights can take over; "file" may be left out, and lights[index].file
  * stays the same pointer). On any error the scene is unchanged. */
-sss_result sss_scene_set_light(sss_scene *scene, size_t index, const char *json_text, size_t size, sss_error *err);
+SSS_API sss_result sss_scene_set_light(sss_scene *scene, size_t index, const char *json_text, size_t size,
+                                     sss_error *err);
 
 /* The cached table for (eta, g), or NULL. */
-const sss_pbd_table *sss_scene_find_table(const sss_scene *scene, double eta, double g);
+SSS_API const sss_pbd_table *sss_scene_find_table(const sss_scene *scene, double eta, double g);
 
-/* Short names for messages and tools: "twist", "sphere", "point", "pbd", ... */
-const char *sss_animation_type_name(sss_animation_type type);
-const char *sss_shape_name(sss_shape shape);
-const char *sss_light_type_name(sss_light_type type);
-const char *sss_scene_profile_name(sss_scene_profile profile);
+/* Short names for messages and tools: "twist", "point", "pbd", ... */
+SSS_API const char *sss_animation_type_name(sss_animation_type type);
+SSS_API const char *sss_light_type_name(sss_light_type type);
+SSS_API const char *sss_scene_profile_name(sss_scene_profile profile);
 
 #ifdef __cplusplus
 }

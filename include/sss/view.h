@@ -54,10 +54,10 @@ typedef struct sss_view_desc {
 
 /* Runs the viewer. Errors: the scene (named by its file), no display (the message suggests
  * `sss render`), the GL context or technique, the screenshot file. */
-sss_result sss_view_run(const sss_view_desc *desc, sss_error *err);
+SSS_API sss_result sss_view_run(const sss_view_desc *desc, sss_error *err);
 
 /* The key and mouse bindings as text (one binding per line), for help screens. */
-const char *sss_view_help_text(void);
+SSS_API const char *sss_view_help_text(void);
 
 #ifdef __cplusplus
 }

@@ -15,10 +15,10 @@ import os as _os
 
 from . import _sss
 from ._sss import (Error, compare, kernel, lut, media, read_image, reference, shared_params, techniques,
-                   version, write_image)
+                   to_srgb, version, write_image)
 
 __all__ = ["Error", "Scene", "Renderer", "render", "reference", "compare", "profile", "lut", "kernel",
-           "techniques", "shared_params", "media", "read_image", "write_image", "version"]
+           "techniques", "shared_params", "media", "read_image", "write_image", "to_srgb", "version"]
 
 
 class Scene(_sss.Scene):

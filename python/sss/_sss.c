@@ -8,6 +8,7 @@
 #define SSS_PYTHON_IMPORT_ARRAY
 #include "_sss.h"
 
+#include <math.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -210,39 +211,76 @@ static PyObject *metrics_dict(const sss_image_metrics *m)
     return d;
 }
 
+/* Adds a map (an image allocated by the library) to d under key; d is cleared on failure. */
+static PyObject *add_map(PyObject *d, const char *key, sss_image *map)
+{
+    if (!d) {
+        sss_image_free(map);
+        return NULL;
+    }
+    PyObject *arr = sss_py_array_from_image(map);
+    if (!arr || PyDict_SetItemString(d, key, arr) != 0) Py_CLEAR(d);
+    Py_XDECREF(arr);
+    return d;
+}
+
 static PyObject *py_compare(PyObject *self, PyObject *args, PyObject *kwargs)
 {
-    static char *kwlist[] = {"a", "b", "exposure", "dssim_map", NULL};
+    static char *kwlist[] = {"a", "b", "exposure", "dssim_map", "flip_map", NULL};
     PyObject *a_obj, *b_obj;
     double exposure = 0.0;
-    int want_map = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OO|dp:compare", kwlist, &a_obj, &b_obj, &exposure, &want_map))
+    int want_dssim = 0, want_flip = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OO|dpp:compare", kwlist, &a_obj, &b_obj, &exposure, &want_dssim,
+                                     &want_flip))
         return NULL;
     PyArrayObject *keep_a = NULL, *keep_b = NULL;
-    sss_image a, b, map = {0};
+    sss_image a, b, dssim = {0}, flip = {0};
     if (!sss_py_image_view(a_obj, "compare: a", &keep_a, &a)) return NULL;
     if (!sss_py_image_view(b_obj, "compare: b", &keep_b, &b)) {
         Py_DECREF(keep_a);
         return NULL;
     }
+    if (a.width != b.width || a.height != b.height) { /* numpy's shapes, height first */
+        Py_DECREF(keep_a);
+        Py_DECREF(keep_b);
+        return sss_py_raisef(SSS_ERROR_INVALID_ARGUMENT, "compare: the shapes differ: a is (%d, %d, 3), b is (%d, %d, 3)",
+                             a.height, a.width, b.height, b.width);
+    }
     sss_image_metrics m;
     sss_error err = {0};
     sss_result res;
     Py_BEGIN_ALLOW_THREADS
-    res = sss_image_compare(&a, &b, exposure, &m, want_map ? &map : NULL, &err);
+    res = sss_image_compare_maps(&a, &b, exposure, &m, want_dssim ? &dssim : NULL, want_flip ? &flip : NULL, &err);
     Py_END_ALLOW_THREADS
     Py_DECREF(keep_a);
     Py_DECREF(keep_b);
     if (res != SSS_OK) return sss_py_raise(&err);
     PyObject *d = metrics_dict(&m);
-    if (!want_map || !d) {
-        sss_image_free(&map);
-        return d;
-    }
-    PyObject *map_arr = sss_py_array_from_image(&map);
-    if (!map_arr || PyDict_SetItemString(d, "dssim_map", map_arr) != 0) Py_CLEAR(d);
-    Py_XDECREF(map_arr);
+    if (want_dssim) d = add_map(d, "dssim_map", &dssim);
+    if (want_flip) d = add_map(d, "flip_map", &flip);
     return d;
+}
+
+/* The 8-bit sRGB image the metrics compare (and PNGs hold): uint8 H x W x 3. */
+static PyObject *py_to_srgb(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    static char *kwlist[] = {"image", "exposure", NULL};
+    PyObject *obj;
+    double exposure = 0.0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O|d:to_srgb", kwlist, &obj, &exposure)) return NULL;
+    if (!isfinite(exposure)) return sss_py_raisef(SSS_ERROR_INVALID_ARGUMENT, "to_srgb: exposure %g is not finite", exposure);
+    PyArrayObject *keep = NULL;
+    sss_image img;
+    if (!sss_py_image_view(obj, "to_srgb: image", &keep, &img)) return NULL;
+    npy_intp dims[3] = {img.height, img.width, 3};
+    PyObject *out = PyArray_SimpleNew(3, dims, NPY_UINT8);
+    if (out) {
+        Py_BEGIN_ALLOW_THREADS
+        sss_image_to_srgb8(&img, exposure, (uint8_t *)PyArray_DATA((PyArrayObject *)out));
+        Py_END_ALLOW_THREADS
+    }
+    Py_DECREF(keep);
+    return out;
 }
 
 /* ---- Techniques ------------------------------------------------------------------------------- */
@@ -305,7 +343,9 @@ static PyMethodDef module_methods[] = {
     {"write_image", (PyCFunction)(void (*)(void))py_write_image, METH_VARARGS | METH_KEYWORDS,
      "write_image(path, image, exposure=0.0, half=False)"},
     {"compare", (PyCFunction)(void (*)(void))py_compare, METH_VARARGS | METH_KEYWORDS,
-     "compare(a, b, exposure=0.0, dssim_map=False) -> dict of metrics"},
+     "compare(a, b, exposure=0.0, dssim_map=False, flip_map=False) -> dict of metrics (and the maps asked for)"},
+    {"to_srgb", (PyCFunction)(void (*)(void))py_to_srgb, METH_VARARGS | METH_KEYWORDS,
+     "to_srgb(image, exposure=0.0) -> uint8 H x W x 3: the 8-bit sRGB image the metrics compare and PNGs hold"},
     {"techniques", py_techniques, METH_NOARGS, "techniques() -> list of dicts with their parameter tables"},
     {"shared_params", py_shared_params, METH_NOARGS, "shared_params() -> parameters every technique accepts"},
     {"media", py_media, METH_NOARGS, "media() -> names of the measured media"},

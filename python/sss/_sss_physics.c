@@ -9,19 +9,11 @@
 
 #define DEFAULT_ETA 1.33 /* the CLI's default */
 
-typedef struct medium_profile {
-    sss_material material;
-    sss_pbd_table *table; /* PBD only */
-    sss_profile profile;
-} medium_profile;
+typedef sss_medium_profile medium_profile;
 
-static void medium_profile_free(medium_profile *mp)
-{
-    free(mp->table);
-    mp->table = NULL;
-}
+static void medium_profile_free(medium_profile *mp) { sss_medium_profile_free(mp); }
 
-/* A measured medium's profile under model "pbd" or "dipole" (the CLI's cli_medium_profile_init). */
+/* A measured medium's profile under model "pbd" or "dipole" (as the CLI's). */
 static sss_result medium_profile_init(const char *medium, double scale, double eta, const char *model,
                                       medium_profile *out, sss_error *err)
 {
@@ -30,16 +22,7 @@ static sss_result medium_profile_init(const char *medium, double scale, double e
     if (strcmp(model, "pbd") == 0) m = SSS_PROFILE_PBD;
     else if (strcmp(model, "dipole") == 0) m = SSS_PROFILE_DIPOLE;
     else return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "model must be \"pbd\" or \"dipole\", got \"%s\"", model);
-    sss_result res = sss_material_from_medium(medium, scale, eta, &out->material, err);
-    if (res != SSS_OK) return res;
-    if (m == SSS_PROFILE_PBD) {
-        if (!(out->table = malloc(sizeof *out->table)))
-            return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory for the PBD table");
-        res = sss_pbd_table_build(out->material.eta, out->material.g, out->table, err);
-    }
-    if (res == SSS_OK) res = sss_profile_init(&out->profile, m, &out->material, out->table, err);
-    if (res != SSS_OK) medium_profile_free(out);
-    return res;
+    return sss_medium_profile_init(out, medium, scale, eta, m, err);
 }
 
 /* The profile built with the GIL released (a PBD table takes a while). */
@@ -178,8 +161,7 @@ static PyObject *medium_kernel(const kernel_args *a)
         sss_svd_kernel k;
         memset(&k, 0, sizeof k);
         Py_BEGIN_ALLOW_THREADS
-        if (!(extent > 0.0)) /* the CLI's default: where 99.9% of the widest channel lies */
-            for (int c = 0; c < 3; c++) extent = fmax(extent, sss_profile_radius_for_fraction(&mp.profile, c, 0.999));
+        if (!(extent > 0.0)) extent = sss_profile_reach(&mp.profile, 0.999); /* the CLI's default */
         res = sss_kernel_svd(&mp.profile, a->grid, extent, a->rank, &k, &err);
         Py_END_ALLOW_THREADS
         out = res == SSS_OK ? svd_dict(&k) : sss_py_raise(&err);

@@ -504,15 +504,16 @@ PyTypeObject sss_py_renderer_type = {
 static PyObject *py_reference(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     static char *kwlist[] = {"scene", "quality", "bounces", "threads", "time", "seed", "spp",
-                             "density", "specular", "exact", NULL};
+                             "density", "specular", "exact", "width", "height", NULL};
     PyObject *scene_obj;
     const char *quality = "final";
     unsigned long long seed = 0;
+    int width = 0, height = 0;
     sss_reference_desc desc;
     memset(&desc, 0, sizeof desc);
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O!|siidKidpp:reference", kwlist, &sss_py_scene_type, &scene_obj,
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O!|siidKidppii:reference", kwlist, &sss_py_scene_type, &scene_obj,
                                      &quality, &desc.bounces, &desc.threads, &desc.time, &seed, &desc.spp,
-                                     &desc.density, &desc.specular, &desc.exact))
+                                     &desc.density, &desc.specular, &desc.exact, &width, &height))
         return NULL;
     desc.seed = seed;
     if (strcmp(quality, "final") == 0) desc.quality = SSS_REFERENCE_FINAL;
@@ -521,13 +522,20 @@ static PyObject *py_reference(PyObject *self, PyObject *args, PyObject *kwargs)
     /* The CLI's ranges (0: the default); the library checks the rest. */
     if (desc.threads > 4096 || desc.spp > 4096 || desc.density > 1024.0)
         return sss_py_raisef(SSS_ERROR_INVALID_ARGUMENT, "reference: threads and spp must be <= 4096, density <= 1024");
+    if (width < 0 || height < 0)
+        return sss_py_raisef(SSS_ERROR_INVALID_ARGUMENT, "reference: width and height must be >= 1 (0: the camera's)");
     scene_object *scene = (scene_object *)scene_obj;
+    /* Another size renders a shallow copy of the scene with its camera resized, as `sss reference --width`. */
+    sss_scene sized = scene->scene;
+    if (width) sized.camera.width = width;
+    if (height) sized.camera.height = height;
     sss_image img = {0};
     sss_error err = {0};
-    sss_result res;
+    sss_result res = sss_camera_basis_init(&sized.camera, &sized.basis, &err);
+    if (res != SSS_OK) return sss_py_raise(&err);
     scene->busy++;
     Py_BEGIN_ALLOW_THREADS
-    res = sss_reference_render(&scene->scene, &desc, &img, NULL, NULL, NULL, &err);
+    res = sss_reference_render(&sized, &desc, &img, NULL, NULL, NULL, &err);
     if (res == SSS_OK && sss_image_count_nonfinite(&img) != 0)
         res = sss_error_set(&err, SSS_ERROR_NUMERIC, "%s: the reference image has NaN or Inf values", scene->scene.name);
     Py_END_ALLOW_THREADS
@@ -542,5 +550,6 @@ static PyObject *py_reference(PyObject *self, PyObject *args, PyObject *kwargs)
 PyMethodDef sss_py_render_methods[] = {
     {"reference", (PyCFunction)(void (*)(void))py_reference, METH_VARARGS | METH_KEYWORDS,
      "reference(scene, quality='final', bounces=0, threads=0, time=0.0, seed=0, spp=0, density=0.0, "
-     "specular=False, exact=False) -> float32 H x W x 3 linear RGB (the CPU ground truth)"},
+     "specular=False, exact=False, width=0, height=0) -> float32 H x W x 3 linear RGB (the CPU ground truth; "
+     "width/height 0: the camera's)"},
     {NULL, NULL, 0, NULL}};

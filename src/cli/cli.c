@@ -11,6 +11,7 @@
 
 #include "core/file_util.h"
 #include "core/text.h"
+#include "scene/scene_files.h"
 #include "sss/gl.h"
 #include "sss/scene.h"
 
@@ -71,39 +72,16 @@ int cli_failf(const char *cmd, const char *fmt, ...)
     return CLI_EXIT_ERROR;
 }
 
-/* The files a scene reads, after the given inputs: a new array (free it), NULL when out of memory. */
-static const char **input_list(const char *const *inputs, size_t input_count, const sss_scene *scene, size_t *count)
-{
-    size_t n = input_count;
-    if (scene) n += 1 + 3 * scene->object_count + scene->light_count;
-    const char **list = malloc((n ? n : 1) * sizeof *list);
-    if (!list) return NULL;
-    size_t k = 0;
-    for (size_t i = 0; i < input_count; i++) list[k++] = inputs[i];
-    if (scene) {
-        list[k++] = scene->name;
-        for (size_t i = 0; i < scene->object_count; i++) {
-            list[k++] = scene->objects[i].mesh_path;
-            list[k++] = scene->objects[i].splat_mesh_path;
-            list[k++] = scene->objects[i].material.texture;
-        }
-        for (size_t i = 0; i < scene->light_count; i++) list[k++] = scene->lights[i].file;
-    }
-    *count = k;
-    return list;
-}
-
 int cli_check_outputs(const char *cmd, const char *const *outputs, size_t output_count, const char *const *inputs,
                       size_t input_count, const sss_scene *scene)
 {
-    size_t n = 0;
-    const char **list = input_list(inputs, input_count, scene, &n);
-    if (!list) return cli_failf(cmd, "out of memory");
+    sss_io_set io = {0};
+    for (size_t i = 0; i < input_count; i++) sss_io_add_input(&io, inputs[i]);
+    if (scene) scene_add_inputs(&io, scene);
+    for (size_t i = 0; i < output_count; i++) sss_io_add_output(&io, outputs[i]);
     sss_error err = {0};
-    sss_result r = SSS_OK;
-    for (size_t i = 0; i < output_count && r == SSS_OK; i++)
-        r = sss_check_output_not_input(outputs[i], list, n, &err);
-    free(list);
+    sss_result r = sss_io_check(&io, &err);
+    sss_io_free(&io);
     return r == SSS_OK ? CLI_EXIT_OK : cli_fail(cmd, &err);
 }
 
@@ -235,56 +213,33 @@ int cli_medium_profile_init(const char *cmd, const char *medium, double scale, d
                             cli_medium_profile *out)
 {
     sss_error err = {0};
-    memset(out, 0, sizeof *out);
-    if (sss_material_from_medium(medium, scale, eta, &out->material, &err) != SSS_OK) return cli_fail(cmd, &err);
     sss_profile_model m = strcmp(model, "dipole") == 0 ? SSS_PROFILE_DIPOLE : SSS_PROFILE_PBD;
-    if (m == SSS_PROFILE_PBD) {
-        out->table = malloc(sizeof *out->table);
-        if (!out->table) return cli_failf(cmd, "out of memory for the PBD table");
-        if (sss_pbd_table_build(out->material.eta, out->material.g, out->table, &err) != SSS_OK) {
-            cli_medium_profile_free(out);
-            return cli_fail(cmd, &err);
-        }
-    }
-    if (sss_profile_init(&out->profile, m, &out->material, out->table, &err) != SSS_OK) {
-        cli_medium_profile_free(out);
-        return cli_fail(cmd, &err);
-    }
+    if (sss_medium_profile_init(out, medium, scale, eta, m, &err) != SSS_OK) return cli_fail(cmd, &err);
     return CLI_EXIT_OK;
 }
 
-void cli_medium_profile_free(cli_medium_profile *mp)
-{
-    free(mp->table);
-    mp->table = NULL;
-}
+void cli_medium_profile_free(cli_medium_profile *mp) { sss_medium_profile_free(mp); }
 
 /* ---- Option tables ------------------------------------------------------------------------------- */
 
+const char CLI_REQUIRED[] = "required";
+
 /* The options every command takes (ids below every command's own). */
 enum { COMMON_QUIET = -100, COMMON_PROGRESS, COMMON_HELP };
-static const cli_option common_options[] = {
-    {COMMON_QUIET, "--quiet", "-q", CLI_ARG_NONE, NULL, "no progress, notes or warnings on stderr (errors still)", NULL},
+const cli_option cli_common_options[CLI_COMMON_OPTION_COUNT] = {
+    {COMMON_QUIET, "--quiet", "-q", CLI_ARG_NONE, NULL, "no progress, notes or warnings on stderr (errors still)", NULL,
+     NULL},
     {COMMON_PROGRESS, "--progress", NULL, CLI_ARG_NONE, NULL,
-     "progress on stderr also when it is not a terminal (long commands)", NULL},
-    {COMMON_HELP, "--help", "-h", CLI_ARG_NONE, NULL, "this help", NULL},
+     "progress on stderr also when it is not a terminal (long commands)", NULL, NULL},
+    {COMMON_HELP, "--help", "-h", CLI_ARG_NONE, NULL, "this help", NULL, NULL},
 };
-
-void cli_parser_init(cli_parser *p, const cli_command_spec *spec, int argc, char **argv, int first)
-{
-    memset(p, 0, sizeof *p);
-    p->spec = spec;
-    p->argc = argc;
-    p->argv = argv;
-    p->next = first;
-}
 
 /* The option named by arg (its first name_len bytes), from the command's table or the common one. */
 static const cli_option *find_option(const cli_command_spec *spec, const char *arg, size_t name_len)
 {
     for (int t = 0; t < 2; t++) {
-        const cli_option *table = t == 0 ? spec->options : common_options;
-        int n = t == 0 ? spec->option_count : CLI_COUNT(common_options);
+        const cli_option *table = t == 0 ? spec->options : cli_common_options;
+        int n = t == 0 ? spec->option_count : CLI_COMMON_OPTION_COUNT;
         for (int k = 0; k < n; k++) {
             const char *names[2] = {table[k].name, table[k].short_name};
             for (int j = 0; j < 2; j++)
@@ -295,90 +250,61 @@ static const cli_option *find_option(const cli_command_spec *spec, const char *a
     return NULL;
 }
 
-static int unknown_option(const cli_parser *p, const char *arg)
+static int unknown_option(const cli_command_spec *spec, const char *arg)
 {
     const char *names[256];
     int n = 0;
-    for (int k = 0; k < p->spec->option_count && n < 250; k++) names[n++] = p->spec->options[k].name;
-    for (int k = 0; k < CLI_COUNT(common_options); k++) names[n++] = common_options[k].name;
+    for (int k = 0; k < spec->option_count && n < 250; k++) names[n++] = spec->options[k].name;
+    for (int k = 0; k < CLI_COMMON_OPTION_COUNT; k++) names[n++] = cli_common_options[k].name;
     char word[128];
     snprintf(word, sizeof word, "%.*s", (int)strcspn(arg, "="), arg);
-    return cli_unknown(p->spec->name, "option", word, names, n);
+    return cli_unknown(spec->name, "option", word, names, n);
 }
 
-int cli_next(cli_parser *p)
+/* One option argv[*next - 1] = a (its value, when it takes one, "--name=value" or the next argument)
+ * handed to set; the common ones kept in *common. */
+static int parse_option(const cli_command_spec *spec, int argc, char **argv, int *next, const char *a,
+                        cli_setter set, void *opts, cli_common *common)
 {
-    for (;;) {
-        if (p->next >= p->argc) return CLI_DONE;
-        const char *a = p->argv[p->next++];
-        p->given = a;
-        p->value = NULL;
-        if (!p->operands_only && strcmp(a, "--") == 0) {
-            p->operands_only = 1;
-            continue;
-        }
-        if (p->operands_only || a[0] != '-' || a[1] == '\0') {
-            p->value = a;
-            return CLI_OPERAND;
-        }
-        const char *eq = strncmp(a, "--", 2) == 0 ? strchr(a, '=') : NULL;
-        const cli_option *o = find_option(p->spec, a, eq ? (size_t)(eq - a) : strlen(a));
-        if (!o) {
-            unknown_option(p, a);
-            return CLI_BAD;
-        }
-        p->given = a[1] == '-' ? o->name : o->short_name; /* as written, without "=value" */
-        if (o->arg == CLI_ARG_NONE) {
-            if (eq) {
-                cli_usage_error(p->spec->name, "%s takes no value", o->name);
-                return CLI_BAD;
-            }
-        } else if (eq) {
-            p->value = eq + 1;
-        } else if (p->next < p->argc) {
-            p->value = p->argv[p->next++];
-        } else {
-            cli_usage_error(p->spec->name, "%s needs a value%s%s", a, o->meta ? " " : "", o->meta ? o->meta : "");
-            return CLI_BAD;
-        }
-        if (o->id == COMMON_QUIET) p->quiet = 1;
-        else if (o->id == COMMON_PROGRESS) p->progress = 1;
-        else if (o->id != COMMON_HELP) return o->id;
+    const char *eq = strncmp(a, "--", 2) == 0 ? strchr(a, '=') : NULL;
+    const cli_option *o = find_option(spec, a, eq ? (size_t)(eq - a) : strlen(a));
+    if (!o) return unknown_option(spec, a);
+    const char *given = a[1] == '-' ? o->name : o->short_name; /* as written, without "=value" */
+    const char *value = NULL;
+    if (o->arg == CLI_ARG_NONE) {
+        if (eq) return cli_usage_error(spec->name, "%s takes no value", o->name);
+    } else if (eq) {
+        value = eq + 1;
+    } else if (*next < argc) {
+        value = argv[(*next)++];
+    } else {
+        return cli_usage_error(spec->name, "%s needs a value%s%s", a, o->meta ? " " : "", o->meta ? o->meta : "");
     }
+    if (o->id == COMMON_QUIET) common->quiet = 1;
+    else if (o->id == COMMON_PROGRESS) common->progress = 1;
+    else if (o->id != COMMON_HELP) return set(opts, o->id, given, value);
+    return CLI_EXIT_OK;
 }
 
-int cli_show_progress(const cli_parser *p)
+int cli_parse(const cli_command_spec *spec, int argc, char **argv, int first, cli_setter set, void *opts,
+              cli_common *common)
 {
-    return !p->quiet && (p->progress || isatty(fileno(stderr)));
-}
-
-#define HELP_COLUMN 24
-
-static void print_option(FILE *f, const cli_option *o)
-{
-    char head[128];
-    int n = snprintf(head, sizeof head, "  %s%s%s%s%s", o->short_name ? o->short_name : "", o->short_name ? ", " : "",
-                     o->name, o->meta ? " " : "", o->meta ? o->meta : "");
-    fputs(head, f);
-    const char *line = o->help;
-    if (n + 1 > HELP_COLUMN) {
-        fputc('\n', f);
-        n = 0;
+    cli_common dropped = {0};
+    if (!common) common = &dropped;
+    memset(common, 0, sizeof *common);
+    int operands_only = 0, status = CLI_EXIT_OK;
+    for (int next = first; next < argc && status == CLI_EXIT_OK;) {
+        const char *a = argv[next++];
+        if (!operands_only && strcmp(a, "--") == 0) operands_only = 1;
+        else if (operands_only || a[0] != '-' || a[1] == '\0') status = set(opts, CLI_OPERAND, a, a);
+        else status = parse_option(spec, argc, argv, &next, a, set, opts, common);
     }
-    for (int first = 1; *line; first = 0) {
-        size_t len = strcspn(line, "\n");
-        fprintf(f, "%*s%.*s\n", (first ? HELP_COLUMN - n : HELP_COLUMN), "", (int)len, line);
-        line += len;
-        if (*line == '\n') line++;
-    }
+    return status;
 }
 
-void cli_print_options(FILE *f, const cli_command_spec *spec)
+int cli_show_progress(const cli_common *common)
 {
-    fprintf(f, "options:\n");
-    for (int k = 0; k < spec->option_count; k++)
-        if (spec->options[k].help) print_option(f, &spec->options[k]);
-    for (int k = 0; k < CLI_COUNT(common_options); k++) print_option(f, &common_options[k]);
+    return !common->quiet && (common->progress || isatty(fileno(stderr)));
 }
 
 const char *cli_suggest(const char *word, const char *const *candidates, int count)
@@ -435,10 +361,10 @@ int cli_check_technique(const char *cmd, const char *name)
     return cli_failf(cmd, "unknown technique '%s' (known: %s)", name, known);
 }
 
-void cli_progress_init(cli_progress *pr, const cli_parser *p)
+void cli_progress_init(cli_progress *pr, const cli_common *common)
 {
     memset(pr, 0, sizeof *pr);
-    pr->active = cli_show_progress(p);
+    pr->active = cli_show_progress(common);
     pr->tty = isatty(fileno(stderr));
     pr->last_percent = -1;
     pr->start = sss_time_seconds();

@@ -13,9 +13,15 @@ enum { CLI_EXIT_OK = 0, CLI_EXIT_ERROR = 1, CLI_EXIT_USAGE = 2 };
 
 /* ---- Option tables -------------------------------------------------------------------------------
  * Every command declares its options in a table (cli_option) inside a cli_command_spec: the parser
- * (cli_next), the options part of --help (cli_print_options), the "did you mean" of unknown options
- * and `sss completion bash` all read the same tables. -q/--quiet, --progress and -h/--help are
- * common to every command and handled by the parser. */
+ * (cli_parse), --help (cli_print_help: the synopsis and one line per option), the "did you mean" of
+ * unknown options and `sss completion bash` all read the same tables. -q/--quiet, --progress and
+ * -h/--help are common to every command and handled by the parser.
+ * A command is three steps: parse (argv -> its options struct, values and their combinations
+ * checked; usage errors exit 2), run (options -> the work, an exit code), and the entry point
+ * sss_cmd_NAME that chains them. A new command: a file cmd_NAME.c here with its option table, its spec
+ * (operands, about, notes), an options struct, a setter for cli_parse, NAME_parse, NAME_run and
+ * sss_cmd_NAME; an entry in main.c's commands[]. --help, `sss help NAME`, the option suggestions and
+ * the completion follow from the table. */
 
 /* What an option's value is: the parser only takes it; the command parses numbers and checks ranges
  * (its messages name its limits). The kind picks what completion offers. */
@@ -29,14 +35,20 @@ typedef enum cli_arg {
     CLI_ARG_MEDIUM     /* a measured medium's name */
 } cli_arg;
 
+/* The def of an option without which the command does not run: the synopsis shows it without
+ * brackets, --help says "(required)". */
+extern const char CLI_REQUIRED[];
+
 typedef struct cli_option {
-    int id;                 /* what cli_next returns; aliases share the id of the option they stand for */
+    int id;                 /* what the parser hands on; aliases share the id of the option they stand for */
     const char *name;       /* "--width" */
     const char *short_name; /* "-o", or NULL */
     cli_arg arg;
     const char *meta;       /* the value's name in --help ("W"); NULL for flags */
     const char *help;       /* one or more lines ('\n'); NULL hides the option from --help */
     const char *choices;    /* values offered by completion, space-separated ("draft final"), or NULL */
+    const char *def;        /* the default as --help shows it ("1.33", "the scene camera's"), CLI_REQUIRED,
+                             * or NULL; the command's parse starts from the same value */
 } cli_option;
 
 typedef struct cli_command_spec {
@@ -45,6 +57,10 @@ typedef struct cli_command_spec {
     int option_count;
     cli_arg positional;     /* what the operands are, for completion (CLI_ARG_NONE: none) */
     const char *subcommands; /* space-separated words after the command ("info simplify convert"), or NULL */
+    const char *operands;   /* the operands in the synopsis ("SCENE.json", "A B"), or NULL */
+    const char *about;      /* --help's text between the synopsis and the options, or NULL */
+    const char *notes;      /* --help's text after the options (exit status, ...), or NULL */
+    void (*print_more)(FILE *f); /* text computed at run time after the notes (view's keys), or NULL */
 } cli_command_spec;
 
 /* A macro's value as a string literal, for limits in help texts: CLI_STR(SSS_ETA_MAX) is "2.5". */
@@ -52,31 +68,41 @@ typedef struct cli_command_spec {
 #define CLI_STR(x) CLI_STR_(x)
 #define CLI_COUNT(array) ((int)(sizeof(array) / sizeof((array)[0])))
 
-/* cli_next's results besides an option's id (ids are >= 0). */
-enum { CLI_DONE = -1, CLI_OPERAND = -2, CLI_BAD = -3 };
+/* The common options' state: -q/--quiet, --progress. */
+typedef struct cli_common {
+    int quiet, progress;
+} cli_common;
 
-typedef struct cli_parser {
-    const cli_command_spec *spec;
-    int argc;
-    char **argv;
-    int next;          /* index of the next argument */
-    const char *value; /* the option's value, or the operand */
-    const char *given; /* the option's name as written ("-o", "--width"; no "=value"), for messages */
-    int quiet, progress; /* the common options */
-    int operands_only;   /* after "--" */
-} cli_parser;
+/* The common options' table (cli.c), listed last in every --help. */
+#define CLI_COMMON_OPTION_COUNT 3
+extern const cli_option cli_common_options[CLI_COMMON_OPTION_COUNT];
 
-/* Starts parsing argv[first..argc-1] against spec. */
-void cli_parser_init(cli_parser *p, const cli_command_spec *spec, int argc, char **argv, int first);
-/* The next option's id (p->value holds its value, "--name=value" too), CLI_OPERAND (p->value is the
- * operand), CLI_DONE, or CLI_BAD after printing a usage error (unknown option, with a suggestion
- * when one is close; missing value). After "--" everything is an operand. */
-int cli_next(cli_parser *p);
+/* What cli_parse hands to a command's setter besides an option's id (ids are >= 0). */
+enum { CLI_OPERAND = -2 };
+
+/* A command's setter: stores one option (id, its name as written "-o"/"--width", its value; NULL for
+ * a flag) or operand (id CLI_OPERAND, the operand as value) in the options struct opts, checking the
+ * value. Returns CLI_EXIT_OK, or the exit code after printing the error (a usage error: 2). */
+typedef int (*cli_setter)(void *opts, int id, const char *given, const char *value);
+
+/* Parses argv[first..argc-1] against spec, in order, through set; the common options go to *common
+ * (NULL: dropped). "--name=value" is accepted; after "--" everything is an operand. Unknown options
+ * (with a suggestion when one is close), missing values and values given to flags are usage errors.
+ * Returns CLI_EXIT_OK or the first failure's exit code (its message printed). */
+int cli_parse(const cli_command_spec *spec, int argc, char **argv, int first, cli_setter set, void *opts,
+              cli_common *common);
 /* Whether to draw progress on stderr: never with --quiet; with --progress, or when stderr is a terminal. */
-int cli_show_progress(const cli_parser *p);
+int cli_show_progress(const cli_common *common);
 
-/* The "options:" part of a command's --help, from its table and the common options. */
-void cli_print_options(FILE *f, const cli_command_spec *spec);
+/* ---- Help ------------------------------------------------------------------------------------------
+ * Generated from the tables (cli_help.c): "usage:" with one synopsis line per spec of the command (its
+ * operands, then every option of its table: required ones bare, the others in brackets), each spec's
+ * about, the "options:" (one entry per option: names, value name, doc, default; the common options
+ * last), the media when the operand is one, each spec's notes and print_more. */
+struct cli_command_entry;
+void cli_print_help(FILE *f, const struct cli_command_entry *command);
+/* The command named name ("render"), or NULL. */
+const struct cli_command_entry *cli_find_command(const char *name);
 
 /* The candidate closest to word (edit distance, or word is the start of exactly one candidate),
  * NULL when none is close enough to be a likely typo. */
@@ -96,7 +122,7 @@ typedef struct cli_progress {
     int active, tty, last_percent, drawn;
     double start;
 } cli_progress;
-void cli_progress_init(cli_progress *pr, const cli_parser *p);
+void cli_progress_init(cli_progress *pr, const cli_common *common);
 void cli_progress_update(cli_progress *pr, double fraction, const char *stage);
 /* Ends the bar's line (a terminal), so that what follows starts on a new line. */
 void cli_progress_end(cli_progress *pr);
@@ -156,15 +182,17 @@ int cli_failf(const char *cmd, const char *fmt, ...)
 #endif
     ;
 
-/* Refuses an output that is the same file as an input (device and inode: other spellings and hard
- * links too) before any work: the inputs given (NULL entries skipped) and, when scene is not NULL,
- * every file the scene reads (itself, meshes, textures, environment maps). Outputs that are NULL are
- * skipped. Prints the error as cmd's and returns CLI_EXIT_ERROR, else CLI_EXIT_OK. */
+/* A command's file set checked before any work (core/file_util.h sss_io_check): refuses an output
+ * that is the same file as an input (device and inode: other spellings and hard links too) or as
+ * another output. Inputs: those given (NULL entries skipped) and, when scene is not NULL, every file
+ * the scene reads (scene/scene_files.h: itself, meshes, textures, environment maps, a glTF asset's
+ * buffers and images). Outputs that are NULL are skipped. Prints the error as cmd's and returns
+ * CLI_EXIT_ERROR, else CLI_EXIT_OK. */
 struct sss_scene;
 int cli_check_outputs(const char *cmd, const char *const *outputs, size_t output_count, const char *const *inputs,
                       size_t input_count, const struct sss_scene *scene);
 
-/* True when any argument is -h or --help (before "--"). */
+/* True when any argument after argv[0] is -h or --help (before "--"). */
 int cli_wants_help(int argc, char **argv);
 
 /* Strict number parsing: the whole string must be a finite number (or integer). On failure they print
@@ -201,12 +229,9 @@ int cli_scene_resize(const char *cmd, struct sss_scene *scene, int width, int he
 int cli_require_extension(const char *cmd, const char *option, const char *path, const char *ext);
 
 /* The profile of a measured medium, for the commands that take MEDIUM [--scale S] [--eta E]
- * [--model pbd|dipole]. */
-typedef struct cli_medium_profile {
-    sss_material material;
-    sss_pbd_table *table; /* heap-allocated for PBD, NULL for the dipole */
-    sss_profile profile;
-} cli_medium_profile;
+ * [--model pbd|dipole]; --eta's default, as PBRT-v3's subsurface material's (eta 1.33). */
+#define CLI_DEFAULT_ETA 1.33
+typedef sss_medium_profile cli_medium_profile; /* the library's (sss/profile.h) */
 
 /* model is "pbd" or "dipole" (validated by the caller). On failure prints the error as cmd's and
  * returns CLI_EXIT_ERROR (nothing to free); on success CLI_EXIT_OK. */

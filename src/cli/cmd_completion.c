@@ -12,18 +12,13 @@
 
 #define CMD "completion"
 
-const cli_command_spec cli_spec_completion = {"completion", NULL, 0, CLI_ARG_NONE, "bash"};
-
-static void print_usage(FILE *f)
-{
-    fprintf(f, "usage: sss completion bash\n"
-               "\n"
-               "Prints a bash completion script for sss, generated from the commands' option tables:\n"
-               "commands, subcommands, options, technique and medium names, choices and files. Load it with\n"
-               "  source <(sss completion bash)\n"
-               "or install it as share/bash-completion/completions/sss (`cmake --install` does).\n\n");
-    cli_print_options(f, &cli_spec_completion);
-}
+const cli_command_spec cli_spec_completion = {
+    "completion", NULL, 0, CLI_ARG_NONE, "bash", "bash",
+    "Prints a bash completion script for sss, generated from the commands' option tables:\n"
+    "commands, subcommands, options, technique and medium names, choices and files. Load it with\n"
+    "  source <(sss completion bash)\n"
+    "or install it as share/bash-completion/completions/sss (`cmake --install` does).\n",
+    NULL, NULL};
 
 /* The words of a bash `compgen -W` list: option names are plain ASCII, no quoting needed. */
 static void print_option_words(const cli_command_spec *spec)
@@ -36,7 +31,7 @@ static void print_option_words(const cli_command_spec *spec)
         sep = " ";
         if (o->short_name) printf(" %s", o->short_name);
     }
-    printf("%s--quiet --progress --help", sep);
+    for (int k = 0; k < CLI_COMMON_OPTION_COUNT; k++, sep = " ") printf("%s%s", sep, cli_common_options[k].name);
 }
 
 /* The shell command that fills COMPREPLY with values of kind for the word $cur. */
@@ -116,32 +111,51 @@ static void print_bash(void)
     }
     printf("    esac\n    case \"$spec\" in\n");
     for (int i = 0; i < count; i++)
-        for (int k = 0; k < 3 && commands[i].specs[k]; k++)
-            if (strcmp(commands[i].specs[k]->name, "completion") != 0) print_spec_case(commands[i].specs[k]);
-    printf("    completion) _sss_words \"bash\" ;;\n");
+        for (int k = 0; k < 3 && commands[i].specs[k]; k++) {
+            const cli_command_spec *s = commands[i].specs[k];
+            /* a bare command whose operand is its subcommand ("completion bash") has no options to offer */
+            if (!s->subcommands || strchr(s->name, ' ')) print_spec_case(s);
+        }
     printf("    esac\n}\ncomplete -F _sss sss\n");
+}
+
+typedef struct completion_options {
+    const char *shell;
+} completion_options;
+
+static int set_option(void *opts, int id, const char *given, const char *value)
+{
+    (void)id, (void)given;
+    completion_options *o = opts;
+    if (o->shell) return cli_usage_error(CMD, "unexpected argument '%s'", value);
+    o->shell = value;
+    return CLI_EXIT_OK;
+}
+
+static int completion_parse(int argc, char **argv, completion_options *o)
+{
+    memset(o, 0, sizeof *o);
+    int status = cli_parse(&cli_spec_completion, argc, argv, 1, set_option, o, NULL);
+    if (status != CLI_EXIT_OK) return status;
+    if (!o->shell) return cli_usage_error(CMD, "missing the shell (bash)");
+    if (strcmp(o->shell, "bash") != 0) {
+        const char *shells[] = {"bash"};
+        return cli_unknown(CMD, "shell", o->shell, shells, 1);
+    }
+    return CLI_EXIT_OK;
+}
+
+static int completion_run(const completion_options *o)
+{
+    (void)o; /* bash, the one shell */
+    print_bash();
+    if (fflush(stdout) != 0 || ferror(stdout)) return cli_failf(CMD, "error writing the output");
+    return CLI_EXIT_OK;
 }
 
 int sss_cmd_completion(int argc, char **argv)
 {
-    if (cli_wants_help(argc, argv)) {
-        print_usage(stdout);
-        return CLI_EXIT_OK;
-    }
-    cli_parser args;
-    cli_parser_init(&args, &cli_spec_completion, argc, argv, 1);
-    const char *shell = NULL;
-    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
-        if (o == CLI_BAD) return CLI_EXIT_USAGE;
-        if (shell) return cli_usage_error(CMD, "unexpected argument '%s'", args.value);
-        shell = args.value;
-    }
-    if (!shell) return cli_usage_error(CMD, "missing the shell (bash)");
-    if (strcmp(shell, "bash") != 0) {
-        const char *shells[] = {"bash"};
-        return cli_unknown(CMD, "shell", shell, shells, 1);
-    }
-    print_bash();
-    if (fflush(stdout) != 0 || ferror(stdout)) return cli_failf(CMD, "error writing the output");
-    return CLI_EXIT_OK;
+    completion_options o;
+    int status = completion_parse(argc, argv, &o);
+    return status == CLI_EXIT_OK ? completion_run(&o) : status;
 }

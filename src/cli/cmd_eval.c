@@ -22,80 +22,69 @@ enum {
     OPT_SAM_SWEEP, OPT_NO_SAM_SWEEP, OPT_SAM_COUNTS
 };
 static const cli_option options[] = {
-    {OPT_OUT, "--out", "-o", CLI_ARG_DIR, "DIR", "output folder (default out/eval)", NULL},
-    {OPT_OUT, "--output", NULL, CLI_ARG_DIR, "DIR", "the same as --out", NULL},
+    {OPT_OUT, "--out", "-o", CLI_ARG_DIR, "DIR", "output folder", NULL, "out/eval"},
+    {OPT_OUT, "--output", NULL, CLI_ARG_DIR, "DIR", "the same as --out", NULL, NULL},
     {OPT_TECHNIQUES, "--techniques", NULL, CLI_ARG_TECHNIQUE, "LIST",
      "comma-separated specs NAME or NAME:param=value[:param=value]\n"
      "(default: every technique of `sss techniques`); supersample=K in a\n"
      "spec sets that spec's antialiasing (maisch2020,maisch2020:supersample=2)",
-     NULL},
+     NULL, NULL},
     {OPT_RESOLUTIONS, "--resolutions", NULL, CLI_ARG_TEXT, "LIST",
      "sizes compared with the reference, WxH,... (default: the camera's);\n"
      "the first one is used for the sheets",
-     NULL},
-    {OPT_WIDTH, "--width", NULL, CLI_ARG_NUMBER, "W", "with --height: one size WxH for every scene (--resolutions WxH)", NULL},
-    {OPT_HEIGHT, "--height", NULL, CLI_ARG_NUMBER, "H", "with --width", NULL},
+     NULL, NULL},
+    {OPT_WIDTH, "--width", NULL, CLI_ARG_NUMBER, "W", "with --height: one size WxH for every scene (--resolutions WxH)",
+     NULL, NULL},
+    {OPT_HEIGHT, "--height", NULL, CLI_ARG_NUMBER, "H", "with --width", NULL, NULL},
     {OPT_TIMING_RESOLUTIONS, "--timing-resolutions", NULL, CLI_ARG_TEXT, "LIST",
-     "extra sizes where only frame times are measured", NULL},
-    {OPT_FRAMES, "--frames", NULL, CLI_ARG_NUMBER, "N", "timed frames per technique; timings are medians (default 5)", NULL},
-    {OPT_WARMUP, "--warmup", NULL, CLI_ARG_NUMBER, "W", "frames rendered first and not timed (default 2)", NULL},
+     "extra sizes where only frame times are measured", NULL, NULL},
+    {OPT_FRAMES, "--frames", NULL, CLI_ARG_NUMBER, "N", "timed frames per technique; timings are medians", NULL, "5"},
+    {OPT_WARMUP, "--warmup", NULL, CLI_ARG_NUMBER, "W", "frames rendered first and not timed", NULL, "2"},
     {OPT_SUPERSAMPLE, "--supersample", NULL, CLI_ARG_NUMBER, "K",
      "antialiasing of every technique (`sss render --supersample`): passes at\n"
-     "K x the size, box-filtered down; K in 1..4 (default 1: off)",
-     NULL},
+     "K x the size, box-filtered down; K in 1..4",
+     NULL, "1 = off"},
     {OPT_CACHED_REFERENCE, "--cached-reference", NULL, CLI_ARG_NONE, NULL,
      "use <scene folder>/references/<scene>_<W>x<H>[_t<T>].exr when it exists\n"
      "(and its .json sidecar matches the scene file), else render it",
+     NULL, NULL},
+    {OPT_REFERENCE_DIR, "--reference-dir", NULL, CLI_ARG_DIR, "DIR", "where cached references are looked up instead", NULL,
      NULL},
-    {OPT_REFERENCE_DIR, "--reference-dir", NULL, CLI_ARG_DIR, "DIR", "where cached references are looked up instead", NULL},
     {OPT_REFERENCE_QUALITY, "--reference-quality", NULL, CLI_ARG_TEXT, "Q",
-     "final (default) or draft, for references that are rendered", "draft final"},
+     "final or draft, for references that are rendered", "draft final", "final"},
     {OPT_REFERENCE_BOUNCES, "--reference-bounces", NULL, CLI_ARG_NUMBER, "N",
      "the truth: 1 = the single-event integral (`sss reference --bounces 1`,\n"
      "what techniques that model one event converge to), N = N bounces;\n"
      "default: the full transport (bounces until converged)",
-     NULL},
-    {OPT_THREADS, "--threads", NULL, CLI_ARG_NUMBER, "N", "threads of the reference renderer (default: all cores)", NULL},
-    {OPT_THREADS, "--reference-threads", NULL, CLI_ARG_NUMBER, "N", NULL, NULL}, /* the old spelling, still accepted */
+     NULL, NULL},
+    {OPT_THREADS, "--threads", NULL, CLI_ARG_NUMBER, "N", "threads of the reference renderer", NULL, "all cores"},
+    /* the old spelling, still accepted */
+    {OPT_THREADS, "--reference-threads", NULL, CLI_ARG_NUMBER, "N", NULL, NULL, NULL},
     {OPT_SAM_SWEEP, "--sam-sweep", NULL, CLI_ARG_NONE, NULL,
      "RMSE of `sam` against back-side samples n (Maisch & Ropinski 2017, Fig. 10)\n"
      "even when sam is not among the techniques",
-     NULL},
-    {OPT_NO_SAM_SWEEP, "--no-sam-sweep", NULL, CLI_ARG_NONE, NULL, "never the sam sweep", NULL},
-    {OPT_SAM_COUNTS, "--sam-counts", NULL, CLI_ARG_TEXT, "LIST", "the sample counts of the sweep (default 3,10,20,50)", NULL},
+     NULL, NULL},
+    {OPT_NO_SAM_SWEEP, "--no-sam-sweep", NULL, CLI_ARG_NONE, NULL, "never the sam sweep", NULL, NULL},
+    {OPT_SAM_COUNTS, "--sam-counts", NULL, CLI_ARG_TEXT, "LIST", "the sample counts of the sweep", NULL, "3,10,20,50"},
 };
-const cli_command_spec cli_spec_eval = {CMD, options, CLI_COUNT(options), CLI_ARG_FILE, NULL};
-
-static void print_usage(FILE *f)
-{
-    fprintf(f,
-            "usage: sss eval SCENE.json[@T]... [--out DIR] [--techniques A,B:param=value,...]\n"
-            "                [--resolutions WxH,... | --width W --height H] [--timing-resolutions WxH,...]\n"
-            "                [--frames N] [--warmup W] [--cached-reference] [--reference-dir DIR]\n"
-            "                [--reference-quality draft|final] [--reference-bounces N] [--threads N]\n"
-            "                [--sam-sweep | --no-sam-sweep] [--sam-counts 3,10,20,50] [--supersample K]\n"
-            "                [--quiet | --progress]\n"
-            "\n"
-            "Renders every technique and the CPU reference for each scene, compares them (DSSIM, FLIP, PSNR,\n"
-            "RMSE on the tone-mapped 8-bit images), times every pass (median of N frames) and writes to DIR:\n"
-            "results.json (schema docs/results.schema.json), results.csv, sheet_<scene>.png (reference,\n"
-            "techniques, their DSSIM and FLIP maps with colour bars, zoomed crops), crops_<scene>_<k>.png,\n"
-            "plot_dssim.png, plot_flip.png, plot_passes.png, plot_resolution.png (per scene),\n"
-            "plot_sam_rmse.png (when the SAM sweep ran) and report.html (self-contained; docs/eval.md\n"
-            "says how to read it). A technique that fails is reported as failed with its error, not\n"
-            "dropped. A summary table goes to stdout.\n"
-            "SCENE.json@T evaluates an animated scene at time T seconds (default 0).\n"
-            "\n");
-    cli_print_options(f, &cli_spec_eval);
-    fprintf(f,
-            "\n"
-            "--reference-threads, the old spelling of --threads, is still accepted.\n"
-            "Progress goes to stderr when it is a terminal (a bar with the time left) or with --progress\n"
-            "(otherwise a line per stage); notes too, unless --quiet.\n"
-            "References rendered during the run are saved to DIR/references/ (half-float EXR + .json\n"
-            "sidecar) so that they can be committed next to the scene.\n"
-            "Exit status: 0 results written (also when techniques failed), 1 error, 2 usage error.\n");
-}
+const cli_command_spec cli_spec_eval = {
+    CMD, options, CLI_COUNT(options), CLI_ARG_FILE, NULL, "SCENE.json[@T]...",
+    "Renders every technique and the CPU reference for each scene, compares them (DSSIM, FLIP, PSNR,\n"
+    "RMSE on the tone-mapped 8-bit images), times every pass (median of N frames) and writes to DIR:\n"
+    "results.json (schema docs/results.schema.json), results.csv, sheet_<scene>.png (reference,\n"
+    "techniques, their DSSIM and FLIP maps with colour bars, zoomed crops), crops_<scene>_<k>.png,\n"
+    "plot_dssim.png, plot_flip.png, plot_passes.png, plot_resolution.png (per scene),\n"
+    "plot_sam_rmse.png (when the SAM sweep ran) and report.html (self-contained; docs/eval.md\n"
+    "says how to read it). A technique that fails is reported as failed with its error, not\n"
+    "dropped. A summary table goes to stdout.\n"
+    "SCENE.json@T evaluates an animated scene at time T seconds (default 0).\n",
+    "--reference-threads, the old spelling of --threads, is still accepted.\n"
+    "Progress goes to stderr when it is a terminal (a bar with the time left) or with --progress\n"
+    "(otherwise a line per stage); notes too, unless --quiet.\n"
+    "References rendered during the run are saved to DIR/references/ (half-float EXR + .json\n"
+    "sidecar) so that they can be committed next to the scene.\n"
+    "Exit status: 0 results written (also when techniques failed), 1 error, 2 usage error.\n",
+    NULL};
 
 typedef struct progress_state {
     int tty, quiet, show; /* show: the progress (cli_show_progress); quiet: no notes either */
@@ -186,8 +175,18 @@ static int split_list(char *text, char **items, int max)
     return n;
 }
 
+/* s with its control characters escaped (core/text.h) into buf, the input cut to fit cap: scene
+ * names come from file names, errors and labels from data, and none may reach a terminal raw. */
+#define ESC_CAP (SSS_TEXT_ESCAPE_MAX * 256 + 1)
+static const char *esc(const char *s, char buf[ESC_CAP])
+{
+    sss_text_escape(s, strnlen(s, 256), buf);
+    return buf;
+}
+
 static void print_summary(const sss_eval_results *res, const char *out_dir)
 {
+    char b1[ESC_CAP], b2[ESC_CAP], b3[ESC_CAP];
     printf("%-22s %-26s %-7s %9s %8s %8s %8s %11s\n", "scene", "technique", "status", "DSSIM", "FLIP", "PSNR", "RMSE",
            "ms/frame");
     for (int i = 0; i < res->entry_count; i++) {
@@ -204,8 +203,8 @@ static void print_summary(const sss_eval_results *res, const char *out_dir)
             snprintf(r, sizeof r, "%.3f", e->metrics.rmse);
         }
         if (e->ok) snprintf(ms, sizeof ms, "%.1f", e->total_ms);
-        printf("%-22.22s %-26.26s %-7s %9s %8s %8s %8s %11s\n", res->scenes[e->scene].name, e->label,
-               e->ok ? "ok" : "FAILED", d, fl, p, r, ms);
+        printf("%-22.22s %-26.26s %-7s %9s %8s %8s %8s %11s\n", esc(res->scenes[e->scene].name, b1),
+               esc(e->label, b2), e->ok ? "ok" : "FAILED", d, fl, p, r, ms);
     }
     int failed = 0;
     for (int i = 0; i < res->entry_count; i++) failed += !res->entries[i].ok;
@@ -213,205 +212,211 @@ static void print_summary(const sss_eval_results *res, const char *out_dir)
         printf("\n%d failed run%s:\n", failed, failed == 1 ? "" : "s");
         for (int i = 0; i < res->entry_count; i++) {
             const sss_eval_entry *e = &res->entries[i];
-            if (!e->ok) printf("  %s / %s (%dx%d): %.200s\n", res->scenes[e->scene].name, e->label, e->width, e->height, e->error);
+            if (!e->ok)
+                printf("  %s / %s (%dx%d): %.200s\n", esc(res->scenes[e->scene].name, b1), esc(e->label, b2), e->width,
+                       e->height, esc(e->error, b3));
         }
     }
     for (int s = 0; s < res->scene_count; s++)
         for (int k = 0; k < res->scenes[s].reference_count; k++) {
             const sss_eval_reference *r = &res->scenes[s].references[k];
             if (r->source == SSS_EVAL_REF_NONE)
-                printf("reference %s %dx%d unavailable: %s\n", res->scenes[s].name, r->width, r->height, r->error);
+                printf("reference %s %dx%d unavailable: %s\n", esc(res->scenes[s].name, b1), r->width, r->height,
+                       esc(r->error, b2));
         }
     printf("\n%d scene%s, %d technique%s, %.1f s; timings: %s\n", res->scene_count, res->scene_count == 1 ? "" : "s",
            res->label_count, res->label_count == 1 ? "" : "s", res->seconds,
-           res->timing_method[0] ? res->timing_method : (res->gl_ok ? "-" : res->gl_error));
-    printf("wrote %s/report.html (and results.json, results.csv, sheets, plots)\n", out_dir);
+           esc(res->timing_method[0] ? res->timing_method : (res->gl_ok ? "-" : res->gl_error), b1));
+    printf("wrote %s/report.html (and results.json, results.csv, sheets, plots)\n", esc(out_dir, b2));
+}
+
+typedef struct eval_options {
+    const char *out_dir;
+    const char **scenes; /* argc entries */
+    int nscenes;
+    char *tech_text;     /* --techniques, split in place into techs */
+    char *techs[MAX_LIST];
+    sss_eval_size *sizes, *tsizes, one_size;
+    int sam_counts[64];
+    char save_dir[2048];
+    sss_eval_desc desc;  /* points into the fields above */
+    cli_common common;
+} eval_options;
+
+static void eval_options_free(eval_options *o)
+{
+    free(o->sizes);
+    free(o->tsizes);
+    free(o->tech_text);
+    free(o->scenes);
+}
+
+static int set_techniques(eval_options *o, const char *v)
+{
+    free(o->tech_text);
+    o->tech_text = strdup(v);
+    if (!o->tech_text) return cli_failf(CMD, "out of memory");
+    int n = split_list(o->tech_text, o->techs, MAX_LIST);
+    if (n <= 0) return cli_usage_error(CMD, "--techniques needs a comma-separated list (at most %d)", MAX_LIST);
+    for (int k = 0; k < n; k++) {
+        sss_error perr = {0};
+        if (sss_eval_check_spec(o->techs[k], &perr) != SSS_OK)
+            return cli_usage_error(CMD, "--techniques: %s", perr.message);
+    }
+    o->desc.techniques = (const char *const *)o->techs;
+    o->desc.technique_count = n;
+    return CLI_EXIT_OK;
+}
+
+static int set_sizes(eval_options *o, int timing, const char *a, const char *v)
+{
+    sss_eval_size **dst = timing ? &o->tsizes : &o->sizes;
+    free(*dst);
+    int n = 0;
+    sss_error perr = {0};
+    if (sss_eval_parse_sizes(v, dst, &n, &perr) != SSS_OK) return cli_usage_error(CMD, "%s: %s", a, perr.message);
+    if (!timing && n > 8) return cli_usage_error(CMD, "--resolutions: at most 8 sizes");
+    if (timing) o->desc.timing_resolution_count = n;
+    else o->desc.resolution_count = n;
+    return CLI_EXIT_OK;
+}
+
+static int set_sam_counts(eval_options *o, const char *a, const char *v)
+{
+    char buf[512];
+    snprintf(buf, sizeof buf, "%s", v);
+    char *items[64];
+    int n = split_list(buf, items, 64);
+    if (n <= 0) return cli_usage_error(CMD, "--sam-counts needs a comma-separated list of at most 64 counts");
+    for (int k = 0; k < n; k++) {
+        if (!cli_parse_int(CMD, a, items[k], &o->sam_counts[k])) return CLI_EXIT_USAGE;
+        if (o->sam_counts[k] < 1) return cli_usage_error(CMD, "--sam-counts: counts must be >= 1");
+    }
+    o->desc.sam_counts = o->sam_counts;
+    o->desc.sam_count_count = n;
+    return CLI_EXIT_OK;
+}
+
+/* An integer option's value in min..max, else the usage error "NAME must be in min..max". */
+static int set_int(const char *a, const char *v, int min, int max, const char *shown, int *out)
+{
+    if (!cli_parse_int(CMD, a, v, out)) return CLI_EXIT_USAGE;
+    if (*out < min || *out > max) return cli_usage_error(CMD, "%s must be in %d..%d", shown, min, max);
+    return CLI_EXIT_OK;
+}
+
+static int set_reference_option(eval_options *o, int id, const char *a, const char *v)
+{
+    sss_eval_desc *d = &o->desc;
+    switch (id) {
+    case OPT_CACHED_REFERENCE: d->cached_reference = 1; break;
+    case OPT_REFERENCE_DIR: d->reference_dir = v; break;
+    case OPT_REFERENCE_QUALITY:
+        if (strcmp(v, "final") == 0) d->reference_quality = SSS_REFERENCE_FINAL;
+        else if (strcmp(v, "draft") == 0) d->reference_quality = SSS_REFERENCE_DRAFT;
+        else return cli_usage_error(CMD, "--reference-quality must be draft or final, got '%s'", v);
+        break;
+    case OPT_REFERENCE_BOUNCES:
+        if (!cli_parse_int(CMD, a, v, &d->reference_bounces)) return CLI_EXIT_USAGE;
+        if (d->reference_bounces < 1 || d->reference_bounces > SSS_REFERENCE_MAX_BOUNCES)
+            return cli_usage_error(CMD, "--reference-bounces must be in 1..%d, got %d", SSS_REFERENCE_MAX_BOUNCES,
+                                   d->reference_bounces);
+        break;
+    default: /* OPT_THREADS */
+        return set_int(a, v, 1, 4096, a, &d->reference_threads);
+    }
+    return CLI_EXIT_OK;
+}
+
+static int set_option(void *opts, int id, const char *a, const char *v)
+{
+    eval_options *o = opts;
+    sss_eval_desc *d = &o->desc;
+    switch (id) {
+    case OPT_OUT: o->out_dir = v; return CLI_EXIT_OK;
+    case OPT_TECHNIQUES: return set_techniques(o, v);
+    case OPT_RESOLUTIONS:
+    case OPT_TIMING_RESOLUTIONS: return set_sizes(o, id == OPT_TIMING_RESOLUTIONS, a, v);
+    case OPT_WIDTH:
+    case OPT_HEIGHT:
+        return cli_parse_size(CMD, a, v, id == OPT_WIDTH ? &o->one_size.width : &o->one_size.height) ? CLI_EXIT_OK
+                                                                                                     : CLI_EXIT_USAGE;
+    case OPT_FRAMES: return set_int(a, v, 1, 10000, "--frames", &d->frames);
+    case OPT_WARMUP: {
+        int status = set_int(a, v, 0, 10000, "--warmup", &d->warmup_frames);
+        if (d->warmup_frames == 0) d->warmup_frames = -1; /* the library's "none" */
+        return status;
+    }
+    case OPT_SUPERSAMPLE: return cli_parse_supersample(CMD, a, v, &d->supersample) ? CLI_EXIT_OK : CLI_EXIT_USAGE;
+    case OPT_SAM_SWEEP: d->sam_sweep = 1; return CLI_EXIT_OK;
+    case OPT_NO_SAM_SWEEP: d->sam_sweep = -1; return CLI_EXIT_OK;
+    case OPT_SAM_COUNTS: return set_sam_counts(o, a, v);
+    case CLI_OPERAND: o->scenes[o->nscenes++] = v; return CLI_EXIT_OK;
+    default: return set_reference_option(o, id, a, v);
+    }
+}
+
+/* --width/--height: one size for every scene, as --resolutions WxH. */
+static int check_sizes(eval_options *o)
+{
+    if ((o->one_size.width > 0) != (o->one_size.height > 0))
+        return cli_usage_error(CMD, "--width and --height go together (one size for every scene)");
+    if (o->one_size.width > 0) {
+        if (o->sizes) return cli_usage_error(CMD, "--width/--height and --resolutions exclude each other");
+        char text[64];
+        snprintf(text, sizeof text, "%dx%d", o->one_size.width, o->one_size.height);
+        sss_error perr = {0};
+        if (sss_eval_parse_sizes(text, &o->sizes, &o->desc.resolution_count, &perr) != SSS_OK)
+            return cli_usage_error(CMD, "--width/--height: %s", perr.message);
+    }
+    return CLI_EXIT_OK;
+}
+
+/* o is freed with eval_options_free, also on failure. */
+static int eval_parse(int argc, char **argv, eval_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->out_dir = "out/eval";
+    o->scenes = calloc((size_t)argc, sizeof *o->scenes);
+    if (!o->scenes) return cli_failf(CMD, "out of memory");
+    int status = cli_parse(&cli_spec_eval, argc, argv, 1, set_option, o, &o->common);
+    if (status != CLI_EXIT_OK) return status;
+    for (int k = 0; k < o->desc.technique_count && !o->common.quiet; k++) /* run and reported as failed, not refused */
+        warn_unknown_technique(o->techs[k]);
+    if ((status = check_sizes(o)) != CLI_EXIT_OK) return status;
+    if (o->nscenes == 0) return cli_usage_error(CMD, "expects at least one scene file");
+    o->desc.resolutions = o->sizes;
+    o->desc.timing_resolutions = o->tsizes;
+    snprintf(o->save_dir, sizeof o->save_dir, "%s/references", o->out_dir);
+    o->desc.save_references_dir = o->save_dir;
+    return CLI_EXIT_OK;
+}
+
+static int eval_run(const eval_options *o)
+{
+    progress_state ps;
+    memset(&ps, 0, sizeof ps);
+    ps.tty = isatty(fileno(stderr));
+    ps.quiet = o->common.quiet;
+    ps.show = cli_show_progress(&o->common);
+    ps.start = sss_time_seconds();
+    sss_eval_callbacks cb = {on_progress, on_note, &ps};
+    sss_eval_results res;
+    memset(&res, 0, sizeof res);
+    sss_error err = {0};
+    sss_result r = sss_eval_run(o->scenes, o->nscenes, &o->desc, &cb, &res, &err);
+    if (ps.tty && ps.bar_shown) fputc('\n', stderr);
+    if (r == SSS_OK) r = sss_eval_write_all(&res, o->out_dir, &err);
+    if (r == SSS_OK) print_summary(&res, o->out_dir);
+    sss_eval_results_free(&res);
+    return r == SSS_OK ? CLI_EXIT_OK : cli_fail(CMD, &err);
 }
 
 int sss_cmd_eval(int argc, char **argv)
 {
-    if (cli_wants_help(argc, argv)) {
-        print_usage(stdout);
-        return CLI_EXIT_OK;
-    }
-    const char *out_dir = "out/eval";
-    const char **scenes = calloc((size_t)argc, sizeof *scenes);
-    char *tech_text = NULL;
-    char *techs[MAX_LIST];
-    int nscenes = 0, quiet = 0, status = CLI_EXIT_USAGE;
-    sss_eval_desc desc;
-    memset(&desc, 0, sizeof desc);
-    sss_eval_size *sizes = NULL, *tsizes = NULL, one_size = {0};
-    int sam_counts[64];
-    char save_dir[2048];
-    sss_eval_results res;
-    memset(&res, 0, sizeof res);
-    if (!scenes) return cli_failf(CMD, "out of memory");
-    cli_parser args;
-    cli_parser_init(&args, &cli_spec_eval, argc, argv, 1);
-    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
-        const char *a = args.given, *v = args.value;
-        sss_error perr = {0};
-        if (o == CLI_BAD) {
-            goto done;
-        } else if (o == OPT_OUT) {
-            out_dir = v;
-        } else if (o == OPT_TECHNIQUES) {
-            free(tech_text);
-            tech_text = strdup(v);
-            if (!tech_text) {
-                status = cli_failf(CMD, "out of memory");
-                goto done;
-            }
-            int n = split_list(tech_text, techs, MAX_LIST);
-            if (n <= 0) {
-                cli_usage_error(CMD, "--techniques needs a comma-separated list (at most %d)", MAX_LIST);
-                goto done;
-            }
-            for (int k = 0; k < n; k++) {
-                if (sss_eval_check_spec(techs[k], &perr) != SSS_OK) {
-                    cli_usage_error(CMD, "--techniques: %s", perr.message);
-                    goto done;
-                }
-            }
-            desc.techniques = (const char *const *)techs;
-            desc.technique_count = n;
-        } else if (o == OPT_RESOLUTIONS || o == OPT_TIMING_RESOLUTIONS) {
-            int timing = o == OPT_TIMING_RESOLUTIONS;
-            sss_eval_size **dst = timing ? &tsizes : &sizes;
-            free(*dst);
-            int n = 0;
-            if (sss_eval_parse_sizes(v, dst, &n, &perr) != SSS_OK) {
-                cli_usage_error(CMD, "%s: %s", a, perr.message);
-                goto done;
-            }
-            if (!timing && n > 8) {
-                cli_usage_error(CMD, "--resolutions: at most 8 sizes");
-                goto done;
-            }
-            if (timing) desc.timing_resolution_count = n;
-            else desc.resolution_count = n;
-        } else if (o == OPT_WIDTH || o == OPT_HEIGHT) {
-            if (!cli_parse_size(CMD, a, v, o == OPT_WIDTH ? &one_size.width : &one_size.height)) goto done;
-        } else if (o == OPT_FRAMES) {
-            if (!cli_parse_int(CMD, a, v, &desc.frames)) goto done;
-            if (desc.frames < 1 || desc.frames > 10000) {
-                cli_usage_error(CMD, "--frames must be in 1..10000");
-                goto done;
-            }
-        } else if (o == OPT_WARMUP) {
-            if (!cli_parse_int(CMD, a, v, &desc.warmup_frames)) goto done;
-            if (desc.warmup_frames < 0 || desc.warmup_frames > 10000) {
-                cli_usage_error(CMD, "--warmup must be in 0..10000");
-                goto done;
-            }
-            if (desc.warmup_frames == 0) desc.warmup_frames = -1; /* the library's "none" */
-        } else if (o == OPT_SUPERSAMPLE) {
-            if (!cli_parse_supersample(CMD, a, v, &desc.supersample)) goto done;
-        } else if (o == OPT_CACHED_REFERENCE) {
-            desc.cached_reference = 1;
-        } else if (o == OPT_REFERENCE_DIR) {
-            desc.reference_dir = v;
-        } else if (o == OPT_REFERENCE_QUALITY) {
-            if (strcmp(v, "final") == 0) desc.reference_quality = SSS_REFERENCE_FINAL;
-            else if (strcmp(v, "draft") == 0) desc.reference_quality = SSS_REFERENCE_DRAFT;
-            else {
-                cli_usage_error(CMD, "--reference-quality must be draft or final, got '%s'", v);
-                goto done;
-            }
-        } else if (o == OPT_REFERENCE_BOUNCES) {
-            if (!cli_parse_int(CMD, a, v, &desc.reference_bounces)) goto done;
-            if (desc.reference_bounces < 1 || desc.reference_bounces > SSS_REFERENCE_MAX_BOUNCES) {
-                cli_usage_error(CMD, "--reference-bounces must be in 1..%d, got %d", SSS_REFERENCE_MAX_BOUNCES,
-                                desc.reference_bounces);
-                goto done;
-            }
-        } else if (o == OPT_THREADS) {
-            if (!cli_parse_int(CMD, a, v, &desc.reference_threads)) goto done;
-            if (desc.reference_threads < 1 || desc.reference_threads > 4096) {
-                cli_usage_error(CMD, "%s must be in 1..4096", a);
-                goto done;
-            }
-        } else if (o == OPT_SAM_SWEEP) {
-            desc.sam_sweep = 1;
-        } else if (o == OPT_NO_SAM_SWEEP) {
-            desc.sam_sweep = -1;
-        } else if (o == OPT_SAM_COUNTS) {
-            char buf[512];
-            snprintf(buf, sizeof buf, "%s", v);
-            char *items[64];
-            int n = split_list(buf, items, 64);
-            if (n <= 0) {
-                cli_usage_error(CMD, "--sam-counts needs a comma-separated list of at most 64 counts");
-                goto done;
-            }
-            for (int k = 0; k < n; k++) {
-                if (!cli_parse_int(CMD, a, items[k], &sam_counts[k])) goto done;
-                if (sam_counts[k] < 1) {
-                    cli_usage_error(CMD, "--sam-counts: counts must be >= 1");
-                    goto done;
-                }
-            }
-            desc.sam_counts = sam_counts;
-            desc.sam_count_count = n;
-        } else { /* CLI_OPERAND */
-            scenes[nscenes++] = v;
-        }
-    }
-    quiet = args.quiet;
-    for (int k = 0; k < desc.technique_count && !quiet; k++) /* run and reported as failed, not refused */
-        warn_unknown_technique(techs[k]);
-    if ((one_size.width > 0) != (one_size.height > 0)) {
-        cli_usage_error(CMD, "--width and --height go together (one size for every scene)");
-        goto done;
-    }
-    if (one_size.width > 0) {
-        if (sizes) {
-            cli_usage_error(CMD, "--width/--height and --resolutions exclude each other");
-            goto done;
-        }
-        char text[64];
-        snprintf(text, sizeof text, "%dx%d", one_size.width, one_size.height);
-        sss_error perr = {0};
-        if (sss_eval_parse_sizes(text, &sizes, &desc.resolution_count, &perr) != SSS_OK) {
-            cli_usage_error(CMD, "--width/--height: %s", perr.message);
-            goto done;
-        }
-    }
-    if (nscenes == 0) {
-        cli_usage_error(CMD, "expects at least one scene file");
-        goto done;
-    }
-    desc.resolutions = sizes;
-    desc.timing_resolutions = tsizes;
-    snprintf(save_dir, sizeof save_dir, "%s/references", out_dir);
-    desc.save_references_dir = save_dir;
-
-    progress_state ps;
-    memset(&ps, 0, sizeof ps);
-    ps.tty = isatty(fileno(stderr));
-    ps.quiet = quiet;
-    ps.show = cli_show_progress(&args);
-    ps.start = sss_time_seconds();
-    sss_eval_callbacks cb = {on_progress, on_note, &ps};
-    sss_error err = {0};
-    sss_result r = sss_eval_run(scenes, nscenes, &desc, &cb, &res, &err);
-    if (ps.tty && ps.bar_shown) fputc('\n', stderr);
-    if (r != SSS_OK) {
-        status = cli_fail(CMD, &err);
-        goto done;
-    }
-    if (sss_eval_write_all(&res, out_dir, &err) != SSS_OK) {
-        status = cli_fail(CMD, &err);
-        goto done;
-    }
-    print_summary(&res, out_dir);
-    status = CLI_EXIT_OK;
-done:
-    sss_eval_results_free(&res);
-    free(sizes);
-    free(tsizes);
-    free(tech_text);
-    free(scenes);
+    eval_options o;
+    int status = eval_parse(argc, argv, &o);
+    if (status == CLI_EXIT_OK) status = eval_run(&o);
+    eval_options_free(&o);
     return status;
 }

@@ -8,30 +8,26 @@
 static const char *const CMD = "mesh";
 
 enum { OPT_OUTPUT, OPT_TRIANGLES };
-#define OUTPUT_OPTION {OPT_OUTPUT, "--output", "-o", CLI_ARG_FILE, "OUT.ply", "the mesh to write (binary little-endian PLY)", NULL}
+#define OUTPUT_OPTION                                                                                              \
+    {OPT_OUTPUT, "--output", "-o", CLI_ARG_FILE, "OUT.ply", "the mesh to write (binary little-endian PLY)", NULL, \
+     CLI_REQUIRED}
 static const cli_option convert_options[] = {OUTPUT_OPTION};
 static const cli_option simplify_options[] = {
+    {OPT_TRIANGLES, "--triangles", NULL, CLI_ARG_NUMBER, "N", "at most N triangles", NULL, CLI_REQUIRED},
     OUTPUT_OPTION,
-    {OPT_TRIANGLES, "--triangles", NULL, CLI_ARG_NUMBER, "N", "at most N triangles", NULL},
 };
-const cli_command_spec cli_spec_mesh_info = {"mesh info", NULL, 0, CLI_ARG_FILE, "info simplify convert"};
+const cli_command_spec cli_spec_mesh_info = {
+    "mesh info", NULL, 0, CLI_ARG_FILE, "info simplify convert", "FILE",
+    "info      counts, whether the file had normals/UVs, bounding box, surface area, edges,\n"
+    "          signed volume (exact for closed meshes) and degenerate triangles\n"
+    "simplify  reduce to at most N triangles (meshoptimizer) and write binary PLY\n"
+    "convert   write the mesh as binary little-endian PLY with positions, normals (and UVs)\n\n"
+    "FILE is .ply (ascii or binary) or .obj.\n",
+    "Exit status: 0 ok, 1 bad input, 2 usage error.\n", NULL};
 const cli_command_spec cli_spec_mesh_simplify = {"mesh simplify", simplify_options, CLI_COUNT(simplify_options),
-                                                 CLI_ARG_FILE, NULL};
+                                                 CLI_ARG_FILE, NULL, "FILE", NULL, NULL, NULL};
 const cli_command_spec cli_spec_mesh_convert = {"mesh convert", convert_options, CLI_COUNT(convert_options),
-                                                CLI_ARG_FILE, NULL};
-
-static void print_help(void)
-{
-    printf("usage: sss mesh info FILE\n"
-           "       sss mesh simplify FILE --triangles N -o OUT.ply\n"
-           "       sss mesh convert FILE -o OUT.ply\n\n"
-           "info      counts, whether the file had normals/UVs, bounding box, surface area, edges,\n"
-           "          signed volume (exact for closed meshes) and degenerate triangles\n"
-           "simplify  reduce to at most N triangles (meshoptimizer) and write binary PLY\n"
-           "convert   write the mesh as binary little-endian PLY with positions, normals (and UVs)\n\n"
-           "FILE is .ply (ascii or binary) or .obj. Exit status: 0 ok, 1 bad input, 2 usage error.\n\n");
-    cli_print_options(stdout, &cli_spec_mesh_simplify);
-}
+                                                CLI_ARG_FILE, NULL, "FILE", NULL, NULL, NULL};
 
 static int cmd_info(const char *path)
 {
@@ -92,45 +88,63 @@ static int cmd_write(const char *path, const char *output, int triangles)
     return r == SSS_OK ? CLI_EXIT_OK : cli_fail(CMD, &err);
 }
 
+typedef struct mesh_options {
+    const char *sub, *input, *output;
+    int is_info, is_simplify;
+    int triangles, have_triangles;
+} mesh_options;
+
+static int set_option(void *opts, int id, const char *given, const char *v)
+{
+    (void)given;
+    mesh_options *o = opts;
+    if (id == OPT_OUTPUT) {
+        o->output = v;
+    } else if (id == OPT_TRIANGLES) {
+        if (!cli_parse_int(CMD, "--triangles", v, &o->triangles)) return CLI_EXIT_USAGE;
+        if (o->triangles < 1) return cli_usage_error(CMD, "--triangles must be at least 1");
+        o->have_triangles = 1;
+    } else if (!o->input) {
+        o->input = v;
+    } else {
+        return cli_usage_error(CMD, "unexpected argument '%s'", v);
+    }
+    return CLI_EXIT_OK;
+}
+
+/* argv[1] is the subcommand (info, simplify, convert), its options follow. */
+static int mesh_parse(int argc, char **argv, mesh_options *o)
+{
+    memset(o, 0, sizeof *o);
+    if (argc < 2) return cli_usage_error(CMD, "missing subcommand (info, simplify or convert)");
+    o->sub = argv[1];
+    o->is_info = strcmp(o->sub, "info") == 0;
+    o->is_simplify = strcmp(o->sub, "simplify") == 0;
+    if (!o->is_info && !o->is_simplify && strcmp(o->sub, "convert") != 0) {
+        const char *subs[] = {"info", "simplify", "convert"};
+        return cli_unknown(CMD, "subcommand", o->sub, subs, 3);
+    }
+    const cli_command_spec *spec =
+        o->is_info ? &cli_spec_mesh_info : o->is_simplify ? &cli_spec_mesh_simplify : &cli_spec_mesh_convert;
+    int status = cli_parse(spec, argc, argv, 2, set_option, o, NULL);
+    if (status != CLI_EXIT_OK) return status;
+    if (!o->input) return cli_usage_error(CMD, "missing FILE");
+    if (o->is_info) return CLI_EXIT_OK;
+    if (o->is_simplify && !o->have_triangles) return cli_usage_error(CMD, "simplify needs --triangles N");
+    if (!o->output) return cli_usage_error(CMD, "%s needs -o OUT.ply", o->sub);
+    if (!cli_require_extension(CMD, "-o", o->output, "ply")) return CLI_EXIT_USAGE;
+    return CLI_EXIT_OK;
+}
+
+static int mesh_run(const mesh_options *o)
+{
+    if (o->is_info) return cmd_info(o->input);
+    return cmd_write(o->input, o->output, o->is_simplify ? o->triangles : 0);
+}
+
 int sss_cmd_mesh(int argc, char **argv)
 {
-    if (cli_wants_help(argc, argv)) {
-        print_help();
-        return CLI_EXIT_OK;
-    }
-    if (argc < 2) return cli_usage_error(CMD, "missing subcommand (info, simplify or convert)");
-    const char *sub = argv[1];
-    int is_info = strcmp(sub, "info") == 0, is_simplify = strcmp(sub, "simplify") == 0,
-        is_convert = strcmp(sub, "convert") == 0;
-    if (!is_info && !is_simplify && !is_convert) {
-        const char *subs[] = {"info", "simplify", "convert"};
-        return cli_unknown(CMD, "subcommand", sub, subs, 3);
-    }
-    const cli_command_spec *spec = is_info ? &cli_spec_mesh_info : is_simplify ? &cli_spec_mesh_simplify : &cli_spec_mesh_convert;
-    const char *input = NULL, *output = NULL;
-    int triangles = 0, have_triangles = 0;
-    cli_parser args;
-    cli_parser_init(&args, spec, argc, argv, 2);
-    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
-        const char *v = args.value;
-        if (o == CLI_BAD) {
-            return CLI_EXIT_USAGE;
-        } else if (o == OPT_OUTPUT) {
-            output = v;
-        } else if (o == OPT_TRIANGLES) {
-            if (!cli_parse_int(CMD, "--triangles", v, &triangles)) return CLI_EXIT_USAGE;
-            if (triangles < 1) return cli_usage_error(CMD, "--triangles must be at least 1");
-            have_triangles = 1;
-        } else if (!input) {
-            input = v;
-        } else {
-            return cli_usage_error(CMD, "unexpected argument '%s'", v);
-        }
-    }
-    if (!input) return cli_usage_error(CMD, "missing FILE");
-    if (is_info) return cmd_info(input);
-    if (is_simplify && !have_triangles) return cli_usage_error(CMD, "simplify needs --triangles N");
-    if (!output) return cli_usage_error(CMD, "%s needs -o OUT.ply", sub);
-    if (!cli_require_extension(CMD, "-o", output, "ply")) return CLI_EXIT_USAGE;
-    return cmd_write(input, output, is_simplify ? triangles : 0);
+    mesh_options o;
+    int status = mesh_parse(argc, argv, &o);
+    return status == CLI_EXIT_OK ? mesh_run(&o) : status;
 }

@@ -14,36 +14,33 @@
 
 enum { OPT_SCALE, OPT_ETA, OPT_MODEL, OPT_R };
 static const cli_option options[] = {
-    {OPT_SCALE, "--scale", NULL, CLI_ARG_NUMBER, "S", "millimetres per scene unit (default 1: radii in mm)", NULL},
+    {OPT_SCALE, "--scale", NULL, CLI_ARG_NUMBER, "S", "millimetres per scene unit", NULL, "1 = radii in mm"},
     {OPT_ETA, "--eta", NULL, CLI_ARG_NUMBER, "E",
-     "relative index of refraction in [" CLI_STR(SSS_ETA_MIN) ", " CLI_STR(SSS_ETA_MAX) "] (default 1.33)", NULL},
+     "relative index of refraction in [" CLI_STR(SSS_ETA_MIN) ", " CLI_STR(SSS_ETA_MAX) "]", NULL,
+     CLI_STR(CLI_DEFAULT_ETA)},
     {OPT_MODEL, "--model", NULL, CLI_ARG_TEXT, "M",
-     "pbd (Photon Beam Diffusion table, as PBRT-v3; default) or dipole\n"
+     "pbd (Photon Beam Diffusion table, as PBRT-v3) or dipole\n"
      "(classical dipole of Jensen et al. 2001)",
-     "pbd dipole"},
+     "pbd dipole", "pbd"},
     {OPT_R, "--r", NULL, CLI_ARG_TEXT, "R0:R1:N",
      "N radii evenly spaced from R0 to R1 inclusive (N = 1: R0 alone).\n"
      "Default: " CLI_STR(DEFAULT_COUNT) " radii from 0 to the radius holding 99.9% of the plane\n"
      "integral of the widest channel.",
-     NULL},
+     NULL, NULL},
 };
-const cli_command_spec cli_spec_profile = {CMD, options, CLI_COUNT(options), CLI_ARG_MEDIUM, NULL};
+const cli_command_spec cli_spec_profile = {
+    CMD, options, CLI_COUNT(options), CLI_ARG_MEDIUM, NULL, "MEDIUM",
+    "Prints the radial diffusion profile S_r(r) of a measured medium (Jensen et al. 2001) as TSV:\n"
+    "a header line 'r<TAB>R<TAB>G<TAB>B', then one line per radius. Values are per scene unit^2,\n"
+    "before the 1/pi and Fresnel factors, as PBRT-v3's TabulatedBSSRDF::Sr returns them (except\n"
+    "at r = 0, where this prints the limit r -> 0+ instead of PBRT's 0).\n",
+    NULL, NULL};
 
-static void print_usage(FILE *f)
-{
-    fprintf(f, "usage: sss profile MEDIUM [--scale S] [--eta E] [--model pbd|dipole] [--r R0:R1:N]\n"
-               "\n"
-               "Prints the radial diffusion profile S_r(r) of a measured medium (Jensen et al. 2001) as TSV:\n"
-               "a header line 'r<TAB>R<TAB>G<TAB>B', then one line per radius. Values are per scene unit^2,\n"
-               "before the 1/pi and Fresnel factors, as PBRT-v3's TabulatedBSSRDF::Sr returns them (except\n"
-               "at r = 0, where this prints the limit r -> 0+ instead of PBRT's 0).\n"
-               "\n");
-    cli_print_options(f, &cli_spec_profile);
-    fprintf(f, "\nmedia:");
-    for (size_t i = 0; i < sss_measured_medium_count(); i++)
-        fprintf(f, " %s", sss_measured_medium_at(i)->name);
-    fprintf(f, " (case-insensitive)\n");
-}
+typedef struct profile_options {
+    const char *medium, *model;
+    double scale, eta, r0, r1;
+    int count, have_range;
+} profile_options;
 
 /* Parses "R0:R1:N"; prints a usage error and returns 0 when malformed. */
 static int parse_range(const char *text, double *r0, double *r1, int *n)
@@ -79,54 +76,52 @@ static int parse_range(const char *text, double *r0, double *r1, int *n)
     return 1;
 }
 
-int sss_cmd_profile(int argc, char **argv)
+static int set_option(void *opts, int id, const char *a, const char *v)
 {
-    if (cli_wants_help(argc, argv)) {
-        print_usage(stdout);
-        return CLI_EXIT_OK;
+    profile_options *o = opts;
+    switch (id) {
+    case OPT_SCALE:
+    case OPT_ETA:
+        if (!cli_parse_double(CMD, a, v, id == OPT_SCALE ? &o->scale : &o->eta)) return CLI_EXIT_USAGE;
+        break;
+    case OPT_MODEL:
+        o->model = v;
+        if (strcmp(o->model, "pbd") != 0 && strcmp(o->model, "dipole") != 0)
+            return cli_usage_error(CMD, "--model expects pbd or dipole, got '%s'", o->model);
+        break;
+    case OPT_R:
+        if (!parse_range(v, &o->r0, &o->r1, &o->count)) return CLI_EXIT_USAGE;
+        o->have_range = 1;
+        break;
+    default: /* CLI_OPERAND */
+        if (o->medium) return cli_usage_error(CMD, "unexpected argument '%s' (one medium only)", v);
+        o->medium = v;
     }
-    const char *medium = NULL, *model_text = "pbd";
-    double scale = 1.0, eta = 1.33, r0 = 0.0, r1 = 0.0;
-    int count = DEFAULT_COUNT, have_range = 0;
-    cli_parser args;
-    cli_parser_init(&args, &cli_spec_profile, argc, argv, 1);
-    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
-        const char *a = args.given, *v = args.value;
-        switch (o) {
-        case CLI_BAD: return CLI_EXIT_USAGE;
-        case OPT_SCALE:
-        case OPT_ETA:
-            if (!cli_parse_double(CMD, a, v, o == OPT_SCALE ? &scale : &eta)) return CLI_EXIT_USAGE;
-            break;
-        case OPT_MODEL:
-            model_text = v;
-            if (strcmp(model_text, "pbd") != 0 && strcmp(model_text, "dipole") != 0)
-                return cli_usage_error(CMD, "--model expects pbd or dipole, got '%s'", model_text);
-            break;
-        case OPT_R:
-            if (!parse_range(v, &r0, &r1, &count)) return CLI_EXIT_USAGE;
-            have_range = 1;
-            break;
-        default: /* CLI_OPERAND */
-            if (medium) return cli_usage_error(CMD, "unexpected argument '%s' (one medium only)", v);
-            medium = v;
-        }
-    }
-    if (!medium) return cli_usage_error(CMD, "missing MEDIUM");
+    return CLI_EXIT_OK;
+}
 
+static int profile_parse(int argc, char **argv, profile_options *o)
+{
+    *o = (profile_options){.model = "pbd", .scale = 1.0, .eta = CLI_DEFAULT_ETA, .count = DEFAULT_COUNT};
+    int status = cli_parse(&cli_spec_profile, argc, argv, 1, set_option, o, NULL);
+    if (status != CLI_EXIT_OK) return status;
+    if (!o->medium) return cli_usage_error(CMD, "missing MEDIUM");
+    return CLI_EXIT_OK;
+}
+
+static int profile_run(const profile_options *o)
+{
     cli_medium_profile mp;
-    if (cli_medium_profile_init(CMD, medium, scale, eta, model_text, &mp) != CLI_EXIT_OK) return CLI_EXIT_ERROR;
+    if (cli_medium_profile_init(CMD, o->medium, o->scale, o->eta, o->model, &mp) != CLI_EXIT_OK) return CLI_EXIT_ERROR;
     const sss_profile *p = &mp.profile;
-
-    if (!have_range) {
+    double r0 = o->r0, r1 = o->r1;
+    if (!o->have_range) {
         r0 = 0.0;
-        r1 = 0.0;
-        for (int c = 0; c < 3; c++) r1 = fmax(r1, sss_profile_radius_for_fraction(p, c, 0.999));
+        r1 = sss_profile_reach(p, 0.999);
     }
-
     printf("r\tR\tG\tB\n");
-    for (int k = 0; k < count; k++) {
-        double r = count == 1 ? r0 : r0 + (r1 - r0) * k / (double)(count - 1);
+    for (int k = 0; k < o->count; k++) {
+        double r = o->count == 1 ? r0 : r0 + (r1 - r0) * k / (double)(o->count - 1);
         double v[3];
         sss_profile_eval_rgb(p, r, v);
         printf("%.6g\t%.6e\t%.6e\t%.6e\n", r, v[0], v[1], v[2]);
@@ -134,4 +129,11 @@ int sss_cmd_profile(int argc, char **argv)
     cli_medium_profile_free(&mp);
     if (fflush(stdout) != 0 || ferror(stdout)) return cli_failf(CMD, "error writing the output");
     return CLI_EXIT_OK;
+}
+
+int sss_cmd_profile(int argc, char **argv)
+{
+    profile_options o;
+    int status = profile_parse(argc, argv, &o);
+    return status == CLI_EXIT_OK ? profile_run(&o) : status;
 }

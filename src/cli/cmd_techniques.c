@@ -27,34 +27,42 @@ static void print_params(const char *technique, const sss_gl_param_info *p, int 
 
 enum { OPT_PARAMS };
 static const cli_option options[] = {
-    {OPT_PARAMS, "--params", NULL, CLI_ARG_NONE, NULL, "also each technique's parameters and the shared ones", NULL},
+    {OPT_PARAMS, "--params", NULL, CLI_ARG_NONE, NULL, "also each technique's parameters and the shared ones", NULL, NULL},
 };
-const cli_command_spec cli_spec_techniques = {CMD, options, CLI_COUNT(options), CLI_ARG_NONE, NULL};
+const cli_command_spec cli_spec_techniques = {
+    CMD, options, CLI_COUNT(options), CLI_ARG_NONE, NULL, NULL,
+    "Lists the real-time techniques of `sss render --technique NAME`, one per line (name, then a\n"
+    "summary). --params also lists each technique's parameters (set them with\n"
+    "`sss render --param NAME=VALUE`) and the parameters shared by all techniques. Defaults are the\n"
+    "values that measure best on the evaluation scenes; `--param preset=paper` sets the published\n"
+    "configuration, shown as [preset=paper: VALUE] where it differs.\n",
+    NULL, NULL};
 
-int sss_cmd_techniques(int argc, char **argv)
+typedef struct techniques_options {
+    int with_params;
+} techniques_options;
+
+static int set_option(void *opts, int id, const char *given, const char *value)
 {
-    if (cli_wants_help(argc, argv)) {
-        printf("usage: sss techniques [--params]\n\n"
-               "Lists the real-time techniques of `sss render --technique NAME`, one per line (name, then a\n"
-               "summary). --params also lists each technique's parameters (set them with\n"
-               "`sss render --param NAME=VALUE`) and the parameters shared by all techniques. Defaults are the\n"
-               "values that measure best on the evaluation scenes; `--param preset=paper` sets the published\n"
-               "configuration, shown as [preset=paper: VALUE] where it differs.\n\n");
-        cli_print_options(stdout, &cli_spec_techniques);
-        return CLI_EXIT_OK;
-    }
-    int with_params = 0;
-    cli_parser args;
-    cli_parser_init(&args, &cli_spec_techniques, argc, argv, 1);
-    for (int o; (o = cli_next(&args)) != CLI_DONE;) {
-        if (o == CLI_BAD) return CLI_EXIT_USAGE;
-        if (o == OPT_PARAMS) with_params = 1;
-        else return cli_usage_error(CMD, "unexpected argument '%s'", args.value);
-    }
+    (void)given;
+    techniques_options *o = opts;
+    if (id == OPT_PARAMS) o->with_params = 1;
+    else return cli_usage_error(CMD, "unexpected argument '%s'", value);
+    return CLI_EXIT_OK;
+}
+
+static int techniques_parse(int argc, char **argv, techniques_options *o)
+{
+    memset(o, 0, sizeof *o);
+    return cli_parse(&cli_spec_techniques, argc, argv, 1, set_option, o, NULL);
+}
+
+static int techniques_run(const techniques_options *o)
+{
     for (int i = 0; i < sss_gl_technique_count(); i++) {
         const sss_gl_technique_info *t = sss_gl_technique_at(i);
         printf("%-12s %s\n", t->name, t->summary);
-        if (!with_params) continue;
+        if (!o->with_params) continue;
         print_params(t->name, t->params, t->param_count);
         int n = 0;
         const sss_gl_param_info *sp = sss_gl_shared_params(&n);
@@ -64,11 +72,18 @@ int sss_cmd_techniques(int argc, char **argv)
                 printf("    %-22s (shared)        [preset=paper: %g]\n", sp[k].name, paper);
         }
     }
-    if (with_params) {
+    if (o->with_params) {
         int n = 0;
         const sss_gl_param_info *sp = sss_gl_shared_params(&n);
         printf("shared parameters (every technique):\n");
         print_params(NULL, sp, n);
     }
     return CLI_EXIT_OK;
+}
+
+int sss_cmd_techniques(int argc, char **argv)
+{
+    techniques_options o;
+    int status = techniques_parse(argc, argv, &o);
+    return status == CLI_EXIT_OK ? techniques_run(&o) : status;
 }

@@ -6,24 +6,22 @@
 #include "core/file_util.h"
 #include "sss/version.h"
 
-const cli_command_spec cli_spec_version = {"version", NULL, 0, CLI_ARG_NONE, NULL};
+const cli_command_spec cli_spec_version = {
+    "version", NULL, 0, CLI_ARG_NONE, NULL, NULL,
+    "Prints 'sss MAJOR.MINOR.PATCH', the version of the sss library (also 'sss --version').\n", NULL, NULL};
+
+static int version_set(void *opts, int id, const char *given, const char *value)
+{
+    (void)opts, (void)id, (void)value;
+    return cli_usage_error("version", "takes no arguments, got '%s'", given);
+}
 
 /* `sss version` and `sss --version`: the version of the library the tool runs with. */
 static int cmd_version(int argc, char **argv)
 {
-    if (cli_wants_help(argc, argv)) {
-        printf("usage: sss version (or sss --version)\n\nPrints 'sss MAJOR.MINOR.PATCH', the version of "
-               "the sss library.\n\n");
-        cli_print_options(stdout, &cli_spec_version);
-        return CLI_EXIT_OK;
-    }
-    cli_parser args;
-    cli_parser_init(&args, &cli_spec_version, argc, argv, 1);
-    for (int o; (o = cli_next(&args)) != CLI_DONE;)
-        if (o == CLI_BAD) return CLI_EXIT_USAGE;
-        else return cli_usage_error("version", "takes no arguments, got '%s'", args.given);
-    printf("sss %s\n", sss_version());
-    return CLI_EXIT_OK;
+    int status = cli_parse(&cli_spec_version, argc, argv, 1, version_set, NULL, NULL);
+    if (status == CLI_EXIT_OK) printf("sss %s\n", sss_version());
+    return status;
 }
 
 static const cli_command_entry commands[] = {
@@ -79,11 +77,28 @@ static void print_help(FILE *f)
     fprintf(f, "\nRun 'sss COMMAND --help' for a command's options.\n");
 }
 
-static const cli_command_entry *find_command(const char *name)
+const cli_command_entry *cli_find_command(const char *name)
 {
     for (size_t i = 0; i < COMMAND_COUNT; i++)
         if (strcmp(commands[i].name, name) == 0) return &commands[i];
     return NULL;
+}
+
+/* A command's --help (anywhere before "--"), else the command: its outputs staged when it is (all or
+ * none are written). */
+static int run_command(const cli_command_entry *c, int argc, char **argv)
+{
+    if (cli_wants_help(argc, argv)) {
+        cli_print_help(stdout, c);
+        return CLI_EXIT_OK;
+    }
+    if (!c->staged) return c->run(argc, argv); /* view writes screenshots while it runs: each on its own */
+    sss_outputs outputs;
+    sss_outputs_begin(&outputs);
+    int status = c->run(argc, argv);
+    sss_error err = {0};
+    if (sss_outputs_end(&outputs, status == CLI_EXIT_OK, &err) != SSS_OK) status = cli_fail(c->name, &err);
+    return status;
 }
 
 int main(int argc, char **argv)
@@ -95,30 +110,21 @@ int main(int argc, char **argv)
     const char *name = argv[1];
     if (strcmp(name, "help") == 0 || strcmp(name, "--help") == 0 || strcmp(name, "-h") == 0) {
         if (argc >= 3 && strcmp(name, "help") == 0) {
-            const cli_command_entry *c = find_command(argv[2]);
+            const cli_command_entry *c = cli_find_command(argv[2]);
             if (!c) {
                 unknown_command(argv[2]);
                 return CLI_EXIT_USAGE;
             }
-            char help[] = "--help";
-            char *sub[] = {argv[2], help, NULL};
-            return c->run(2, sub);
+            cli_print_help(stdout, c);
+            return CLI_EXIT_OK;
         }
         print_help(stdout);
         return CLI_EXIT_OK;
     }
-    if (strcmp(name, "--version") == 0) return cmd_version(argc - 1, argv + 1);
-    const cli_command_entry *c = find_command(name);
+    const cli_command_entry *c = cli_find_command(strcmp(name, "--version") == 0 ? "version" : name);
     if (!c) {
         if (!unknown_command(name)) print_help(stderr);
         return CLI_EXIT_USAGE;
     }
-    if (!c->staged) return c->run(argc - 1, argv + 1);
-    /* view writes screenshots while it runs: each is committed on its own. */
-    sss_outputs outputs;
-    sss_outputs_begin(&outputs);
-    int status = c->run(argc - 1, argv + 1);
-    sss_error err = {0};
-    if (sss_outputs_end(&outputs, status == CLI_EXIT_OK, &err) != SSS_OK) status = cli_fail(name, &err);
-    return status;
+    return run_command(c, argc - 1, argv + 1);
 }

@@ -105,6 +105,72 @@ static void random_suffix(char out[13])
     out[12] = '\0';
 }
 
+static char *dup_string(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d) memcpy(d, s, n);
+    return d;
+}
+
+/* Appends a copy of dir to t->dirs (the folders t created). */
+static sss_result record_dir(sss_outputs *t, const char *dir, sss_error *err)
+{
+    if (t->dir_count == t->dir_capacity) {
+        size_t cap = t->dir_capacity ? 2 * t->dir_capacity : 4;
+        char **grown = realloc(t->dirs, cap * sizeof *grown);
+        if (!grown) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", dir);
+        t->dirs = grown;
+        t->dir_capacity = cap;
+    }
+    if (!(t->dirs[t->dir_count] = dup_string(dir)))
+        return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", dir);
+    t->dir_count++;
+    return SSS_OK;
+}
+
+/* Creates dir (malloc'd, written in place) level by level, recording in t each folder made here; a
+ * level that exists must be a folder (mkdir never replaces or follows into a file). */
+static sss_result make_folders(sss_outputs *t, char *dir, const char *path, sss_error *err)
+{
+    for (char *p = dir + 1;; p++) {
+        if (*p != '/' && *p != '\0') continue;
+        char end = *p;
+        *p = '\0';
+        struct stat st;
+        int made = 0;
+        if (stat(dir, &st) != 0) {
+            made = mkdir(dir, 0777) == 0;
+            int e = errno;
+            if (!made && (e != EEXIST || stat(dir, &st) != 0)) /* EEXIST: made by another process meanwhile */
+                return sss_error_set(err, SSS_ERROR_IO, "%s: cannot create the folder %s: %s", path, dir, strerror(e));
+        }
+        if (!made && !S_ISDIR(st.st_mode))
+            return sss_error_set(err, SSS_ERROR_IO, "%s: cannot write: %s is not a folder", path, dir);
+        sss_result r = made ? record_dir(t, dir, err) : SSS_OK;
+        if (r != SSS_OK) return r;
+        *p = end;
+        if (!end) return SSS_OK;
+    }
+}
+
+/* The missing folder of an output (its open failed with ENOENT): created, level by level, when the
+ * active transaction asks for it (its folders, removed when it aborts); else an error naming it. */
+static sss_result missing_folder(const char *path, sss_error *err)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash || slash == path) return sss_error_set(err, SSS_ERROR_IO, "%s: cannot write: %s", path, strerror(ENOENT));
+    char *dir = malloc((size_t)(slash - path) + 1);
+    if (!dir) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    memcpy(dir, path, (size_t)(slash - path));
+    dir[slash - path] = '\0';
+    sss_result r = active_outputs && active_outputs->create_folders
+                       ? make_folders(active_outputs, dir, path, err)
+                       : sss_error_set(err, SSS_ERROR_IO, "%s: cannot write: the folder %s does not exist", path, dir);
+    free(dir);
+    return r;
+}
+
 FILE *sss_atomic_open(const char *path, char *tmp, size_t cap, sss_error *err)
 {
     struct stat st;
@@ -114,6 +180,7 @@ FILE *sss_atomic_open(const char *path, char *tmp, size_t cap, sss_error *err)
     }
     const char *slash = strrchr(path, '/');
     size_t dir_len = slash ? (size_t)(slash - path) + 1 : 0;
+    int folder_made = 0;
     for (int attempt = 0; attempt < 64; attempt++) {
         char suffix[13];
         random_suffix(suffix);
@@ -124,6 +191,12 @@ FILE *sss_atomic_open(const char *path, char *tmp, size_t cap, sss_error *err)
         }
         int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
         if (fd < 0 && errno == EEXIST) continue;
+        if (fd < 0 && errno == ENOENT && !folder_made) { /* a folder of the path is missing */
+            if (missing_folder(path, err) != SSS_OK) return NULL;
+            folder_made = 1;
+            attempt--;
+            continue;
+        }
         if (fd < 0) {
             sss_error_set(err, SSS_ERROR_IO, "%s: cannot write: %s", path, strerror(errno));
             return NULL;
@@ -138,14 +211,6 @@ FILE *sss_atomic_open(const char *path, char *tmp, size_t cap, sss_error *err)
     }
     sss_error_set(err, SSS_ERROR_IO, "%s: cannot create a temporary file beside it", path);
     return NULL;
-}
-
-static char *dup_string(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d) memcpy(d, s, n);
-    return d;
 }
 
 static sss_result staging_failed(sss_outputs *t, const char *tmp, const char *path, sss_error *err)
@@ -231,6 +296,20 @@ static sss_result rename_all(sss_outputs *t, sss_error *err)
     return SSS_OK;
 }
 
+/* The folders t created: handed to the outer transaction (kept) on commit, removed deepest first
+ * otherwise (rmdir: only while empty, so nothing another writer put there goes). */
+static void end_folders(sss_outputs *t, int commit, sss_error *err)
+{
+    for (size_t i = t->dir_count; !commit && i-- > 0;) rmdir(t->dirs[i]);
+    for (size_t i = 0; i < t->dir_count; i++) {
+        if (commit && t->outer) record_dir(t->outer, t->dirs[i], err); /* out of memory: the folder stays */
+        free(t->dirs[i]);
+    }
+    free(t->dirs);
+    t->dirs = NULL;
+    t->dir_count = t->dir_capacity = 0;
+}
+
 const char *sss_outputs_current_path(const char *path)
 {
     for (const sss_outputs *t = active_outputs; t; t = t->outer)
@@ -258,6 +337,7 @@ sss_result sss_outputs_end(sss_outputs *t, int commit, sss_error *err)
     free(t->items);
     t->items = NULL;
     t->count = t->capacity = 0;
+    end_folders(t, commit && r == SSS_OK, err);
     return r;
 }
 
@@ -272,6 +352,88 @@ sss_result sss_check_output_not_input(const char *output, const char *const *inp
                                  "%s: is the same file as the input %s; refusing to overwrite an input", output,
                                  inputs[i]);
     return SSS_OK;
+}
+
+/* ---- A command's inputs and outputs ------------------------------------------------------------- */
+
+static void io_add(char ***list, size_t *count, size_t *cap, int *oom, const char *path)
+{
+    if (!path) return;
+    if (*count == *cap) {
+        size_t n = *cap ? 2 * *cap : 16;
+        char **grown = realloc(*list, n * sizeof *grown);
+        if (!grown) {
+            *oom = 1;
+            return;
+        }
+        *list = grown;
+        *cap = n;
+    }
+    char *copy = dup_string(path);
+    if (!copy) *oom = 1;
+    else (*list)[(*count)++] = copy;
+}
+
+void sss_io_add_input(sss_io_set *io, const char *path)
+{
+    io_add(&io->inputs, &io->input_count, &io->input_cap, &io->out_of_memory, path);
+}
+
+void sss_io_add_output(sss_io_set *io, const char *path)
+{
+    io_add(&io->outputs, &io->output_count, &io->output_cap, &io->out_of_memory, path);
+}
+
+/* The folder part of path ("." when it has none) into dir (cap bytes); returns its file name, or NULL
+ * when the folder does not fit. */
+static const char *split_path(const char *path, char *dir, size_t cap)
+{
+    const char *slash = strrchr(path, '/');
+    size_t n = slash ? (size_t)(slash - path) + 1 : 0; /* "/" stays "/": the root keeps its slash */
+    if (n == 0) n = (size_t)snprintf(dir, cap, ".");
+    else if (n < cap) snprintf(dir, cap, "%.*s", (int)n, path);
+    else return NULL;
+    return slash ? slash + 1 : path;
+}
+
+/* Two outputs are one file when both exist as one inode, or when they name the same entry: equal
+ * file names in one folder (the folders compared by device and inode when both exist). */
+static int same_output(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    if (stat(a, &sa) == 0 && stat(b, &sb) == 0) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    char da[4096], db[4096];
+    const char *na = split_path(a, da, sizeof da), *nb = split_path(b, db, sizeof db);
+    if (!na || !nb) return strcmp(a, b) == 0;
+    if (strcmp(na, nb) != 0) return 0;
+    if (stat(da, &sa) == 0 && stat(db, &sb) == 0) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    return strcmp(da, db) == 0;
+}
+
+sss_result sss_io_check(const sss_io_set *io, sss_error *err)
+{
+    if (io->out_of_memory) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory listing the files");
+    for (size_t i = 0; i < io->output_count; i++) {
+        const char *const *inputs = (const char *const *)io->inputs;
+        sss_result r = sss_check_output_not_input(io->outputs[i], inputs, io->input_count, err);
+        if (r != SSS_OK) return r;
+        for (size_t j = 0; j < i; j++)
+            if (same_output(io->outputs[j], io->outputs[i]))
+                return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                                     "%s: is the same file as the output %s; refusing to write one output over "
+                                     "another",
+                                     io->outputs[i], io->outputs[j]);
+    }
+    return SSS_OK;
+}
+
+void sss_io_free(sss_io_set *io)
+{
+    for (size_t i = 0; i < io->input_count; i++) free(io->inputs[i]);
+    for (size_t i = 0; i < io->output_count; i++) free(io->outputs[i]);
+    free(io->inputs);
+    free(io->outputs);
+    memset(io, 0, sizeof *io);
 }
 
 void sss_path_extension(const char *path, char *out, size_t cap)

@@ -9,7 +9,10 @@
  * bytes go to a temporary file created exclusively (O_CREAT|O_EXCL|O_NOFOLLOW, a fresh random name) in
  * the output's folder, so a planted symlink is never followed, and are renamed over the output only
  * when complete. Inside an output transaction (sss_outputs_begin on the calling thread) the renames
- * wait for sss_outputs_end: a command with several outputs leaves all of them or none.
+ * wait for sss_outputs_end: a command with several outputs leaves all of them or none. A transaction
+ * that sets create_folders also creates its outputs' missing folders (mkdir, one level at a time, never
+ * through a file) and removes them again (when empty) if it aborts; elsewhere a missing folder is an
+ * error naming it.
  */
 #ifndef SSS_CORE_FILE_UTIL_H
 #define SSS_CORE_FILE_UTIL_H
@@ -34,8 +37,9 @@ FILE *sss_fopen_input(const char *path, uint64_t max_size, uint64_t *size, sss_e
 sss_result sss_read_file(const char *path, size_t max_size, char **data, size_t *size, sss_error *err);
 
 /* Opens a new temporary file for an atomic write of path ("wb"); tmp (cap >= 4096 recommended)
- * receives its name. Refuses a path that is a folder. Close the FILE yourself, then commit or discard,
- * or use sss_atomic_close. */
+ * receives its name. Refuses a path that is a folder. A missing folder of path is created when the active
+ * transaction has create_folders set, else refused ("PATH: cannot write: the folder DIR does not
+ * exist"). Close the FILE yourself, then commit or discard, or use sss_atomic_close. */
 FILE *sss_atomic_open(const char *path, char *tmp, size_t cap, sss_error *err);
 /* Renames tmp to path (inside an output transaction: at its end); on failure removes tmp and reports
  * an error naming path. */
@@ -53,6 +57,10 @@ typedef struct sss_staged_output {
 typedef struct sss_outputs {
     sss_staged_output *items;
     size_t count, capacity;
+    int create_folders; /* set after begin: missing folders of the outputs are created (and are the
+                         * transaction's: kept on commit, removed on abort) */
+    char **dirs;        /* the folders this transaction created, outermost first */
+    size_t dir_count, dir_capacity;
     sss_result failure; /* a staging step that failed (out of memory): end does not commit */
     struct sss_outputs *outer;
 } sss_outputs;
@@ -68,6 +76,23 @@ const char *sss_outputs_current_path(const char *path);
  * An output that does not exist yet is fine. */
 sss_result sss_check_output_not_input(const char *output, const char *const *inputs, size_t input_count,
                                       sss_error *err);
+
+/* A command's files: every file it reads (inputs) and every file it writes (outputs), collected
+ * before it writes anything and checked against each other by sss_io_check. Zero-initialise it; the
+ * paths are copied, NULL ones skipped; release with sss_io_free. */
+typedef struct sss_io_set {
+    char **inputs, **outputs;
+    size_t input_count, output_count, input_cap, output_cap;
+    int out_of_memory; /* an add failed: sss_io_check reports it */
+} sss_io_set;
+void sss_io_add_input(sss_io_set *io, const char *path);
+void sss_io_add_output(sss_io_set *io, const char *path);
+/* Refuses (SSS_ERROR_INVALID_ARGUMENT, naming both files) an output that is the same file as an input
+ * (sss_check_output_not_input) or as another output: the same existing file (device and inode), or
+ * the same name in the same folder however spelled ("a.png", "./a.png", "d/../a.png"), which an
+ * output transaction would rename twice, keeping only the last. */
+sss_result sss_io_check(const sss_io_set *io, sss_error *err);
+void sss_io_free(sss_io_set *io);
 
 /* The extension of path in lower case without the dot ("" when there is none); out has cap bytes. */
 void sss_path_extension(const char *path, char *out, size_t cap);

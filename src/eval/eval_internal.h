@@ -21,11 +21,21 @@ typedef struct eval_spec {
 
 sss_result eval_parse_spec(const char *text, eval_spec *out, sss_error *err);
 
+/* Names from data (scene file names, technique specs) as the outputs show them: control characters
+ * and bytes that are not UTF-8 as visible escapes (core/text.h), into out (cap bytes, cut to fit),
+ * or as a malloc'd copy (NULL when out of memory). */
+void eval_escape(const char *text, char *out, size_t cap);
+char *eval_escaped(const char *text);
+
 /* Appends a zeroed entry (growing the array); NULL when out of memory. */
 sss_eval_entry *eval_add_entry(sss_eval_results *res);
 
-/* "references" folder of a scene file: <dir of path>/references. */
-void eval_default_reference_dir(const char *scene_path, char *out, size_t cap);
+/* Where --cached-reference looks for the scene's reference at w x h: "<scene folder>/references/
+ * <file_stem>_<w>x<h>[_t<T>].exr" (committed next to the scene), or with desc->reference_dir,
+ * "<reference_dir>/<stem>_..." (the run's name of the scene: what a run saves to its references/).
+ * Returns 0 when the path does not fit. */
+int eval_cached_reference_path(const sss_eval_desc *desc, const sss_eval_scene *es, int w, int h, char *out,
+                               size_t cap);
 /* 64-bit FNV-1a of a file's bytes; 0 on read failure. */
 uint64_t eval_file_hash(const char *path);
 

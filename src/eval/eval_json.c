@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "core/file_util.h"
+#include "core/text.h"
 #include "eval/eval_internal.h"
 #include "sss/version.h"
 
@@ -15,6 +16,14 @@ static void add_num(cJSON *o, const char *key, double v)
 {
     if (isfinite(v)) cJSON_AddNumberToObject(o, key, v);
     else cJSON_AddNullToObject(o, key);
+}
+
+/* A string from data (a path, a technique name): escaped (eval_escaped), since JSON text must be UTF-8. */
+static void add_text(cJSON *o, const char *key, const char *text)
+{
+    char *escaped = eval_escaped(text);
+    if (escaped) cJSON_AddStringToObject(o, key, escaped);
+    free(escaped);
 }
 
 static const char *ref_source(sss_eval_ref_source s)
@@ -29,7 +38,7 @@ static cJSON *entry_json(const sss_eval_results *res, const sss_eval_entry *e)
     cJSON_AddStringToObject(o, "scene", res->scenes[e->scene].name);
     cJSON_AddNumberToObject(o, "scene_index", e->scene);
     cJSON_AddStringToObject(o, "kind", sss_eval_kind_name(e->kind));
-    cJSON_AddStringToObject(o, "technique", e->technique);
+    add_text(o, "technique", e->technique);
     cJSON_AddStringToObject(o, "label", e->label);
     cJSON *params = cJSON_AddObjectToObject(o, "params");
     eval_spec spec;
@@ -41,7 +50,7 @@ static cJSON *entry_json(const sss_eval_results *res, const sss_eval_entry *e)
     else cJSON_AddNullToObject(o, "sam_n");
     cJSON_AddStringToObject(o, "status", e->ok ? "ok" : "failed");
     if (e->ok) cJSON_AddNullToObject(o, "error");
-    else cJSON_AddStringToObject(o, "error", e->error);
+    else add_text(o, "error", e->error);
     if (e->has_metrics) {
         add_num(o, "dssim", e->metrics.dssim);
         add_num(o, "flip", e->metrics.flip);
@@ -122,7 +131,7 @@ static cJSON *results_json(const sss_eval_results *res)
         cJSON *o = cJSON_CreateObject();
         if (!o) continue;
         cJSON_AddStringToObject(o, "name", s->name);
-        cJSON_AddStringToObject(o, "path", s->path);
+        add_text(o, "path", s->path);
         cJSON_AddNumberToObject(o, "time", s->time);
         cJSON_AddNumberToObject(o, "width", s->width);
         cJSON_AddNumberToObject(o, "height", s->height);
@@ -138,10 +147,10 @@ static cJSON *results_json(const sss_eval_results *res)
             cJSON_AddStringToObject(ro, "source", ref_source(r->source));
             cJSON_AddStringToObject(ro, "quality", r->quality[0] ? r->quality : "unknown");
             cJSON_AddNumberToObject(ro, "bounces", r->bounces);
-            if (r->path[0]) cJSON_AddStringToObject(ro, "path", r->path);
+            if (r->path[0]) add_text(ro, "path", r->path);
             else cJSON_AddNullToObject(ro, "path");
             add_num(ro, "seconds", r->seconds);
-            if (r->source == SSS_EVAL_REF_NONE) cJSON_AddStringToObject(ro, "error", r->error);
+            if (r->source == SSS_EVAL_REF_NONE) add_text(ro, "error", r->error);
             else cJSON_AddNullToObject(ro, "error");
             cJSON_AddItemToArray(refs, ro);
         }
@@ -189,14 +198,18 @@ sss_result sss_eval_write_json(const sss_eval_results *res, const char *path, ss
 }
 
 /* RFC 4180 field: quoted when it holds a comma, quote or line break. */
-static void csv_field(FILE *f, const char *s)
+/* A CSV field, quoted when it must be; control characters and bytes that are not UTF-8 as visible
+ * escapes (core/text.h: scene names come from file names). */
+static void csv_field(FILE *f, const char *text)
 {
-    if (!strpbrk(s, ",\"\r\n")) {
-        fputs(s, f);
+    char escaped[SSS_TEXT_ESCAPE_MAX * 512 + 1];
+    sss_text_escape(text, strnlen(text, 512), escaped);
+    if (!strpbrk(escaped, ",\"")) { /* no line breaks are left to quote */
+        fputs(escaped, f);
         return;
     }
     fputc('"', f);
-    for (; *s; s++) {
+    for (const char *s = escaped; *s; s++) {
         if (*s == '"') fputc('"', f);
         fputc(*s, f);
     }

@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "core/file_util.h"
-#include "core/text.h"
+#include "scene/json_reader.h"
 #include "eval/eval_internal.h"
 
 static const char *quality_name(sss_reference_quality q) { return q == SSS_REFERENCE_DRAFT ? "draft" : "final"; }
@@ -39,11 +39,14 @@ static int read_sidecar(const char *exr, uint64_t *hash, char quality[8], int *b
     char *text = NULL;
     size_t size = 0;
     if (sss_read_file(path, 1 << 20, &text, &size, NULL) != SSS_OK) return 0;
-    char nul_path[256];
-    /* a string cut at a NUL could pass for another scene's hash: such a sidecar counts as absent */
-    cJSON *root = sss_json_find_nul(text, size, nul_path, sizeof nul_path) ? NULL : cJSON_ParseWithLength(text, size);
+    /* a sidecar that is not JSON counts as absent (and one whose string is cut at a NUL could pass for
+     * another scene's hash) */
+    jr r;
+    jr_init(&r, path, NULL);
+    cJSON *root = NULL;
+    sss_result parsed = jr_parse(&r, text, size, &root);
     free(text);
-    if (!root) return 0;
+    if (parsed != SSS_OK) return 0;
     const cJSON *h = cJSON_GetObjectItemCaseSensitive(root, "scene_fnv1a64");
     if (cJSON_IsString(h)) *hash = strtoull(h->valuestring, NULL, 16);
     const cJSON *q = cJSON_GetObjectItemCaseSensitive(root, "quality");
@@ -63,6 +66,18 @@ typedef struct render_record {
     sss_reference_stats stats;
 } render_record;
 
+/* The text of a file name inside a JSON string: escaped (eval_escaped: no control characters, UTF-8),
+ * then quotes and backslashes escaped for JSON. */
+static void json_text(FILE *f, const char *text)
+{
+    char *escaped = eval_escaped(text);
+    for (const char *c = escaped ? escaped : ""; *c; c++) {
+        if (*c == '"' || *c == '\\') fputc('\\', f);
+        fputc(*c, f);
+    }
+    free(escaped);
+}
+
 static sss_result write_sidecar(const char *exr, const sss_eval_scene *es, int w, int h, const char *quality,
                                 int bounces, const render_record *rec, sss_error *err)
 {
@@ -70,21 +85,24 @@ static sss_result write_sidecar(const char *exr, const sss_eval_scene *es, int w
     if (!sidecar_path(exr, path, sizeof path)) return sss_error_set(err, SSS_ERROR_LIMIT, "%s: path too long", exr);
     FILE *f = sss_atomic_open(path, tmp, sizeof tmp, err);
     if (!f) return err ? err->code : SSS_ERROR_IO;
-    const char *slash = strrchr(es->path, '/');
+    const char *slash = strrchr(es->path, '/'), *name = slash ? slash + 1 : es->path;
     char tflag[80] = "";
     int n = es->has_time ? snprintf(tflag, sizeof tflag, " --time %g", es->time) : 0;
     if (bounces > 0) snprintf(tflag + n, sizeof tflag - (size_t)n, " --bounces %d", bounces);
+    fputs("{\n  \"scene\": \"", f);
+    json_text(f, name);
     fprintf(f,
-            "{\n  \"scene\": \"%s\",\n  \"scene_fnv1a64\": \"%016" PRIx64 "\",\n  \"width\": %d,\n  \"height\": %d,\n"
+            "\",\n  \"scene_fnv1a64\": \"%016" PRIx64 "\",\n  \"width\": %d,\n  \"height\": %d,\n"
             "  \"time\": %.17g,\n  \"quality\": \"%s\",\n  \"bounces\": %d,\n  \"transport_version\": %d,\n"
             "  \"seconds\": %.3f,\n"
             "  \"cpu_seconds\": %.3f,\n  \"bounces_done\": %u,\n  \"seconds_per_bounce\": [",
-            slash ? slash + 1 : es->path, eval_file_hash(es->path), w, h, es->time, quality, bounces,
-            SSS_REFERENCE_TRANSPORT_VERSION, rec->seconds, rec->cpu_seconds, rec->stats.bounces);
+            eval_file_hash(es->path), w, h, es->time, quality, bounces, SSS_REFERENCE_TRANSPORT_VERSION, rec->seconds,
+            rec->cpu_seconds, rec->stats.bounces);
     for (uint32_t k = 0; k < rec->stats.bounces && k < SSS_REFERENCE_MAX_BOUNCES; k++)
         fprintf(f, "%s%.3f", k ? ", " : "", rec->stats.seconds_bounce[k]);
-    fprintf(f, "],\n  \"seconds_pixels\": %.3f,\n  \"command\": \"sss reference %s%s -o OUT.exr --quality %s\"\n}\n",
-            rec->stats.seconds_pixels, slash ? slash + 1 : es->path, tflag, quality);
+    fprintf(f, "],\n  \"seconds_pixels\": %.3f,\n  \"command\": \"sss reference ", rec->stats.seconds_pixels);
+    json_text(f, name);
+    fprintf(f, "%s -o OUT.exr --quality %s\"\n}\n", tflag, quality);
     return sss_atomic_close(f, tmp, path, err);
 }
 
@@ -110,11 +128,8 @@ sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const
     ref->height = h;
     ref->source = SSS_EVAL_REF_NONE;
     ref->bounces = desc->reference_bounces;
-    char dir[1024];
-    if (desc->reference_dir) snprintf(dir, sizeof dir, "%s", desc->reference_dir);
-    else eval_default_reference_dir(es->path, dir, sizeof dir);
     char cached[1024];
-    int have_name = sss_eval_reference_path(dir, es->stem, w, h, es->has_time, es->time, cached, sizeof cached);
+    int have_name = eval_cached_reference_path(desc, es, w, h, cached, sizeof cached);
     if (desc->cached_reference && have_name) {
         if (access(cached, R_OK) == 0) {
             uint64_t hash = 0;

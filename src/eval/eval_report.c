@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "core/file_util.h"
+#include "core/text.h"
 #include "eval/eval_internal.h"
 
 /* ---- A growing string ------------------------------------------------------------------------- */
@@ -57,10 +58,18 @@ static void sb_printf(sbuf *b, const char *fmt, ...)
     sb_put(b, tmp, (size_t)n < sizeof tmp ? (size_t)n : sizeof tmp - 1);
 }
 
-/* HTML text (also safe inside double-quoted attributes). */
-static void sb_esc(sbuf *b, const char *s)
+/* HTML text (also safe inside double-quoted attributes), control characters and bytes that are not
+ * UTF-8 written as visible escapes first (core/text.h): scene names come from file names. */
+static void sb_esc(sbuf *b, const char *text)
 {
-    for (; *s; s++) {
+    size_t n = strlen(text);
+    char *escaped = malloc(SSS_TEXT_ESCAPE_MAX * n + 1);
+    if (!escaped) {
+        b->oom = 1;
+        return;
+    }
+    sss_text_escape(text, n, escaped);
+    for (const char *s = escaped; *s; s++) {
         switch (*s) {
         case '&': sb_put(b, "&amp;", 5); break;
         case '<': sb_put(b, "&lt;", 4); break;
@@ -69,6 +78,7 @@ static void sb_esc(sbuf *b, const char *s)
         default: sb_put(b, s, 1);
         }
     }
+    free(escaped);
 }
 
 static void sb_base64(sbuf *b, const unsigned char *d, size_t n)

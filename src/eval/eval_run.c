@@ -74,9 +74,88 @@ static sss_result split_scene_arg(const char *arg, sss_eval_scene *s, sss_error 
     const char *base = slash ? slash + 1 : s->path;
     const char *dot = strrchr(base, '.');
     int stem_len = dot && dot != base ? (int)(dot - base) : (int)strlen(base);
-    snprintf(s->stem, sizeof s->stem, "%.*s", stem_len, base);
-    if (s->has_time) snprintf(s->name, sizeof s->name, "%.100s@%g", s->stem, s->time);
-    else snprintf(s->name, sizeof s->name, "%s", s->stem);
+    snprintf(s->file_stem, sizeof s->file_stem, "%.*s", stem_len, base);
+    eval_escape(s->file_stem, s->stem, sizeof s->stem);
+    return SSS_OK;
+}
+
+/* The part of the scene's output names after "sheet_" and before ".png" (and the same in crops_*),
+ * for the scene with the given stem: the stem and the time. Two scenes with one key would write the
+ * same files. */
+static void output_key(const sss_eval_scene *s, const char *stem, char *out, size_t cap)
+{
+    if (s->has_time) snprintf(out, cap, "%s_t%g", stem, s->time);
+    else snprintf(out, cap, "%s", stem);
+}
+
+static int same_key(const sss_eval_scene *a, const char *stem_a, const sss_eval_scene *b, const char *stem_b)
+{
+    char ka[200], kb[200];
+    output_key(a, stem_a, ka, sizeof ka);
+    output_key(b, stem_b, kb, sizeof kb);
+    return strcmp(ka, kb) == 0;
+}
+
+/* "<file_stem>-<the last `depth` folder names of the scene file's folder, joined by '-'>" into out,
+ * escaped (the folder resolved, so that "s.json" and "../d/s.json" show their folder's name; as given
+ * when it cannot be resolved). Returns 0 when the folder has fewer than depth names. */
+static int suffixed_stem(const sss_eval_scene *s, int depth, char *out, size_t cap)
+{
+    char *real = realpath(s->path, NULL);
+    const char *dir = real ? real : s->path;
+    const char *start = strrchr(dir, '/');
+    int ok = start != NULL;
+    for (int d = 0; ok && d < depth; d++) { /* start: at the '/' before the names taken so far */
+        const char *end = start;
+        while (start > dir && start[-1] != '/') start--;
+        ok = start < end;
+        if (ok && d + 1 < depth) ok = start-- > dir;
+    }
+    char *raw = ok ? malloc(strlen(s->file_stem) + strlen(start) + 2) : NULL;
+    if (raw) {
+        sprintf(raw, "%s-%.*s", s->file_stem, (int)(strrchr(dir, '/') - start), start);
+        for (char *c = raw + strlen(s->file_stem); *c; c++)
+            if (*c == '/') *c = '-';
+        eval_escape(raw, out, cap);
+    }
+    free(raw);
+    free(real);
+    return raw != NULL;
+}
+
+/* A scene whose outputs would share their names with another's (the same file stem and time:
+ * d1/s.json and d2/s.json) is told apart by its folders: stems "s-d1" and "s-d2", with as many folder
+ * names as it takes. The same file given twice at one time, and names that stay equal, are refused
+ * before any work. */
+static sss_result distinct_names(sss_eval_scene *sc, int n, sss_error *err)
+{
+    for (int i = 0; i < n; i++) {
+        int clash = 0;
+        for (int j = 0; j < n && !clash; j++)
+            clash = j != i && same_key(&sc[i], sc[i].file_stem, &sc[j], sc[j].file_stem);
+        char mine[128], other[128];
+        for (int depth = 1; clash && suffixed_stem(&sc[i], depth, mine, sizeof mine); depth++) {
+            int unique = 1;
+            for (int j = 0; j < n && unique; j++)
+                unique = j == i || !same_key(&sc[i], sc[i].file_stem, &sc[j], sc[j].file_stem) ||
+                         !suffixed_stem(&sc[j], depth, other, sizeof other) || !same_key(&sc[i], mine, &sc[j], other);
+            if (unique) {
+                snprintf(sc[i].stem, sizeof sc[i].stem, "%s", mine);
+                clash = 0;
+            }
+        }
+    }
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < i; j++)
+            if (same_key(&sc[i], sc[i].stem, &sc[j], sc[j].stem))
+                return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                                     "scenes %s and %s would write the same output files (sheet_%s.png, "
+                                     "references/%s_*.exr): give a scene once per time, or rename one",
+                                     sc[j].path, sc[i].path, sc[i].stem, sc[i].stem);
+    for (int i = 0; i < n; i++) {
+        if (sc[i].has_time) snprintf(sc[i].name, sizeof sc[i].name, "%.100s@%g", sc[i].stem, sc[i].time);
+        else snprintf(sc[i].name, sizeof sc[i].name, "%s", sc[i].stem);
+    }
     return SSS_OK;
 }
 
@@ -271,11 +350,8 @@ static double reference_units(const run_state *st, const sss_eval_scene *es, int
     const sss_eval_desc *d = st->desc;
     double px = (double)w * h;
     if (d->cached_reference) {
-        char dir[1024], path[1024];
-        if (d->reference_dir) snprintf(dir, sizeof dir, "%s", d->reference_dir);
-        else eval_default_reference_dir(es->path, dir, sizeof dir);
-        if (sss_eval_reference_path(dir, es->stem, w, h, es->has_time, es->time, path, sizeof path) &&
-            access(path, R_OK) == 0)
+        char path[1024];
+        if (eval_cached_reference_path(d, es, w, h, path, sizeof path) && access(path, R_OK) == 0)
             return 0.01 * px;
     }
     return px * (d->reference_quality == SSS_REFERENCE_DRAFT ? REF_DRAFT_UNITS : REF_FINAL_UNITS);
@@ -348,7 +424,7 @@ sss_result sss_eval_run(const char *const *scene_args, int scene_count, const ss
     }
     for (int i = 0; i < nl; i++) {
         const char *spec = desc.technique_count ? desc.techniques[i] : sss_gl_technique_at(i)->name;
-        out->labels[i] = strdup(spec);
+        out->labels[i] = eval_escaped(spec); /* shown in sheets and plots: cairo takes UTF-8 only */
         if (!out->labels[i]) {
             r = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
             goto fail;
@@ -366,6 +442,10 @@ sss_result sss_eval_run(const char *const *scene_args, int scene_count, const ss
             goto fail;
         }
         if ((r = split_scene_arg(scene_args[i], es, err)) != SSS_OK) goto fail;
+    }
+    if ((r = distinct_names(out->scenes, scene_count, err)) != SSS_OK) goto fail;
+    for (int i = 0; i < scene_count; i++) {
+        sss_eval_scene *es = &out->scenes[i];
         if ((r = sss_scene_load(es->path, NULL, &st.scenes[i], err)) != SSS_OK) goto fail;
         es->width = st.scenes[i].camera.width;
         es->height = st.scenes[i].camera.height;

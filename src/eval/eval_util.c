@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 
 #include "core/file_util.h"
+#include "core/text.h"
 #include "eval/eval_internal.h"
 
 const char *sss_eval_kind_name(sss_eval_kind kind)
@@ -129,11 +130,36 @@ int sss_eval_reference_path(const char *dir, const char *stem, int width, int he
     return n > 0 && (size_t)n < cap;
 }
 
-void eval_default_reference_dir(const char *scene_path, char *out, size_t cap)
+void eval_escape(const char *text, char *out, size_t cap)
 {
-    const char *slash = strrchr(scene_path, '/');
-    if (!slash) snprintf(out, cap, "references");
-    else snprintf(out, cap, "%.*s/references", (int)(slash - scene_path), scene_path);
+    if (cap == 0) return;
+    char *escaped = eval_escaped(text);
+    size_t n = escaped ? strlen(escaped) : 0;
+    if (n >= cap) /* cut before a whole UTF-8 sequence: the text must stay UTF-8 */
+        for (n = cap - 1; n > 0 && ((unsigned char)escaped[n] & 0xC0) == 0x80;) n--;
+    if (n) memcpy(out, escaped, n);
+    out[n] = '\0';
+    free(escaped);
+}
+
+char *eval_escaped(const char *text)
+{
+    size_t n = strlen(text);
+    char *escaped = malloc(SSS_TEXT_ESCAPE_MAX * n + 1);
+    if (escaped) sss_text_escape(text, n, escaped);
+    return escaped;
+}
+
+int eval_cached_reference_path(const sss_eval_desc *desc, const sss_eval_scene *es, int w, int h, char *out,
+                               size_t cap)
+{
+    char dir[1024];
+    const char *slash = strrchr(es->path, '/');
+    if (desc->reference_dir) snprintf(dir, sizeof dir, "%s", desc->reference_dir);
+    else if (!slash) snprintf(dir, sizeof dir, "references");
+    else snprintf(dir, sizeof dir, "%.*s/references", (int)(slash - es->path), es->path);
+    return sss_eval_reference_path(dir, desc->reference_dir ? es->stem : es->file_stem, w, h, es->has_time, es->time,
+                                   out, cap);
 }
 
 uint64_t eval_file_hash(const char *path)

@@ -1,6 +1,7 @@
 /* sss_export_gltf: a scene as one binary glTF 2.0 file (docs/gltf.md, "Export"), the reverse of the
  * importer (src/scene/gltf_*.c): world-space meshes, subsurface materials as KHR_materials_volume +
- * KHR_materials_volume_scatter (+ _ior, _diffuse_transmission) with their albedo textures as embedded
+ * KHR_materials_volume_scatter (+ _ior, _diffuse_transmission) or KHR_materials_scatter (+ _ior,
+ * _transmission) with their albedo textures as embedded
  * PNG baseColorTextures, the camera, KHR_lights_punctual. */
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -139,16 +140,38 @@ static cJSON *add_node(glb *g, const double m[16])
     return node;
 }
 
-/* KHR_materials_volume_scatter's multiple-scattering albedo of the single-scattering albedo alpha. */
-static double multiscatter_albedo(double alpha, double g)
+/* The multiple-scattering albedo of the single-scattering albedo alpha, the importer's inversion
+ * reversed (src/scene/gltf_material.c, Kulla & Conty 2017): rho = (1 - s)(1 - 0.139 s) / (1 + 1.17 s)
+ * with s^2 = 1 - alpha (KHR_materials_volume_scatter) or (1 - alpha) / (1 - g alpha) (KHR_materials_scatter). */
+static double multiscatter_albedo(double alpha, double g, int with_g)
 {
-    double s = sqrt((1 - alpha) / (1 - g * alpha));
+    double s = sqrt(with_g ? (1 - alpha) / (1 - g * alpha) : 1 - alpha);
     return (1 - s) * (1 - 0.139 * s) / (1 + 1.17 * s);
 }
 
+/* The scattering extension(s) of a subsurface material: rho as the multiple-scattering albedo. */
+static void add_scattering(glb *g, cJSON *ext, const double rho[3], double aniso, sss_export_gltf_scatter which)
+{
+    if (which == SSS_EXPORT_GLTF_SCATTER) {
+        cJSON *scatter = add_child(g, ext, "KHR_materials_scatter");
+        add_number(g, scatter, "scatterStrengthFactor", 1);
+        add_vec(g, scatter, "multiscatterColorFactor", rho, 3);
+        add_number(g, scatter, "scatterAnisotropy", aniso);
+        /* the draft: no effect without transmission, which lets the light into the volume */
+        add_number(g, add_child(g, ext, "KHR_materials_transmission"), "transmissionFactor", 1);
+        return;
+    }
+    cJSON *scatter = add_child(g, ext, "KHR_materials_volume_scatter");
+    add_vec(g, scatter, "multiscatterColor", rho, 3);
+    add_number(g, scatter, "scatterAnisotropy", aniso);
+    add_number(g, add_child(g, ext, "KHR_materials_diffuse_transmission"), "diffuseTransmissionFactor", 1);
+}
+
 /* Subsurface: sigma_t = sigma_a + sigma_s per scene unit as attenuationColor c = exp(-sigma_t d) at
- * d = 1 / max(sigma_t) (c in [1/e, 1), well resolved), alpha = sigma_s / sigma_t as multiscatterColor. */
-static void add_material(glb *g, cJSON *materials, const sss_scene *s, const sss_scene_material *m)
+ * d = 1 / max(sigma_t) (c in [1/e, 1), well resolved), alpha = sigma_s / sigma_t as the multiple-
+ * scattering albedo of the chosen extension. */
+static void add_material(glb *g, cJSON *materials, const sss_scene *s, const sss_scene_material *m,
+                         sss_export_gltf_scatter which)
 {
     cJSON *mat = add_object(g, materials), *pbr = add_child(g, mat, "pbrMetallicRoughness");
     for (size_t k = 0; m->texture_image && k < s->texture_count; k++)
@@ -168,18 +191,15 @@ static void add_material(glb *g, cJSON *materials, const sss_scene *s, const sss
     }
     for (int k = 0; k < 3; k++) {
         color[k] = exp(-sigma_t[k] / max_t);
-        rho[k] = multiscatter_albedo(o->sigma_s[k] / sigma_t[k], o->g);
+        rho[k] = multiscatter_albedo(o->sigma_s[k] / sigma_t[k], o->g, which == SSS_EXPORT_GLTF_SCATTER);
     }
     cJSON *ext = add_child(g, mat, "extensions");
     cJSON *volume = add_child(g, ext, "KHR_materials_volume");
     add_number(g, volume, "thicknessFactor", 1);
     add_number(g, volume, "attenuationDistance", 1 / max_t);
     add_vec(g, volume, "attenuationColor", color, 3);
-    cJSON *scatter = add_child(g, ext, "KHR_materials_volume_scatter");
-    add_vec(g, scatter, "multiscatterColor", rho, 3);
-    add_number(g, scatter, "scatterAnisotropy", o->g);
+    add_scattering(g, ext, rho, o->g, which);
     add_number(g, add_child(g, ext, "KHR_materials_ior"), "ior", o->eta);
-    add_number(g, add_child(g, ext, "KHR_materials_diffuse_transmission"), "diffuseTransmissionFactor", 1);
 }
 
 static void add_mesh(glb *g, cJSON *meshes, const sss_mesh *w, int material)
@@ -337,7 +357,7 @@ static void add_document(glb *g, const sss_scene *scene, sss_export_gltf_desc *d
             g->ok = -1; /* err is set */
             break;
         }
-        add_material(g, materials, scene, &scene->objects[i].material);
+        add_material(g, materials, scene, &scene->objects[i].material, d->scatter_extension);
         add_mesh(g, meshes, &world, (int)i);
         add_number(g, add_node(g, NULL), "mesh", (double)i);
         sss_mesh_free(&world);
@@ -347,13 +367,15 @@ static void add_document(glb *g, const sss_scene *scene, sss_export_gltf_desc *d
     cJSON *buffer = add_object(g, cJSON_AddArrayToObject(g->root, "buffers"));
     add_number(g, buffer, "byteLength", (double)g->size);
     /* extensionsUsed: the extensions that appear */
-    static const char *const names[] = {"KHR_materials_volume", "KHR_materials_volume_scatter", "KHR_materials_ior",
-                                        "KHR_materials_diffuse_transmission"};
+    static const char *const names[2][4] = {
+        {"KHR_materials_volume", "KHR_materials_volume_scatter", "KHR_materials_ior", "KHR_materials_diffuse_transmission"},
+        {"KHR_materials_volume", "KHR_materials_scatter", "KHR_materials_ior", "KHR_materials_transmission"}};
     int subsurface = 0, lights = cJSON_GetObjectItemCaseSensitive(g->root, "extensions") != NULL;
     for (size_t i = 0; i < scene->object_count; i++)
         subsurface |= scene->objects[i].material.type == SSS_SCENE_MATERIAL_SUBSURFACE;
     cJSON *used = subsurface || lights ? cJSON_AddArrayToObject(g->root, "extensionsUsed") : NULL;
-    for (int i = 0; subsurface && i < 4; i++) g->ok &= cJSON_AddItemToArray(used, cJSON_CreateString(names[i]));
+    int scatter = d->scatter_extension == SSS_EXPORT_GLTF_SCATTER;
+    for (int i = 0; subsurface && i < 4; i++) g->ok &= cJSON_AddItemToArray(used, cJSON_CreateString(names[scatter][i]));
     if (lights) g->ok &= cJSON_AddItemToArray(used, cJSON_CreateString("KHR_lights_punctual"));
 }
 
@@ -362,6 +384,9 @@ sss_result sss_export_gltf(const sss_scene *scene, sss_export_gltf_desc *desc, c
     sss_export_gltf_desc d = desc ? *desc : (sss_export_gltf_desc){0};
     d.skipped_lights = 0;
     if (!isfinite(d.time)) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: export time is not finite", out_path);
+    if (d.scatter_extension != SSS_EXPORT_GLTF_VOLUME_SCATTER && d.scatter_extension != SSS_EXPORT_GLTF_SCATTER)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: unknown scatter extension %d", out_path,
+                             (int)d.scatter_extension);
     glb g = {.root = cJSON_CreateObject(), .ok = 1};
     if (!g.root) g.ok = 0;
     if (g.ok) add_document(&g, scene, &d, err);

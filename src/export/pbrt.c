@@ -7,6 +7,8 @@
 #include <string.h>
 
 #include "core/file_util.h"
+#include "export/export_test.h"
+#include "scene/scene_files.h"
 
 #define PATH_CAP 4096
 
@@ -42,7 +44,7 @@ static void point(FILE *f, const char *name, const double v[3])
     fprintf(f, " \"point %s\" [%.9g %.9g %.9g]", name, v[0], v[1], v[2]);
 }
 
-void sss_export_pbrt_env_light_to_world(double rotate_y_degrees, double m[16])
+void export_pbrt_env_light_to_world(double rotate_y_degrees, double m[16])
 {
     /* World-to-light W = Rz(rot) M with M d = (d.z, -d.x, d.y): PBRT's phi = atan2(L.y, L.x) then
      * equals 2 pi u of the scene format's map (u = 0.5 + (atan2(d.x, -d.z) + rot) / 2 pi) and its theta,
@@ -174,7 +176,7 @@ static void write_light(FILE *f, const sss_light *l)
     }
     case SSS_LIGHT_ENVIRONMENT: {
         double m[16];
-        sss_export_pbrt_env_light_to_world(l->rotate_y, m);
+        export_pbrt_env_light_to_world(l->rotate_y, m);
         fprintf(f, "AttributeBegin\n");
         transform_directive(f, m);
         /* PBRT resolves relative names against the .pbrt file's folder: write an absolute path. */
@@ -202,6 +204,28 @@ static int sibling(const char *out_path, const char *suffix, char *path, size_t 
     return n > 0 && (size_t)n < cap;
 }
 
+/* The meshes' paths "<stem>_objN.ply" beside out_path, and the export's files checked before anything
+ * is written: no output may be one of the files the scene reads (a mesh named like a sibling) or
+ * another output. */
+static sss_result mesh_files(const sss_scene *scene, const char *out_path, char (*mesh_paths)[PATH_CAP],
+                             sss_error *err)
+{
+    sss_io_set io = {0};
+    scene_add_inputs(&io, scene);
+    sss_io_add_output(&io, out_path);
+    sss_result res = SSS_OK;
+    for (size_t i = 0; i < scene->object_count && res == SSS_OK; i++) {
+        char suffix[64];
+        snprintf(suffix, sizeof suffix, "_obj%zu.ply", i);
+        if (!sibling(out_path, suffix, mesh_paths[i], PATH_CAP, NULL))
+            res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: path too long", out_path);
+        sss_io_add_output(&io, mesh_paths[i]);
+    }
+    if (res == SSS_OK) res = sss_io_check(&io, err);
+    sss_io_free(&io);
+    return res;
+}
+
 sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *desc, const char *out_path,
                            sss_error *err)
 {
@@ -224,16 +248,10 @@ sss_result sss_export_pbrt(const sss_scene *scene, const sss_export_pbrt_desc *d
     /* The meshes and the .pbrt file are one transaction: all of them or none. */
     char (*mesh_paths)[PATH_CAP] = calloc(scene->object_count ? scene->object_count : 1, PATH_CAP);
     if (!mesh_paths) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", out_path);
+    sss_result res = mesh_files(scene, out_path, mesh_paths, err);
     sss_outputs outputs;
     sss_outputs_begin(&outputs);
-    sss_result res = SSS_OK;
     for (size_t i = 0; i < scene->object_count && res == SSS_OK; i++) {
-        char suffix[64];
-        snprintf(suffix, sizeof suffix, "_obj%zu.ply", i);
-        if (!sibling(out_path, suffix, mesh_paths[i], PATH_CAP, NULL)) {
-            res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: path too long", out_path);
-            break;
-        }
         sss_mesh world = {0};
         res = sss_scene_object_world_mesh(&scene->objects[i], d.time, &world, err);
         if (res != SSS_OK) {

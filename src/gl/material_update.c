@@ -1,12 +1,12 @@
-/* gl/material_update.c — sss_gl_renderer_update_materials: new materials for the same geometry. The
- * meshes, lights, shadow maps, frame targets and programs stay; the material records and LUT cascades
- * are uploaded again and the technique refreshes what it derived from materials (its materials_changed
- * callback, or a new technique state). */
+/* gl/material_update.c — new materials for the same geometry (sss_gl_renderer_update_materials,
+ * sss_gl_pass_update_materials). The meshes, lights, shadow maps, frame targets and programs stay; the
+ * material records and LUT cascades are built again and put in place, and the technique refreshes what
+ * it derived from materials (its materials_changed callback, or a new technique state). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "gl/gl_internal.h"
+#include "gl/runtime.h"
 
 static int same_floats(const float *a, const float *b, size_t n)
 {
@@ -67,11 +67,11 @@ static void geometry_difference(const sss_scene *now, const sss_scene *next, cha
 
 /* 1 when an object starts or stops scattering (splat meshes and technique state follow that set) or
  * moved since the upload (shadow and translucency bounds follow it): then everything is rebuilt. */
-static int needs_new_scene(const sss_gl_renderer *r, const sss_scene *next)
+static int needs_new_scene(const gl_scene *gs, const sss_scene *next)
 {
     for (size_t i = 0; i < next->object_count; i++) {
         const sss_scene_object *so = &next->objects[i];
-        const gl_object *o = &r->gs.objects[i];
+        const gl_object *o = &gs->objects[i];
         if ((so->material.type == SSS_SCENE_MATERIAL_SUBSURFACE) != o->subsurface ||
             memcmp(so->transform.matrix, o->uploaded_matrix, sizeof o->uploaded_matrix) != 0 ||
             !same_animation(&so->animation, &o->uploaded_animation))
@@ -80,77 +80,66 @@ static int needs_new_scene(const sss_gl_renderer *r, const sss_scene *next)
     return 0;
 }
 
-/* The materials part of the upload again; on failure the previous one is kept whole. */
-static sss_result reupload_materials(sss_gl_renderer *r, sss_error *err)
+/* The technique's material-dependent state: its callback, or a new state. */
+static sss_result refresh_technique(gl_runtime *rt, sss_error *err)
 {
-    gl_scene old = r->gs;
-    /* the upload rewrites the objects' material fields in place: their old values, for a failure */
-    size_t bytes = sizeof *r->gs.objects * (size_t)r->gs.object_count;
-    gl_object *objects = malloc(bytes);
-    if (!objects) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (material update)");
-    memcpy(objects, r->gs.objects, bytes);
-    r->gs.materials = NULL;
-    r->gs.ssbo_objects = r->gs.ssbo_materials = r->gs.ssbo_lut_scales = r->gs.lut_array = 0;
-    sss_result res = gl_scene_update_materials(r, err);
-    if (res == SSS_OK) {
-        gl_scene_free_materials(&old);
-    } else {
-        gl_scene_free_materials(&r->gs); /* what was made of the new materials */
-        memcpy(old.objects, objects, bytes);
-        r->gs = old;
+    if (!rt->tech->materials_changed) {
+        gl_runtime_technique_destroy(rt);
+        return gl_runtime_technique_create(rt, err);
     }
-    free(objects);
-    return res;
-}
-
-/* The technique's material-dependent state: its callback, or a new state. On failure the technique is
- * dropped and rebuilt with the whole scene at the next render. */
-static sss_result refresh_technique(sss_gl_renderer *r, sss_error *err)
-{
+    gl_tech_ctx c;
+    gl_runtime_ctx(rt, &c);
     sss_result res;
-    if (r->tech->materials_changed) {
-        res = r->tech->materials_changed(r, r->tech_state, err);
-        if (res != SSS_OK) sss_error_prefix(err, r->tech->info.name);
-    } else {
-        gl_runtime_technique_destroy(r);
-        res = gl_runtime_technique_create(r, err);
-    }
-    if (res != SSS_OK) {
-        gl_runtime_technique_destroy(r);
-        r->scene_dirty = 1;
-    }
+    GL_MEM_ACCOUNT(rt->tech_gpu_bytes, res = rt->tech->materials_changed(&c, rt->state, err));
+    if (res != SSS_OK) sss_error_prefix(err, rt->tech->info.name);
     return res;
 }
 
-sss_result sss_gl_renderer_update_materials(sss_gl_renderer *r, const sss_scene *scene, const sss_gl_tables *tables,
-                                            sss_error *err)
+/* The GPU scene for `next`: everything again (a new subsurface set or a moved object), or its material
+ * part only. Either is built beside what the core has and put in its place only when complete. */
+static sss_result rebuild_for(gl_runtime *rt, const sss_scene *next, sss_error *err)
 {
-    if (!r) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "update_materials: no renderer");
-    const sss_scene *next = scene ? scene : r->scene;
+    gl_core *core = &rt->core;
+    core->luts = gl_tables_luts(rt->tables);
+    sss_result res;
+    if (rt->scene_dirty || needs_new_scene(&core->gs, next)) {
+        gl_runtime_technique_destroy(rt);
+        res = gl_core_rebuild_scene(core, next, err);
+        if (res == SSS_OK) res = gl_runtime_technique_create(rt, err);
+        rt->scene_dirty = res != SSS_OK;
+    } else {
+        res = gl_scene_update_materials(core, next, err);
+        if (res == SSS_OK) {
+            core->scene = next;
+            res = refresh_technique(rt, err);
+        }
+    }
+    core->luts = NULL;
+    return res;
+}
+
+sss_result gl_runtime_update_materials(gl_runtime *rt, const sss_scene *scene, const sss_gl_tables *tables,
+                                       sss_error *err)
+{
+    const sss_scene *now = rt->core.scene, *next = scene ? scene : now;
     char what[160] = "";
-    if (next != r->scene) geometry_difference(r->scene, next, what, sizeof what);
+    if (next != now) geometry_difference(now, next, what, sizeof what);
     if (what[0])
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "update_materials: %s: %s (a new renderer is needed)",
                              next->name ? next->name : "scene", what);
-    if (!sss_gl_context_make_current(r->ctx))
+    if (!sss_gl_context_make_current(rt->core.ctx))
         return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "update_materials: cannot make the GL context current");
-    const sss_scene *previous = r->scene;
-    r->scene = next;
-    r->tables = tables;
-    sss_result res;
-    if (r->scene_dirty || needs_new_scene(r, next)) {
-        r->scene_dirty = 1; /* everything again, with the new scene (the image of a new renderer) */
-        res = gl_runtime_rebuild_if_dirty(r, err);
-    } else {
-        res = reupload_materials(r, err);
-        if (res == SSS_OK) res = refresh_technique(r, err);
+    rt->tables = tables;
+    sss_result res = rebuild_for(rt, next, err);
+    rt->tables = NULL;
+    if (res == SSS_OK && next != now) res = gl_lights_update(&rt->core, err);
+    if (res != SSS_OK) {
+        /* whatever was made of `next` goes (the caller may free it): the next frame rebuilds everything
+         * from the scene the runtime had */
+        gl_runtime_technique_destroy(rt);
+        rt->core.scene = now;
+        rt->scene_dirty = 1;
     }
-    r->tables = NULL;
-    if (res == SSS_OK && next != previous) res = gl_lights_update(r, err);
-    if (res != SSS_OK && next != previous) {
-        r->scene = previous; /* the caller may free `scene` */
-        r->scene_dirty = 1;  /* whatever was made of it is rebuilt from `previous` at the next render */
-    }
-    r->frame_rendered = 0;
+    rt->frame_rendered = 0;
     return res;
 }

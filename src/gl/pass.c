@@ -1,54 +1,23 @@
-/* gl/pass.c — a technique as a pass over the caller's G-buffer (sss/gl_pass.h), and the frame loop
- * that every frame goes through, the renderer's own (renderer.c) included (gl_frame_run).
+/* gl/pass.c — sss_gl_pass (sss/gl_pass.h): a technique as a pass over the caller's G-buffer.
  *
- * A pass is the renderer's runtime (gl_internal.h) with an external frame: the technique reads the
- * caller's textures through the same gl_frame fields it reads the renderer's targets through, so the
- * techniques have one code path for both. */
+ * A pass is a runtime (runtime.h) whose core's frame is external: the technique reads the caller's
+ * textures through the same gl_frame fields it reads the renderer's targets through, so the techniques
+ * have one code path for both. The caller's GL state is saved and the state the passes assume set
+ * around every call (pass_state.c). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "gl/gl_internal.h"
+#include "gl/pass_depth.h"
+#include "gl/pass_state.h"
+#include "gl/runtime.h"
 
 struct sss_gl_pass {
-    sss_gl_renderer *r;    /* the runtime, with r->frame.external = 1 */
-    GLuint attached;       /* the output texture attached to r->frame.fbo_final */
+    gl_runtime rt;         /* its core's frame is external: slots for the caller's textures */
+    GLuint attached;       /* the output texture attached to the frame's fbo_final */
     size_t object_count;   /* the registered scene's at creation (surface ids 1..object_count) */
+    gl_pass_depth depth;   /* the positions made from a caller's depth buffer (frame.depth) */
 };
-
-sss_result gl_frame_run(sss_gl_renderer *r, const gl_camera *cam, double time, sss_error *err)
-{
-    sss_result res = gl_runtime_rebuild_if_dirty(r, err);
-    if (res != SSS_OK) return res;
-    r->time = time;
-    gl_frame_ubo_write(r, cam);
-    gl_bind_scene(r);
-    gl_timer *t = &r->timer;
-    gl_timer_frame_begin(t);
-    unsigned needs = r->tech->needs;
-    int own = !r->frame.external; /* the renderer's G-buffer and illumination, else the caller's */
-    if (own && (needs & GL_NEED_GBUFFER)) {
-        gl_timer_begin(t, "gbuffer");
-        res = gl_pass_gbuffer(r, err);
-    }
-    if (res == SSS_OK && (needs & GL_NEED_SHADOWS) && (own || (needs & GL_NEED_LIGHTS))) {
-        gl_timer_begin(t, "shadows");
-        res = gl_shadows_render(r, err);
-    }
-    if (res == SSS_OK && own && (needs & GL_NEED_ILLUMINATION)) {
-        gl_timer_begin(t, "illumination");
-        res = gl_pass_illumination(r, err);
-    }
-    if (res == SSS_OK && (needs & GL_NEED_MIPS)) {
-        gl_timer_begin(t, "mipmaps");
-        res = gl_pass_mipmaps(r, err);
-    }
-    gl_timer_end(t);
-    if (res == SSS_OK) res = r->tech->render(r, r->tech_state, err);
-    if (res == SSS_OK) res = gl_ssaa_resolve(r, err);
-    gl_timer_frame_end(t);
-    return res;
-}
 
 /* ---- Creation and updates -------------------------------------------------------------------- */
 
@@ -63,8 +32,6 @@ sss_result sss_gl_pass_create(sss_gl_context *ctx, const sss_gl_pass_desc *desc,
     if (desc->width < 1 || desc->height < 1)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_create: desc.width x desc.height is %dx%d",
                              desc->width, desc->height);
-    sss_gl_pass *pass = calloc(1, sizeof *pass);
-    if (!pass) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (pass)");
     sss_gl_renderer_desc rd;
     memset(&rd, 0, sizeof rd);
     rd.technique = desc->technique;
@@ -74,10 +41,23 @@ sss_result sss_gl_pass_create(sss_gl_context *ctx, const sss_gl_pass_desc *desc,
     rd.param_count = desc->param_count;
     rd.timings = desc->timings;
     rd.data_file = desc->data_file;
+    sss_gl_pass *pass = calloc(1, sizeof *pass);
+    if (!pass) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (pass)");
+    sss_result res = gl_runtime_init(&pass->rt, ctx, desc->scene, &rd, 1, err);
+    if (res == SSS_OK && pass->rt.tech->not_a_pass)
+        res = sss_error_set(err, SSS_ERROR_UNSUPPORTED, "sss_gl_pass_create: technique %s cannot run as a pass: %s",
+                            pass->rt.tech->info.name, pass->rt.tech->not_a_pass);
+    if (res == SSS_OK && !sss_gl_context_make_current(ctx))
+        res = sss_error_set(err, SSS_ERROR_UNSUPPORTED, "cannot make the GL context current");
+    if (res != SSS_OK) {
+        free(pass);
+        return res;
+    }
     gl_pass_state saved;
     gl_pass_state_save(&saved);
     gl_pass_state_defaults();
-    sss_result res = gl_runtime_create(ctx, desc->scene, &rd, 1, &pass->r, err);
+    res = gl_runtime_create_gl(&pass->rt, NULL, err);
+    if (res != SSS_OK) gl_runtime_free(&pass->rt);
     gl_pass_state_restore(&saved);
     if (res != SSS_OK) {
         free(pass);
@@ -91,7 +71,9 @@ sss_result sss_gl_pass_create(sss_gl_context *ctx, const sss_gl_pass_desc *desc,
 void sss_gl_pass_destroy(sss_gl_pass *pass)
 {
     if (!pass) return;
-    sss_gl_renderer_destroy(pass->r);
+    sss_gl_context_make_current(pass->rt.core.ctx);
+    GL_MEM_ACCOUNT(pass->rt.core.frame_gpu_bytes, gl_pass_depth_free(&pass->depth));
+    gl_runtime_free(&pass->rt);
     free(pass);
 }
 
@@ -101,7 +83,7 @@ sss_result sss_gl_pass_resize(sss_gl_pass *pass, int width, int height, sss_erro
     gl_pass_state saved;
     gl_pass_state_save(&saved);
     gl_pass_state_defaults();
-    sss_result res = sss_gl_renderer_resize(pass->r, width, height, err);
+    sss_result res = gl_runtime_resize(&pass->rt, width, height, 1, err);
     pass->attached = 0; /* a new framebuffer when the size changed */
     gl_pass_state_restore(&saved);
     return res;
@@ -113,7 +95,7 @@ sss_result sss_gl_pass_set_param(sss_gl_pass *pass, const char *name, double val
     gl_pass_state saved;
     gl_pass_state_save(&saved);
     gl_pass_state_defaults();
-    sss_result res = sss_gl_renderer_set_param(pass->r, name, value, err);
+    sss_result res = gl_runtime_set_param(&pass->rt, name, value, err);
     gl_pass_state_restore(&saved);
     return res;
 }
@@ -121,14 +103,14 @@ sss_result sss_gl_pass_set_param(sss_gl_pass *pass, const char *name, double val
 sss_result sss_gl_pass_update_materials(sss_gl_pass *pass, sss_error *err)
 {
     if (!pass) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_update_materials: pass is NULL");
-    if (pass->r->scene->object_count != pass->object_count)
+    if (pass->rt.core.scene->object_count != pass->object_count)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
                              "sss_gl_pass_update_materials: the scene has %zu objects, the pass was created with %zu",
-                             pass->r->scene->object_count, pass->object_count);
+                             pass->rt.core.scene->object_count, pass->object_count);
     gl_pass_state saved;
     gl_pass_state_save(&saved);
     gl_pass_state_defaults();
-    sss_result res = sss_gl_renderer_update_materials(pass->r, NULL, NULL, err);
+    sss_result res = gl_runtime_update_materials(&pass->rt, NULL, NULL, err);
     gl_pass_state_restore(&saved);
     return res;
 }
@@ -136,12 +118,17 @@ sss_result sss_gl_pass_update_materials(sss_gl_pass *pass, sss_error *err)
 sss_result sss_gl_pass_update_lights(sss_gl_pass *pass, sss_error *err)
 {
     if (!pass) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_update_lights: pass is NULL");
-    if (!(pass->r->tech->needs & GL_NEED_LIGHTS)) return SSS_OK; /* the technique reads no lights */
-    gl_pass_state saved;
-    gl_pass_state_save(&saved);
-    gl_pass_state_defaults();
-    sss_result res = sss_gl_renderer_update_lights(pass->r, err);
-    gl_pass_state_restore(&saved);
+    /* the number and kinds are checked for every technique, also those that read no lights (and so
+     * build no light records that gl_lights_update could compare) */
+    sss_result res = gl_lights_check_kinds(&pass->rt.core, err);
+    if (res == SSS_OK && (pass->rt.tech->reads & GL_READ_LIGHTS)) {
+        gl_pass_state saved;
+        gl_pass_state_save(&saved);
+        gl_pass_state_defaults();
+        res = gl_runtime_update_lights(&pass->rt, err);
+        gl_pass_state_restore(&saved);
+    }
+    if (res != SSS_OK) sss_error_prefix(err, "sss_gl_pass_update_lights");
     return res;
 }
 
@@ -150,28 +137,28 @@ void sss_gl_pass_get_info(const sss_gl_pass *pass, sss_gl_pass_info *out)
     if (!out) return;
     memset(out, 0, sizeof *out);
     if (!pass) return;
-    unsigned needs = pass->r->tech->needs;
-    out->needs_mips = (needs & GL_NEED_MIPS) != 0;
-    out->needs_normal_mips = (needs & GL_NEED_NORMAL_MIPS) != 0;
-    out->uses_lights = (needs & GL_NEED_LIGHTS) != 0;
-    out->uses_geometry = (needs & (GL_NEED_SPLAT_MESHES | GL_NEED_LIGHTS)) != 0;
+    unsigned reads = pass->rt.tech->reads;
+    out->needs_mips = (reads & GL_READ_MIPS) != 0;
+    out->needs_normal_mips = (reads & GL_READ_NORMAL_MIPS) != 0;
+    out->uses_lights = (reads & GL_READ_LIGHTS) != 0;
+    out->uses_geometry = (reads & (GL_READ_SPLAT_MESHES | GL_READ_LIGHTS)) != 0;
 }
 
 void sss_gl_pass_timings(const sss_gl_pass *pass, sss_gl_timings *out)
 {
-    sss_gl_renderer_timings(pass ? pass->r : NULL, out);
+    gl_runtime_timings(pass ? &pass->rt : NULL, out);
 }
 
 void sss_gl_pass_stats(sss_gl_pass *pass, sss_gl_stats *out)
 {
-    sss_gl_renderer_stats(pass ? pass->r : NULL, out);
+    gl_runtime_stats(pass ? &pass->rt : NULL, out);
 }
 
 /* ---- Frames ---------------------------------------------------------------------------------- */
 
 /* One input texture: a 2D texture of the pass's size in one of `formats` (0-terminated) with at least
  * `levels` mip levels; `field` names it in the message. */
-static sss_result check_texture(const sss_gl_renderer *r, GLuint tex, const char *field, const GLenum *formats,
+static sss_result check_texture(const gl_core *core, GLuint tex, const char *field, const GLenum *formats,
                                 int levels, sss_error *err)
 {
     if (!tex || !glIsTexture(tex))
@@ -185,9 +172,9 @@ static sss_result check_texture(const sss_gl_renderer *r, GLuint tex, const char
     glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_WIDTH, &w);
     glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_HEIGHT, &h);
     glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
-    if (w != r->width || h != r->height)
+    if (w != core->width || h != core->height)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_execute: frame.%s (%u) is %dx%d, the pass %dx%d",
-                             field, tex, w, h, r->width, r->height);
+                             field, tex, w, h, core->width, core->height);
     int ok = 0;
     for (const GLenum *f = formats; *f; f++) ok |= (GLenum)format == *f;
     if (!ok)
@@ -203,18 +190,24 @@ static sss_result check_texture(const sss_gl_renderer *r, GLuint tex, const char
     return SSS_OK;
 }
 
-static sss_result check_frame(const sss_gl_renderer *r, const sss_gl_pass_frame *f, sss_error *err)
+static sss_result check_frame(const gl_core *core, const sss_gl_pass_frame *f, sss_error *err)
 {
     static const GLenum f32[] = {GL_RGBA32F, 0}, f16_32[] = {GL_RGBA16F, GL_RGBA32F, 0},
                         albedo[] = {GL_RGBA16F, GL_RGBA32F, GL_RGBA8, 0};
-    int mips = (r->tech->needs & GL_NEED_MIPS) ? r->frame.levels : 1;
-    int normal_mips = (r->tech->needs & GL_NEED_NORMAL_MIPS) ? r->frame.levels : 1;
-    sss_result res = check_texture(r, f->position, "position", f32, mips, err);
-    if (res == SSS_OK) res = check_texture(r, f->normal, "normal", normal_mips > 1 ? f32 : f16_32, normal_mips, err);
-    if (res == SSS_OK) res = check_texture(r, f->albedo, "albedo", albedo, 1, err);
-    if (res == SSS_OK) res = check_texture(r, f->irradiance, "irradiance", f32, mips, err);
-    if (res == SSS_OK && f->reflected) res = check_texture(r, f->reflected, "reflected", f16_32, 1, err);
-    if (res == SSS_OK) res = check_texture(r, f->output, "output", f16_32, 1, err);
+    static const GLenum depth[] = {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT16, GL_R32F, 0};
+    int mips = (core->reads & GL_READ_MIPS) ? core->frame.levels : 1;
+    int normal_mips = (core->reads & GL_READ_NORMAL_MIPS) ? core->frame.levels : 1;
+    if (f->position && f->depth)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "sss_gl_pass_execute: frame.position (%u) and frame.depth (%u) are both given: one of them",
+                             f->position, f->depth);
+    sss_result res = f->position || !f->depth ? check_texture(core, f->position, "position", f32, mips, err)
+                                              : check_texture(core, f->depth, "depth", depth, 1, err);
+    if (res == SSS_OK) res = check_texture(core, f->normal, "normal", normal_mips > 1 ? f32 : f16_32, normal_mips, err);
+    if (res == SSS_OK) res = check_texture(core, f->albedo, "albedo", albedo, 1, err);
+    if (res == SSS_OK) res = check_texture(core, f->irradiance, "irradiance", f32, mips, err);
+    if (res == SSS_OK && f->reflected) res = check_texture(core, f->reflected, "reflected", f16_32, 1, err);
+    if (res == SSS_OK) res = check_texture(core, f->output, "output", f16_32, 1, err);
     if (res == SSS_OK && !isfinite(f->time))
         res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_execute: frame.time %g is not finite", f->time);
     for (int i = 0; i < 16 && res == SSS_OK; i++)
@@ -227,8 +220,8 @@ static sss_result check_frame(const sss_gl_renderer *r, const sss_gl_pass_frame 
 /* Points the frame at the caller's textures; the output is attached when it changes. */
 static sss_result bind_inputs(sss_gl_pass *pass, const sss_gl_pass_frame *f, sss_error *err)
 {
-    gl_frame *fr = &pass->r->frame;
-    fr->pos = f->position;
+    gl_frame *fr = &pass->rt.core.frame;
+    fr->pos = f->position ? f->position : pass->depth.position;
     fr->nrm = f->normal;
     fr->albedo = f->albedo;
     fr->irr = f->irradiance;
@@ -248,16 +241,37 @@ static sss_result bind_inputs(sss_gl_pass *pass, const sss_gl_pass_frame *f, sss
     return SSS_OK;
 }
 
+/* The frame: the caller's G-buffer and illumination, the shadow maps when the technique lights the
+ * scene itself, the mip chains when it reads them, then the technique. */
+static sss_result run_frame(sss_gl_pass *pass, const sss_gl_pass_frame *frame, const gl_camera *cam, sss_error *err)
+{
+    gl_runtime *rt = &pass->rt;
+    gl_core *core = &rt->core;
+    sss_result res = SSS_OK;
+    if (!frame->position) /* the positions from the depth buffer, into a target of the pass */
+        GL_MEM_ACCOUNT(core->frame_gpu_bytes,
+                       res = gl_pass_depth_prepare(&pass->depth, core->width, core->height,
+                                                   (rt->tech->reads & GL_READ_MIPS) ? core->frame.levels : 1, err));
+    if (res == SSS_OK) res = bind_inputs(pass, frame, err);
+    if (res == SSS_OK) res = gl_runtime_frame_begin(rt, cam, frame->time, err);
+    if (res != SSS_OK) return res;
+    if (!frame->position)
+        res = gl_pass_depth_resolve(&pass->depth, core, frame->depth, frame->normal, frame->view, frame->proj, err);
+    if (res == SSS_OK && (rt->tech->reads & GL_READ_LIGHTS)) res = gl_core_shadows(&rt->core, err);
+    if (res == SSS_OK && (rt->tech->reads & GL_READ_MIPS)) res = gl_core_mipmaps(&rt->core, err);
+    return gl_runtime_frame_finish(rt, res, err);
+}
+
 sss_result sss_gl_pass_execute(sss_gl_pass *pass, const sss_gl_pass_frame *frame, sss_error *err)
 {
     if (!pass || !frame) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_gl_pass_execute: no pass or frame");
-    sss_gl_renderer *r = pass->r;
-    if (!sss_gl_context_make_current(r->ctx))
+    const gl_core *core = &pass->rt.core;
+    if (!sss_gl_context_make_current(core->ctx))
         return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "sss_gl_pass_execute: cannot make the GL context current");
-    sss_result res = check_frame(r, frame, err);
+    sss_result res = check_frame(core, frame, err);
     if (res != SSS_OK) return res;
     gl_camera cam;
-    if (!gl_camera_from_matrices(frame->view, frame->proj, r->height, &cam))
+    if (!gl_camera_from_matrices(frame->view, frame->proj, core->height, &cam))
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
                              "sss_gl_pass_execute: frame.proj is not a perspective projection (OpenGL or reversed-Z "
                              "infinite, column-major)");
@@ -265,11 +279,9 @@ sss_result sss_gl_pass_execute(sss_gl_pass *pass, const sss_gl_pass_frame *frame
     gl_pass_state_save(&saved);
     gl_pass_state_defaults();
     while (glGetError() != GL_NO_ERROR) {} /* the caller's pending errors are not ours */
-    r->frame_rendered = 0;
-    res = bind_inputs(pass, frame, err);
-    if (res == SSS_OK) res = gl_frame_run(r, &cam, frame->time, err);
-    if (res == SSS_OK) res = gl_check(r->ctx, "the pass", err);
-    if (res == SSS_OK) r->frame_rendered = 1;
+    res = run_frame(pass, frame, &cam, err);
+    if (res == SSS_OK) res = gl_check(core->ctx, "the pass", err);
+    if (res != SSS_OK) pass->rt.frame_rendered = 0;
     gl_pass_state_restore(&saved);
     return res;
 }

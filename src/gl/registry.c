@@ -1,10 +1,12 @@
-/* gl/registry.c — the techniques, selected by name. A new technique is one file defining a
- * `const gl_technique gl_technique_<name>` (see gl_internal.h) plus one line in the table below. */
+/* gl/registry.c — the techniques, selected by name, and the shared parameters' table. A new technique
+ * is a folder src/gl/techniques/<name>/ defining a `const gl_technique gl_technique_<name>`
+ * (technique.h) plus one line in the table below. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "gl/gl_internal.h"
+#include "gl/core/gl_core.h"
+#include "gl/technique.h"
 
 extern const gl_technique gl_technique_maisch2020;
 extern const gl_technique gl_technique_local;
@@ -80,19 +82,6 @@ const sss_gl_param_info *sss_gl_shared_params(int *count)
 {
     if (count) *count = GL_P_SHARED_COUNT;
     return shared_params;
-}
-
-void gl_params_by_name(const sss_gl_technique_info *to, double *to_values, const sss_gl_technique_info *from,
-                       const double *from_values)
-{
-    for (int i = 0; i < to->param_count && i < GL_MAX_PARAMS; i++) to_values[i] = to->params[i].default_value;
-    for (int j = 0; from && j < from->param_count; j++) gl_params_set(to, to_values, from->params[j].name, from_values[j]);
-}
-
-void gl_params_set(const sss_gl_technique_info *info, double *values, const char *name, double value)
-{
-    for (int i = 0; i < info->param_count && i < GL_MAX_PARAMS; i++)
-        if (strcmp(info->params[i].name, name) == 0) values[i] = value;
 }
 
 double sss_gl_paper_value(const char *technique, const char *param)

@@ -15,14 +15,15 @@
 #include <string.h>
 
 #include "kernel/kernel_internal.h"
+#include "kernel/kernel_test.h"
 #include "sss/kernel.h"
 
 #define GUIDED_MAX_GRID 512
 #define GUIDED_FLOOR 1e-3
 #define GUIDED_ITERATIONS 2000
 
-double sss_kernel_guided_objective(const sss_profile *profile, int grid, double extent, double k, double b,
-                                   int channel, const double *a)
+double kernel_guided_objective(const sss_profile *profile, int grid, double extent, double k, double b, int channel,
+                               const double *a)
 {
     if (!profile || !a || grid < 1 || grid > GUIDED_MAX_GRID || channel < 0 || channel > 2 || !(extent > 0.0) ||
         !isfinite(extent))

@@ -44,9 +44,8 @@ typedef struct ap_ctx {
 
 static double ap_r_end(const sss_profile *p)
 {
-    double r = 0.0;
-    for (int c = 0; c < 3; c++) r = fmax(r, sss_profile_radius_for_fraction(p, c, 1.0 - 1e-12));
-    return r > 0.0 && isfinite(r) ? r : 1.0;
+    double r = sss_profile_reach(p, 1.0 - 1e-12);
+    return r > 0.0 ? r : 1.0;
 }
 
 static void ap_init(ap_ctx *a, const sss_profile *p)

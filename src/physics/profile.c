@@ -4,6 +4,7 @@
 #include "sss/profile.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const char *const model_name[3] = {"pbd", "dipole", "gauss6"};
@@ -155,4 +156,40 @@ double sss_profile_radius_for_fraction(const sss_profile *p, int channel, double
             hi = mid;
     }
     return hi;
+}
+
+double sss_profile_reach(const sss_profile *p, double fraction)
+{
+    double reach = 0.0;
+    for (int c = 0; c < 3; c++) {
+        double x = sss_profile_radius_for_fraction(p, c, fraction);
+        if (isfinite(x) && x > reach) reach = x;
+    }
+    return reach;
+}
+
+sss_result sss_medium_profile_init(sss_medium_profile *out, const char *medium, double scale, double eta,
+                                   sss_profile_model model, sss_error *err)
+{
+    if (!out) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_medium_profile_init: out is NULL");
+    memset(out, 0, sizeof *out);
+    if (model != SSS_PROFILE_PBD && model != SSS_PROFILE_DIPOLE)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "%s: model %d is neither PBD nor the dipole",
+                             medium ? medium : "medium", (int)model);
+    sss_result res = sss_material_from_medium(medium, scale, eta, &out->material, err);
+    if (res == SSS_OK && model == SSS_PROFILE_PBD) {
+        out->table = malloc(sizeof *out->table);
+        res = out->table ? sss_pbd_table_build(out->material.eta, out->material.g, out->table, err)
+                         : sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory for the PBD table", medium);
+    }
+    if (res == SSS_OK) res = sss_profile_init(&out->profile, model, &out->material, out->table, err);
+    if (res != SSS_OK) sss_medium_profile_free(out);
+    return res;
+}
+
+void sss_medium_profile_free(sss_medium_profile *p)
+{
+    if (!p) return;
+    free(p->table);
+    memset(p, 0, sizeof *p);
 }

@@ -7,26 +7,10 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "core/vecmath.h"
 #include "sss/reference.h"
 
 #define REF_PI 3.14159265358979323846
-
-/* ---- small vector helpers (double[3]) -------------------------------------------------------- */
-
-static inline double v3_dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static inline void v3_cross(const double a[3], const double b[3], double o[3])
-{
-    double x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2], z = a[0] * b[1] - a[1] * b[0];
-    o[0] = x, o[1] = y, o[2] = z;
-}
-static inline double v3_len(const double a[3]) { return sqrt(v3_dot(a, a)); }
-/* Normalises in place; returns the old length (a zero vector stays zero). */
-static inline double v3_normalize(double a[3])
-{
-    double l = v3_len(a);
-    if (l > 0.0) a[0] /= l, a[1] /= l, a[2] /= l;
-    return l;
-}
 
 /* ---- random numbers: PCG32 streams seeded by a splitmix64 hash of (seed, stream ids) ---------- */
 
@@ -240,6 +224,38 @@ typedef struct ref_light {
     ref_env env;
 } ref_light;
 
+/* ---- many point lights (ref_light_tree.c) ------------------------------------------------------
+ * Up to REF_EXACT_POINT_LIGHTS point and spot lights, every one gets a shadow ray at every surface point.
+ * Beyond that (a scene may hold thousands), a bounding-volume hierarchy over their positions chooses
+ * REF_TREE_LIGHT_SAMPLES of them per point: each node's children are weighted by power over squared
+ * distance (zero where the whole box lies below the surface), after Conty Estevez & Kulla 2018
+ * ("Importance Sampling of Many Lights with Adaptive Tree Splitting"), and the samples descend together,
+ * stratified (one offset per point), so the cost grows with log(lights), not with lights. */
+#define REF_EXACT_POINT_LIGHTS 64
+#define REF_TREE_LIGHT_SAMPLES 64
+
+typedef struct ref_light_node {
+    float lo[3], hi[3];
+    double power;     /* sum of the intensities' channels below this node */
+    uint32_t child;   /* internal: first child (the second is child + 1); leaf: the light's index */
+    uint32_t is_leaf;
+} ref_light_node;
+
+typedef struct ref_light_tree {
+    ref_light_node *nodes; /* NULL: no tree (few point lights) */
+    size_t node_count;
+} ref_light_tree;
+
+struct ref_ctx;
+sss_result ref_light_tree_build(struct ref_ctx *ctx, sss_error *err);
+void ref_light_tree_free(ref_light_tree *t);
+/* Calls add(light, weight) for the lights drawn at po (geometric normal ng) with offset u in [0, 1):
+ * the sum of weight times each light's contribution is an unbiased estimate of all point and spot
+ * lights' contribution. */
+typedef void (*ref_light_visit)(void *user, const struct ref_light *light, double weight);
+void ref_light_tree_sample(const struct ref_ctx *ctx, const double po[3], const double ng[3], double u,
+                           ref_light_visit add, void *user);
+
 /* ---- the render context ---------------------------------------------------------------------- */
 
 typedef struct ref_object {
@@ -303,6 +319,7 @@ typedef struct ref_ctx {
     size_t object_count;
     ref_light *lights;
     size_t light_count;
+    ref_light_tree light_tree; /* over the point and spot lights when there are many (ref_light_tree.c) */
     int has_env;
     unsigned light_geom_base; /* geomID of the first area light rectangle; lights get one each */
     unsigned *light_of_geom;  /* geomID - light_geom_base -> light index */
@@ -342,7 +359,8 @@ void ref_lights_free(ref_ctx *ctx);
 /* T(x) (or E(x) when eta <= 0: diffuse, no Fresnel) at a surface point p with unit geometric normal
  * ng (the side the light must be on) and unit shading normal ns, with (about) the given numbers of
  * stratified samples of each area and environment light; stratum/strata (a square) interleave the
- * light samples of a pixel's camera samples (0, 1: on its own). */
+ * light samples of a pixel's camera samples (0, 1: on its own). Point and spot lights get a shadow ray
+ * each up to REF_EXACT_POINT_LIGHTS of them; more are drawn from the light tree. */
 void ref_irradiance(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3],
                     double eta, int area_samples, int env_samples, int stratum, int strata, ref_rng *rng,
                     double out[3]);
@@ -366,8 +384,6 @@ static inline void ref_offset(const ref_ctx *ctx, const double p[3], const doubl
 
 /* Surface samples of one object and their irradiance (ref_points.c). */
 sss_result ref_points_generate(ref_ctx *ctx, size_t object, double spacing, sss_error *err);
-/* Subdivisions m of triangle t for spacing h (it gets m^2 samples). */
-uint32_t ref_points_subdiv(const sss_mesh *mesh, uint32_t t, double h);
 /* Number of samples ref_points_generate makes for spacing h. */
 uint64_t ref_points_count(const sss_mesh *mesh, double h);
 

@@ -2,6 +2,7 @@
  * T(x) of docs/physics.md §1 when a Fresnel index is given), and the radiance that camera rays see. */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "reference/ref_internal.h"
 
@@ -40,6 +41,11 @@ double sss_reference_spot_falloff(double cone_angle_degrees, double cone_delta_d
 
 static int finite3(const double v[3]) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
 static int nonneg3(const double v[3]) { return finite3(v) && v[0] >= 0.0 && v[1] >= 0.0 && v[2] >= 0.0; }
+
+static int is_delta_light(const sss_light *s)
+{
+    return s->type == SSS_LIGHT_POINT || s->type == SSS_LIGHT_SPOT || s->type == SSS_LIGHT_DIRECTIONAL;
+}
 
 static double luminance(const float *p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
 
@@ -242,7 +248,7 @@ sss_result ref_lights_init(ref_ctx *ctx, sss_error *err)
             return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "lights[%zu]: unknown type %d", i, (int)s->type);
         }
     }
-    return SSS_OK;
+    return ref_light_tree_build(ctx, err);
 }
 
 void ref_lights_free(ref_ctx *ctx)
@@ -257,6 +263,7 @@ void ref_lights_free(ref_ctx *ctx)
     free(ctx->lights);
     ctx->lights = NULL;
     ctx->light_count = 0;
+    ref_light_tree_free(&ctx->light_tree);
 }
 
 int ref_occluded(const ref_ctx *ctx, const double p[3], const double dir[3], double t_max)
@@ -276,21 +283,112 @@ int ref_occluded(const ref_ctx *ctx, const double p[3], const double dir[3], dou
     return ray.tfar < 0.0f;
 }
 
-/* Adds one light direction's contribution: radiance-like value `li` (irradiance at normal incidence
- * or L / pdf) arriving along unit wi, unoccluded up to t_max. */
+/* The unshadowed light a surface point receives at normal incidence from one direction, passed on to
+ * the shadow ray and the interface (add_sample). */
+typedef struct light_ray {
+    double wi[3]; /* unit, towards the light */
+    double t_max; /* the shadow ray stops short of the light */
+    double li[3];
+} light_ray;
+
+/* Adds one light direction's contribution, li (irradiance at normal incidence or L / pdf) times weight,
+ * if the light is above the surface and unoccluded. */
 static void add_sample(const ref_ctx *ctx, const double po[3], const double ng[3], const double ns[3],
-                       double eta, const double wi[3], double t_max, const double li[3], double weight,
-                       double out[3])
+                       double eta, const light_ray *ray, double weight, double out[3])
 {
+    const double *wi = ray->wi, *li = ray->li;
     if (!(v3_dot(wi, ng) > 0.0)) return; /* light below the surface */
     double cs = v3_dot(wi, ns);
     if (!(cs > 0.0)) return;
     if (!(li[0] > 0.0 || li[1] > 0.0 || li[2] > 0.0)) return;
-    if (ref_occluded(ctx, po, wi, t_max)) return;
+    if (ref_occluded(ctx, po, wi, ray->t_max)) return;
     /* docs/physics.md §1: the light enters through the interface with F_t = 1 - F_r(cos theta_i). */
     double ft = eta > 0.0 ? 1.0 - sss_fresnel_dielectric(cs, 1.0, eta) : 1.0;
     double k = cs * ft * weight;
     for (int c = 0; c < 3; c++) out[c] += li[c] * k;
+}
+
+/* The ray towards a point, spot or directional light from po; 0 where the light sends nothing there. */
+static int delta_light_ray(const ref_light *l, const double po[3], light_ray *ray)
+{
+    const sss_light *s = &l->src;
+    if (s->type == SSS_LIGHT_DIRECTIONAL) {
+        memcpy(ray->wi, l->to_light, sizeof ray->wi);
+        ray->t_max = INFINITY;
+        memcpy(ray->li, s->radiance, sizeof ray->li);
+        return 1;
+    }
+    for (int c = 0; c < 3; c++) ray->wi[c] = s->position[c] - po[c];
+    double d = v3_normalize(ray->wi);
+    if (!(d > 0.0)) return 0;
+    double f = 1.0;
+    if (s->type == SSS_LIGHT_SPOT) f = sss_reference_spot_falloff(s->cone_angle, s->cone_delta, -v3_dot(ray->wi, l->axis));
+    if (!(f > 0.0)) return 0;
+    ray->t_max = d * (1.0 - 1e-6);
+    for (int c = 0; c < 3; c++) ray->li[c] = s->intensity[c] * f / (d * d);
+    return 1;
+}
+
+/* The shading point of a light tree's draws (ref_light_tree_sample's visitor). */
+typedef struct tree_draws {
+    const ref_ctx *ctx;
+    const double *po, *ng, *ns;
+    double eta;
+    double *out;
+} tree_draws;
+
+static void add_drawn_light(void *user, const ref_light *l, double weight)
+{
+    const tree_draws *t = user;
+    light_ray ray;
+    if (delta_light_ray(l, t->po, &ray)) add_sample(t->ctx, t->po, t->ng, t->ns, t->eta, &ray, weight, t->out);
+}
+
+static void add_area_light(const ref_ctx *ctx, const ref_light *l, const double po[3], const double ng[3],
+                           const double ns[3], double eta, int samples, int si, int sj, int m, ref_rng *rng,
+                           double out[3])
+{
+    const sss_light *s = &l->src;
+    int k = (int)ceil(sqrt((double)(samples > 0 ? samples : 1)));
+    double weight = l->area / (double)(k * k);
+    for (int a = 0; a < k; a++)
+        for (int b = 0; b < k; b++) {
+            double su = 2.0 * (a + (si + ref_rng_uniform(rng)) / m) / k - 1.0;
+            double sv = 2.0 * (b + (sj + ref_rng_uniform(rng)) / m) / k - 1.0;
+            light_ray ray;
+            double q[3];
+            for (int c = 0; c < 3; c++) q[c] = s->center[c] + su * s->u[c] + sv * s->v[c];
+            for (int c = 0; c < 3; c++) ray.wi[c] = q[c] - po[c];
+            double d = v3_normalize(ray.wi);
+            if (!(d > 0.0)) continue;
+            double cl = -v3_dot(ray.wi, l->normal);
+            if (s->two_sided) cl = fabs(cl);
+            if (!(cl > 0.0)) continue;
+            /* Area to solid angle: cos at the light / d^2. Stop short of the rectangle itself. */
+            for (int c = 0; c < 3; c++) ray.li[c] = s->radiance[c] * cl / (d * d);
+            ray.t_max = d * (1.0 - 1e-4);
+            add_sample(ctx, po, ng, ns, eta, &ray, weight, out);
+        }
+}
+
+static void add_environment_light(const ref_ctx *ctx, const ref_light *l, const double po[3], const double ng[3],
+                                  const double ns[3], double eta, int samples, int si, int sj, int m,
+                                  ref_rng *rng, double out[3])
+{
+    int k = (int)ceil(sqrt((double)(samples > 0 ? samples : 1)));
+    for (int a = 0; a < k; a++)
+        for (int b = 0; b < k; b++) {
+            double u1 = (a + (si + ref_rng_uniform(rng)) / m) / k;
+            double u2 = (b + (sj + ref_rng_uniform(rng)) / m) / k;
+            light_ray ray;
+            int px, py;
+            double pdf = env_sample(&l->env, u1, u2, ray.wi, &px, &py);
+            if (!(pdf > 0.0)) continue;
+            env_pixel(&l->env, px, py, ray.li);
+            for (int c = 0; c < 3; c++) ray.li[c] /= pdf;
+            ray.t_max = INFINITY;
+            add_sample(ctx, po, ng, ns, eta, &ray, 1.0 / (k * k), out);
+        }
 }
 
 void ref_irradiance(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3],
@@ -306,69 +404,24 @@ void ref_irradiance(const ref_ctx *ctx, const double p[3], const double ng[3], c
     out[0] = out[1] = out[2] = 0.0;
     double po[3];
     ref_offset(ctx, p, ng, po);
+    int from_tree = ctx->light_tree.nodes != NULL;
     for (size_t i = 0; i < ctx->light_count; i++) {
         const ref_light *l = &ctx->lights[i];
-        const sss_light *s = &l->src;
-        switch (s->type) {
-        case SSS_LIGHT_POINT:
-        case SSS_LIGHT_SPOT: {
-            double wi[3] = {s->position[0] - po[0], s->position[1] - po[1], s->position[2] - po[2]};
-            double d = v3_normalize(wi);
-            if (!(d > 0.0)) break;
-            double f = 1.0;
-            if (s->type == SSS_LIGHT_SPOT)
-                f = sss_reference_spot_falloff(s->cone_angle, s->cone_delta, -v3_dot(wi, l->axis));
-            if (!(f > 0.0)) break;
-            double li[3];
-            for (int c = 0; c < 3; c++) li[c] = s->intensity[c] * f / (d * d);
-            add_sample(ctx, po, ng, ns, eta, wi, d * (1.0 - 1e-6), li, 1.0, out);
-            break;
+        light_ray ray;
+        if (is_delta_light(&l->src)) {
+            int drawn = from_tree && l->src.type != SSS_LIGHT_DIRECTIONAL;
+            if (!drawn && delta_light_ray(l, po, &ray)) add_sample(ctx, po, ng, ns, eta, &ray, 1.0, out);
+        } else if (l->src.type == SSS_LIGHT_AREA) {
+            add_area_light(ctx, l, po, ng, ns, eta, area_samples, si, sj, m, rng, out);
+        } else if (l->src.type == SSS_LIGHT_ENVIRONMENT) {
+            add_environment_light(ctx, l, po, ng, ns, eta, env_samples, si, sj, m, rng, out);
         }
-        case SSS_LIGHT_DIRECTIONAL:
-            add_sample(ctx, po, ng, ns, eta, l->to_light, INFINITY, s->radiance, 1.0, out);
-            break;
-        case SSS_LIGHT_AREA: {
-            int n = area_samples > 0 ? area_samples : 1;
-            int k = (int)ceil(sqrt((double)n));
-            double weight = l->area / (double)(k * k);
-            for (int a = 0; a < k; a++)
-                for (int b = 0; b < k; b++) {
-                    double su = 2.0 * (a + (si + ref_rng_uniform(rng)) / m) / k - 1.0;
-                    double sv = 2.0 * (b + (sj + ref_rng_uniform(rng)) / m) / k - 1.0;
-                    double q[3], wi[3];
-                    for (int c = 0; c < 3; c++) q[c] = s->center[c] + su * s->u[c] + sv * s->v[c];
-                    for (int c = 0; c < 3; c++) wi[c] = q[c] - po[c];
-                    double d = v3_normalize(wi);
-                    if (!(d > 0.0)) continue;
-                    double cl = -v3_dot(wi, l->normal);
-                    if (s->two_sided) cl = fabs(cl);
-                    if (!(cl > 0.0)) continue;
-                    /* Area to solid angle: cos at the light / d^2. Stop short of the rectangle itself. */
-                    double li[3];
-                    for (int c = 0; c < 3; c++) li[c] = s->radiance[c] * cl / (d * d);
-                    add_sample(ctx, po, ng, ns, eta, wi, d * (1.0 - 1e-4), li, weight, out);
-                }
-            break;
-        }
-        case SSS_LIGHT_ENVIRONMENT: {
-            int n = env_samples > 0 ? env_samples : 1;
-            int k = (int)ceil(sqrt((double)n));
-            for (int a = 0; a < k; a++)
-                for (int b = 0; b < k; b++) {
-                    double u1 = (a + (si + ref_rng_uniform(rng)) / m) / k;
-                    double u2 = (b + (sj + ref_rng_uniform(rng)) / m) / k;
-                    double wi[3];
-                    int px, py;
-                    double pdf = env_sample(&l->env, u1, u2, wi, &px, &py);
-                    if (!(pdf > 0.0)) continue;
-                    double li[3];
-                    env_pixel(&l->env, px, py, li);
-                    for (int c = 0; c < 3; c++) li[c] /= pdf;
-                    add_sample(ctx, po, ng, ns, eta, wi, INFINITY, li, 1.0 / (k * k), out);
-                }
-            break;
-        }
-        }
+    }
+    if (from_tree) {
+        /* The camera samples of a pixel take strata of the tree's offset too. */
+        int n = strata > 1 ? strata : 1;
+        tree_draws t = {ctx, po, ng, ns, eta, out};
+        ref_light_tree_sample(ctx, po, ng, (stratum % n + ref_rng_uniform(rng)) / n, add_drawn_light, &t);
     }
 }
 

@@ -32,7 +32,8 @@ static inline uint32_t triangle_subdiv(const float *a, const float *b, const flo
     return (uint32_t)m;
 }
 
-uint32_t ref_points_subdiv(const sss_mesh *mesh, uint32_t t, double h)
+/* Subdivisions m of triangle t for spacing h (it gets m^2 samples). */
+static uint32_t points_subdiv(const sss_mesh *mesh, uint32_t t, double h)
 {
     const uint32_t *i = mesh->indices + 3 * (size_t)t;
     double A;
@@ -44,10 +45,7 @@ uint64_t ref_points_count(const sss_mesh *mesh, double h)
 {
     uint64_t total = 0;
     for (uint32_t t = 0; t < mesh->triangle_count; t++) {
-        const uint32_t *i = mesh->indices + 3 * (size_t)t;
-        double A;
-        uint32_t m = triangle_subdiv(mesh->positions + 3 * (size_t)i[0], mesh->positions + 3 * (size_t)i[1],
-                                     mesh->positions + 3 * (size_t)i[2], h, &A);
+        uint32_t m = points_subdiv(mesh, t, h);
         total += (uint64_t)m * m;
     }
     return total;
@@ -62,10 +60,7 @@ sss_result ref_points_generate(ref_ctx *ctx, size_t object, double h, sss_error 
     if (!offset) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (samples)");
     offset[0] = 0;
     for (uint32_t t = 0; t < nt; t++) {
-        const uint32_t *i = mesh->indices + 3 * (size_t)t;
-        double A;
-        uint32_t m = triangle_subdiv(mesh->positions + 3 * (size_t)i[0], mesh->positions + 3 * (size_t)i[1],
-                                     mesh->positions + 3 * (size_t)i[2], h, &A);
+        uint32_t m = points_subdiv(mesh, t, h);
         offset[t + 1] = offset[t] + (uint64_t)m * m;
     }
     uint64_t count = offset[nt];

@@ -1,5 +1,6 @@
 /* reference/ref_setup.c — validation, camera, the Embree scene, and the surface samples of every
  * visible subsurface object with the density rule of sss/reference.h. */
+#include <ctype.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -146,11 +147,38 @@ static sss_result embree_fail(ref_ctx *ctx, sss_error *err, const char *what)
                          ctx->embree_failed ? ctx->embree_message : "no message");
 }
 
+/* Embree's device configuration: one build thread (the BVH, and so every hit, is the same whatever the
+ * render's thread count), then SSS_EMBREE_CONFIG appended (docs/reference.md: "Machine dependence"),
+ * e.g. "isa=sse4.2" to hold Embree to another instruction set than the processor's best. */
+static sss_result embree_config(char *config, size_t cap, sss_error *err)
+{
+    static const char base[] = "threads=1,set_affinity=0";
+    const char *extra = getenv("SSS_EMBREE_CONFIG");
+    if (!extra || !*extra) {
+        snprintf(config, cap, "%s", base);
+        return SSS_OK;
+    }
+    if (strlen(extra) + sizeof base + 1 > cap)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "SSS_EMBREE_CONFIG: longer than %zu characters",
+                             cap - sizeof base - 1);
+    for (const char *c = extra; *c; c++)
+        if (!isalnum((unsigned char)*c) && !strchr("=,._-", *c))
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                                 "SSS_EMBREE_CONFIG: character 0x%02x is not allowed (letters, digits and =,._- only)",
+                                 (unsigned char)*c);
+    snprintf(config, cap, "%s,%s", base, extra);
+    return SSS_OK;
+}
+
 static sss_result build_scene(ref_ctx *ctx, sss_error *err)
 {
-    /* One build thread: the BVH (and so every hit) is the same whatever the render's thread count. */
-    ctx->device = rtcNewDevice("threads=1,set_affinity=0");
-    if (!ctx->device) return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "reference: cannot create an Embree device");
+    char config[256];
+    sss_result r = embree_config(config, sizeof config, err);
+    if (r != SSS_OK) return r;
+    ctx->device = rtcNewDevice(config);
+    if (!ctx->device)
+        return sss_error_set(err, SSS_ERROR_UNSUPPORTED, "reference: cannot create an Embree device with \"%s\"",
+                             config);
     rtcSetDeviceErrorFunction(ctx->device, embree_error, ctx);
     ctx->scene = rtcNewScene(ctx->device);
     if (!ctx->scene) return embree_fail(ctx, err, "rtcNewScene");

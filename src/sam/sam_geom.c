@@ -21,11 +21,7 @@ sss_result sss_sam_profile_table_build(const sss_profile *profile, double energy
     if (size < 16 || size > (1 << 20))
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sam: profile table size %d outside 16..%d", size,
                              1 << 20);
-    double rm = 0.0;
-    for (int c = 0; c < 3; c++) {
-        double x = sss_profile_radius_for_fraction(profile, c, energy);
-        if (isfinite(x) && x > rm) rm = x;
-    }
+    double rm = sss_profile_reach(profile, energy);
     if (!(rm > 0.0) || !isfinite(rm))
         return sss_error_set(err, SSS_ERROR_NUMERIC, "sam: the profile has no finite radius holding %g of its energy",
                              energy);

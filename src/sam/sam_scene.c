@@ -17,8 +17,8 @@ sss_result sss_sam_object_profile(const sss_scene_object *obj, sss_profile *out,
 {
     if (obj->material.type != SSS_SCENE_MATERIAL_SUBSURFACE)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "the object's material is not subsurface");
-    return sss_profile_init(out, sss_scene_material_profile_model(&obj->material), &obj->material.optical,
-                            obj->material.table, err);
+    *out = obj->material.rd;
+    return SSS_OK;
 }
 
 static sss_result object_at(const sss_scene *scene, size_t index, const sss_scene_object **obj, sss_error *err)

@@ -1,6 +1,6 @@
 /* sam/sam_update.c — deforming meshes (Maisch & Ropinski 2017, section 3.4): the approximate form factors of Eq. 15
  * (K' times the current fan area and R_d at the current vertex distance) and the per-frame move of
- * each link to a better one-ring neighbour. src/gl/sam/sam_vertex.comp.glsl does the same on the GPU.
+ * each link to a better one-ring neighbour. src/gl/techniques/sam/sam_vertex.comp.glsl does the same on the GPU.
  * With a back-side mesh (sam_back.c) the links, their one-rings and the fan areas are the back-side
  * mesh's; the receivers stay the mesh's vertices. */
 #include <math.h>

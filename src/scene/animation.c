@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/vecmath.h"
 #include "sss/scene.h"
 
 static const double PI = 3.14159265358979323846;
@@ -70,22 +71,15 @@ void sss_animation_deform_point(const sss_animation *anim, const float bounds_mi
     for (int i = 0; i < 3; i++) out[i] = (float)q[i];
 }
 
-static void cross3(const double u[3], const double v[3], double out[3])
-{
-    out[0] = u[1] * v[2] - u[2] * v[1];
-    out[1] = u[2] * v[0] - u[0] * v[2];
-    out[2] = u[0] * v[1] - u[1] * v[0];
-}
-
 void sss_animation_deform_normal(const sss_animation *anim, const float bounds_min[3], const float bounds_max[3],
                                  double t, const float p[3], const float n[3], float out[3])
 {
     double q[3], a[3], b[3], c[3], bc[3], ca[3], ab[3];
     deform(anim, bounds_min, bounds_max, t, p, q, a, b, c);
     /* cof(J) n = det(J) J^-T n, sign-corrected: the normal of the deformed surface. */
-    cross3(b, c, bc);
-    cross3(c, a, ca);
-    cross3(a, b, ab);
+    v3_cross(b, c, bc);
+    v3_cross(c, a, ca);
+    v3_cross(a, b, ab);
     double det = a[0] * bc[0] + a[1] * bc[1] + a[2] * bc[2];
     double sg = det < 0 ? -1.0 : 1.0, m[3];
     for (int i = 0; i < 3; i++) m[i] = sg * (bc[i] * n[0] + ca[i] * n[1] + ab[i] * n[2]);

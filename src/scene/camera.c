@@ -4,23 +4,12 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/vecmath.h"
 #include "sss/scene.h"
 
 static const double SCENE_PI = 3.14159265358979323846;
 
-static double dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void cross3(const double a[3], const double b[3], double out[3])
-{
-    double x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2], z = a[0] * b[1] - a[1] * b[0];
-    out[0] = x;
-    out[1] = y;
-    out[2] = z;
-}
-
+/* v3_unit with hypot: no overflow for components near DBL_MAX (camera positions are checked, not limited). */
 static int normalize3(double v[3])
 {
     double n = hypot(hypot(v[0], v[1]), v[2]); /* no overflow for components near DBL_MAX */
@@ -51,14 +40,14 @@ sss_result sss_camera_basis_init(const sss_camera *cam, sss_camera_basis *b, sss
     if (!normalize3(f)) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "camera: look_at equals position");
     if (!normalize3(up)) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "camera: up is a zero vector");
     double right[3];
-    cross3(f, up, right);
+    v3_cross(f, up, right);
     if (!(hypot(hypot(right[0], right[1]), right[2]) > 1e-6) || !normalize3(right))
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "camera: up is parallel to the view direction");
     memset(b, 0, sizeof *b);
     memcpy(b->origin, cam->position, sizeof b->origin);
     memcpy(b->forward, f, sizeof b->forward);
     memcpy(b->right, right, sizeof b->right);
-    cross3(right, f, b->up);
+    v3_cross(right, f, b->up);
     normalize3(b->up);
     double t = tan(cam->fov * SCENE_PI / 360.0);
     double aspect = (double)cam->width / cam->height;
@@ -91,10 +80,10 @@ void sss_camera_ray(const sss_camera_basis *b, double px, double py, double orig
 int sss_camera_project(const sss_camera_basis *b, const double p[3], double raster[2], double *depth)
 {
     double q[3] = {p[0] - b->origin[0], p[1] - b->origin[1], p[2] - b->origin[2]};
-    double z = dot3(q, b->forward);
+    double z = v3_dot(q, b->forward);
     if (depth) *depth = z;
     if (!(z > 0)) return 0;
-    double sx = dot3(q, b->right) / z / b->tan_half[0], sy = dot3(q, b->up) / z / b->tan_half[1];
+    double sx = v3_dot(q, b->right) / z / b->tan_half[0], sy = v3_dot(q, b->up) / z / b->tan_half[1];
     raster[0] = (sx + 1.0) * 0.5 * b->width;
     raster[1] = (1.0 - sy) * 0.5 * b->height;
     return 1;
@@ -107,7 +96,7 @@ void sss_camera_view_matrix(const sss_camera_basis *b, double m[16])
     for (int r = 0; r < 3; r++) {
         double s = r == 2 ? -1.0 : 1.0;
         for (int c = 0; c < 3; c++) m[4 * r + c] = s * rows[r][c];
-        m[4 * r + 3] = -s * dot3(rows[r], b->origin);
+        m[4 * r + 3] = -s * v3_dot(rows[r], b->origin);
     }
     m[12] = m[13] = m[14] = 0;
     m[15] = 1;

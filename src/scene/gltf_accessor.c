@@ -24,15 +24,15 @@ static int type_components(const char *type)
     return 0;
 }
 
-/* The byte range [*start, *start + *length) of bufferViews[index] inside its buffer, and its stride. */
+/* The byte range [*start, *start + *length) of bufferViews[index] inside its buffer (or decoded from
+ * its EXT_meshopt_compression data), and its stride. */
 static sss_result buffer_view(gltf_ctx *c, long index, const char *use, const unsigned char **start,
                               size_t *length, long *stride)
 {
-    const cJSON *views = gltf_get(c->root, "bufferViews");
-    int count = cJSON_IsArray(views) ? cJSON_GetArraySize(views) : 0;
-    if (index >= count)
-        return gltf_fail(c, SSS_ERROR_PARSE, "%s: bufferView %ld does not exist (%d buffer views)", use, index, count);
-    const cJSON *view = cJSON_GetArrayItem(views, (int)index);
+    const cJSON *view = gltf_item(c, GLTF_BUFFER_VIEWS, index);
+    if (!view)
+        return gltf_fail(c, SSS_ERROR_PARSE, "%s: bufferView %ld does not exist (%zu buffer views)", use, index,
+                         gltf_count(c, GLTF_BUFFER_VIEWS));
     char path[64];
     snprintf(path, sizeof path, "bufferViews[%ld]", index);
     sss_result res;
@@ -45,6 +45,11 @@ static sss_result buffer_view(gltf_ctx *c, long index, const char *use, const un
         return res;
     if (*stride % 4 != 0)
         return gltf_fail(c, SSS_ERROR_PARSE, "%s.byteStride: %ld is not a multiple of 4", path, *stride);
+    const cJSON *meshopt = gltf_get(gltf_get(view, "extensions"), "EXT_meshopt_compression");
+    if (meshopt) { /* the view's own buffer is a fallback, perhaps without data: not read */
+        *length = (size_t)byte_length;
+        return gltf_meshopt_view(c, index, meshopt, *stride, start, length);
+    }
     char buffer_path[80];
     snprintf(buffer_path, sizeof buffer_path, "%s.buffer", path);
     const unsigned char *data;
@@ -58,23 +63,23 @@ static sss_result buffer_view(gltf_ctx *c, long index, const char *use, const un
     return SSS_OK;
 }
 
-sss_result gltf_accessor_get(gltf_ctx *c, long index, const char *use, int components, gltf_accessor *a)
+sss_result gltf_accessor_meta(gltf_ctx *c, long index, const char *use, int components, gltf_accessor *a,
+                              long *view, long *offset)
 {
     memset(a, 0, sizeof *a);
-    const cJSON *accessors = gltf_get(c->root, "accessors");
-    int count = cJSON_IsArray(accessors) ? cJSON_GetArraySize(accessors) : 0;
-    if (index < 0 || index >= count)
-        return gltf_fail(c, SSS_ERROR_PARSE, "%s: accessor %ld does not exist (%d accessors)", use, index, count);
-    const cJSON *acc = cJSON_GetArrayItem(accessors, (int)index);
+    const cJSON *acc = gltf_item(c, GLTF_ACCESSORS, index);
+    if (!acc)
+        return gltf_fail(c, SSS_ERROR_PARSE, "%s: accessor %ld does not exist (%zu accessors)", use, index,
+                         gltf_count(c, GLTF_ACCESSORS));
     char path[64];
     snprintf(path, sizeof path, "accessors[%ld]", index);
     sss_result res;
-    long ctype = 0, n = 0, offset = 0, view = -1;
+    long ctype = 0, n = 0;
     if ((res = gltf_object(c, acc, path)) != SSS_OK ||
         (res = gltf_int(c, acc, path, "componentType", 1, 0, 5120, 5126, &ctype)) != SSS_OK ||
         (res = gltf_int(c, acc, path, "count", 1, 0, 1, (long)SSS_MESH_MAX_TRIANGLES * 3, &n)) != SSS_OK ||
-        (res = gltf_int(c, acc, path, "byteOffset", 0, 0, 0, 1L << 40, &offset)) != SSS_OK ||
-        (res = gltf_int(c, acc, path, "bufferView", 0, -1, 0, 1L << 30, &view)) != SSS_OK)
+        (res = gltf_int(c, acc, path, "byteOffset", 0, 0, 0, 1L << 40, offset)) != SSS_OK ||
+        (res = gltf_int(c, acc, path, "bufferView", 0, -1, 0, 1L << 30, view)) != SSS_OK)
         return res;
     const cJSON *type = gltf_get(acc, "type");
     int comps = cJSON_IsString(type) ? type_components(type->valuestring) : 0;
@@ -86,21 +91,29 @@ sss_result gltf_accessor_get(gltf_ctx *c, long index, const char *use, int compo
                          use, components);
     if (gltf_get(acc, "sparse"))
         return gltf_fail(c, SSS_ERROR_UNSUPPORTED, "%s.sparse: sparse accessors are not supported", path);
-    const cJSON *normalized = gltf_get(acc, "normalized");
-    a->normalized = cJSON_IsTrue(normalized);
+    a->normalized = cJSON_IsTrue(gltf_get(acc, "normalized"));
     a->count = (size_t)n;
     a->components = comps;
     a->component_type = (int)ctype;
     a->stride = (size_t)comps * (size_t)csize;
+    return SSS_OK;
+}
+
+sss_result gltf_accessor_get(gltf_ctx *c, long index, const char *use, int components, gltf_accessor *a)
+{
+    long offset = 0, view = -1;
+    sss_result res = gltf_accessor_meta(c, index, use, components, a, &view, &offset);
+    if (res != SSS_OK) return res;
     /* Without a buffer view an accessor is all zeros (spec 3.6.2.3), only useful with sparse data:
      * refused, also because its count is backed by no bytes of the file. */
     if (view < 0)
-        return gltf_fail(c, SSS_ERROR_UNSUPPORTED, "%s: no bufferView (zero-filled accessors are not supported)",
-                         path);
-
+        return gltf_fail(c, SSS_ERROR_UNSUPPORTED,
+                         "accessors[%ld]: no bufferView (zero-filled accessors are not supported)", index);
     const unsigned char *start = NULL;
     size_t length = 0;
     long stride = 0;
+    char path[64];
+    snprintf(path, sizeof path, "accessors[%ld]", index);
     if ((res = buffer_view(c, view, path, &start, &length, &stride)) != SSS_OK) return res;
     size_t element = a->stride;
     if (stride) a->stride = (size_t)stride;

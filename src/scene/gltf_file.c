@@ -9,6 +9,7 @@
 
 #include "core/file_util.h"
 #include "scene/gltf_internal.h"
+#include "scene/json_reader.h"
 
 #define GLB_MAGIC 0x46546C67u      /* "glTF" */
 #define GLB_CHUNK_JSON 0x4E4F534Au /* "JSON" */
@@ -87,14 +88,43 @@ sss_result gltf_object(gltf_ctx *c, const cJSON *obj, const char *path)
     return SSS_OK;
 }
 
-sss_result gltf_array(gltf_ctx *c, const char *key, const cJSON **arr, size_t *count)
+const cJSON *gltf_item(const gltf_ctx *c, int list, long index)
 {
-    *arr = gltf_get(c->root, key);
-    *count = 0;
-    if (!*arr) return SSS_OK;
-    if (!cJSON_IsArray(*arr)) return gltf_fail(c, SSS_ERROR_PARSE, "%s: expected an array", key);
-    *count = (size_t)cJSON_GetArraySize(*arr);
+    const gltf_list *l = &c->lists[list];
+    return index >= 0 && (size_t)index < l->count ? l->items[index] : NULL;
+}
+
+size_t gltf_count(const gltf_ctx *c, int list)
+{
+    return c->lists[list].count;
+}
+
+/* The array at path (the member key of parent; absent: empty) into l, one walk of its list. */
+static sss_result index_list(gltf_ctx *c, const cJSON *parent, const char *key, const char *path, gltf_list *l)
+{
+    const cJSON *arr = gltf_get(parent, key);
+    if (!arr) return SSS_OK;
+    if (!cJSON_IsArray(arr)) return gltf_fail(c, SSS_ERROR_PARSE, "%s: expected an array", path);
+    size_t n = 0;
+    for (const cJSON *e = arr->child; e; e = e->next) n++;
+    if (n && !(l->items = malloc(n * sizeof *l->items)))
+        return gltf_fail(c, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    for (const cJSON *e = arr->child; e; e = e->next) l->items[l->count++] = e;
     return SSS_OK;
+}
+
+static sss_result index_lists(gltf_ctx *c)
+{
+    static const char *const keys[GLTF_LIST_COUNT] = {
+        [GLTF_NODES] = "nodes",         [GLTF_SCENES] = "scenes",   [GLTF_MESHES] = "meshes",
+        [GLTF_ACCESSORS] = "accessors", [GLTF_BUFFER_VIEWS] = "bufferViews", [GLTF_BUFFERS] = "buffers",
+        [GLTF_MATERIALS] = "materials", [GLTF_TEXTURES] = "textures", [GLTF_IMAGES] = "images",
+        [GLTF_CAMERAS] = "cameras",     [GLTF_LIGHTS] = "extensions.KHR_lights_punctual.lights"};
+    sss_result res = SSS_OK;
+    for (int i = 0; i < GLTF_LIGHTS && res == SSS_OK; i++) res = index_list(c, c->root, keys[i], keys[i], &c->lists[i]);
+    const cJSON *punctual = gltf_get(gltf_get(c->root, "extensions"), "KHR_lights_punctual");
+    if (res == SSS_OK) res = index_list(c, punctual, "lights", keys[GLTF_LIGHTS], &c->lists[GLTF_LIGHTS]);
+    return res;
 }
 
 static uint32_t read_u32(const unsigned char *p)
@@ -126,6 +156,9 @@ static sss_result split_glb(gltf_ctx *c, const unsigned char *data, size_t size,
                 return gltf_fail(c, SSS_ERROR_PARSE, ".glb: the first chunk is not JSON (type 0x%08x)", type);
             *json = (const char *)data + pos;
             *json_size = chunk_len;
+            /* The chunk is padded to 4 bytes with spaces (4.4.3.1); some writers pad with zeros, which
+             * would be text after the JSON value: up to 3 of them are taken as padding. */
+            for (int pad = 0; pad < 3 && *json_size > 0 && (*json)[*json_size - 1] == '\0'; pad++) (*json_size)--;
         } else if (chunk == 1 && type == GLB_CHUNK_BIN) {
             c->glb_bin = data + pos;
             c->glb_bin_size = chunk_len;
@@ -140,8 +173,10 @@ static sss_result split_glb(gltf_ctx *c, const unsigned char *data, size_t size,
 static int extension_supported(const char *name)
 {
     static const char *const known[] = {"KHR_materials_volume", "KHR_materials_volume_scatter",
-                                        "KHR_materials_ior", "KHR_materials_diffuse_transmission",
-                                        "KHR_lights_punctual"};
+                                        "KHR_materials_scatter", "KHR_materials_ior",
+                                        "KHR_materials_diffuse_transmission", "KHR_lights_punctual",
+                                        "KHR_draco_mesh_compression", "EXT_meshopt_compression",
+                                        "KHR_mesh_quantization"};
     for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
         if (strcmp(name, known[i]) == 0) return 1;
     return 0;
@@ -157,7 +192,7 @@ static sss_result check_root(gltf_ctx *c)
     if (strncmp(version->valuestring, "2.", 2) != 0)
         return gltf_fail(c, SSS_ERROR_UNSUPPORTED, "asset.version: \"%s\" (only glTF 2.x is supported)",
                          version->valuestring);
-    const cJSON *required = gltf_get(c->root, "extensionsRequired");
+    const cJSON *required = gltf_get(c->root, "extensionsRequired"), *used = gltf_get(c->root, "extensionsUsed");
     if (required && !cJSON_IsArray(required))
         return gltf_fail(c, SSS_ERROR_PARSE, "extensionsRequired: expected an array");
     int i = 0;
@@ -166,7 +201,12 @@ static sss_result check_root(gltf_ctx *c)
         if (!extension_supported(e->valuestring))
             return gltf_fail(c, SSS_ERROR_UNSUPPORTED, "extensionsRequired[%d]: \"%s\" is not supported", i,
                              e->valuestring);
+        c->quantization |= strcmp(e->valuestring, "KHR_mesh_quantization") == 0;
     }
+    /* KHR_mesh_quantization must be required where used; an asset that only lists it as used is read
+     * as meant all the same */
+    for (const cJSON *e = cJSON_IsArray(used) ? used->child : NULL; e; e = e->next)
+        c->quantization |= cJSON_IsString(e) && strcmp(e->valuestring, "KHR_mesh_quantization") == 0;
     return SSS_OK;
 }
 
@@ -180,11 +220,11 @@ sss_result gltf_open(gltf_ctx *c, const unsigned char *data, size_t size)
     if (json_size > SSS_GLTF_MAX_JSON_SIZE)
         return gltf_fail(c, SSS_ERROR_LIMIT, "JSON of %zu bytes, more than the %u accepted", json_size,
                          (unsigned)SSS_GLTF_MAX_JSON_SIZE);
-    c->root = cJSON_ParseWithLength(json, json_size);
-    if (!c->root) return gltf_fail(c, SSS_ERROR_PARSE, "malformed JSON");
-    if ((res = check_root(c)) != SSS_OK) return res;
-    const cJSON *buffers;
-    if ((res = gltf_array(c, "buffers", &buffers, &c->buffer_count)) != SSS_OK) return res;
+    jr r;
+    jr_init(&r, c->name, c->err);
+    if ((res = jr_parse(&r, json, json_size, &c->root)) != SSS_OK) return res;
+    if ((res = check_root(c)) != SSS_OK || (res = index_lists(c)) != SSS_OK) return res;
+    c->buffer_count = gltf_count(c, GLTF_BUFFERS);
     if (c->buffer_count && !(c->buffers = calloc(c->buffer_count, sizeof *c->buffers)))
         return gltf_fail(c, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
     return SSS_OK;
@@ -192,8 +232,13 @@ sss_result gltf_open(gltf_ctx *c, const unsigned char *data, size_t size)
 
 void gltf_close(gltf_ctx *c)
 {
+    for (size_t i = 0; c->decoded_views && i < gltf_count(c, GLTF_BUFFER_VIEWS); i++) free(c->decoded_views[i]);
+    free(c->decoded_views);
+    c->decoded_views = NULL;
     for (size_t i = 0; i < c->buffer_count; i++) free(c->buffers[i].owned);
     free(c->buffers);
+    for (int i = 0; i < GLTF_LIST_COUNT; i++) free(c->lists[i].items);
+    memset(c->lists, 0, sizeof c->lists);
     cJSON_Delete(c->root);
     c->buffers = NULL;
     c->buffer_count = 0;
@@ -283,8 +328,7 @@ char *gltf_resolve_uri(const char *base_dir, const char *uri)
 
 static sss_result load_buffer(gltf_ctx *c, long index, gltf_buffer *b)
 {
-    const cJSON *buffers = gltf_get(c->root, "buffers");
-    const cJSON *def = cJSON_GetArrayItem(buffers, (int)index);
+    const cJSON *def = gltf_item(c, GLTF_BUFFERS, index);
     char path[64];
     snprintf(path, sizeof path, "buffers[%ld]", index);
     sss_result res;
@@ -344,4 +388,39 @@ sss_result gltf_buffer_data(gltf_ctx *c, long index, const char *path, const uns
     *data = b->data;
     *size = b->size;
     return SSS_OK;
+}
+
+/* ---- The files an asset reads --------------------------------------------------------------------- */
+
+sss_result gltf_add_file(sss_gltf_scene *out, const char *path)
+{
+    char **grown = realloc(out->files, (out->file_count + 1) * sizeof *grown);
+    char *copy = grown ? malloc(strlen(path) + 1) : NULL;
+    if (grown) out->files = grown;
+    if (!copy) return SSS_ERROR_OUT_OF_MEMORY;
+    strcpy(copy, path);
+    out->files[out->file_count++] = copy;
+    return SSS_OK;
+}
+
+/* The external files of the root array key ("buffers", "images"): every string uri that is not a data:
+ * URI and resolves to a relative file (the others are refused where they are used). */
+static sss_result list_uris(gltf_ctx *c, const char *key, sss_gltf_scene *out)
+{
+    const cJSON *arr = gltf_get(c->root, key);
+    for (const cJSON *e = cJSON_IsArray(arr) ? arr->child : NULL; e; e = e->next) {
+        const cJSON *uri = gltf_get(e, "uri");
+        if (!cJSON_IsString(uri) || strncmp(uri->valuestring, "data:", 5) == 0) continue;
+        char *file = gltf_resolve_uri(c->base_dir, uri->valuestring);
+        sss_result res = file ? gltf_add_file(out, file) : SSS_OK;
+        free(file);
+        if (res != SSS_OK) return gltf_fail(c, res, "%s: out of memory", key);
+    }
+    return SSS_OK;
+}
+
+sss_result gltf_list_files(gltf_ctx *c, sss_gltf_scene *out)
+{
+    sss_result res = list_uris(c, "buffers", out);
+    return res == SSS_OK ? list_uris(c, "images", out) : res;
 }

@@ -1,12 +1,14 @@
 /* sss_gltf_load: the default scene's node hierarchy flattened (glTF 2.0 spec, section 3.5: world =
  * parent world x local, local = T R S or `matrix`), its mesh primitives baked into world space, the
  * camera and the KHR_lights_punctual lights. */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/file_util.h"
+#include "core/vecmath.h"
 #include "scene/gltf_internal.h"
 #include "scene/scene_internal.h"
 
@@ -18,22 +20,9 @@ typedef struct gltf_walk {
     size_t object_cap, light_cap;
     unsigned char *visited; /* per node: a node has one parent and appears once (spec 3.5.3) */
     size_t node_count;
-    const cJSON *nodes;
     long camera_node;   /* the chosen camera's node, -1 when none yet */
     double camera_world[16];
 } gltf_walk;
-
-static void mat_mul(const double a[16], const double b[16], double out[16])
-{
-    double r[16];
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++) {
-            double s = 0;
-            for (int k = 0; k < 4; k++) s += a[4 * i + k] * b[4 * k + j];
-            r[4 * i + j] = s;
-        }
-    memcpy(out, r, sizeof r);
-}
 
 /* The node's local matrix (row-major): `matrix` (column-major in glTF) or T R S. */
 static sss_result local_matrix(gltf_ctx *c, const cJSON *node, const char *path, double m[16])
@@ -85,8 +74,7 @@ static sss_result add_object(gltf_walk *w, const sss_gltf_object *o)
 static sss_result node_mesh(gltf_walk *w, long node, long mesh_index, const double world[16])
 {
     gltf_ctx *c = w->c;
-    const cJSON *meshes = gltf_get(c->root, "meshes");
-    const cJSON *mesh = cJSON_IsArray(meshes) ? cJSON_GetArrayItem(meshes, (int)mesh_index) : NULL;
+    const cJSON *mesh = gltf_item(c, GLTF_MESHES, mesh_index);
     if (!mesh) return gltf_fail(c, SSS_ERROR_PARSE, "nodes[%ld].mesh: mesh %ld does not exist", node, mesh_index);
     const cJSON *prims = gltf_get(mesh, "primitives");
     if (!cJSON_IsArray(prims) || !prims->child)
@@ -98,8 +86,9 @@ static sss_result node_mesh(gltf_walk *w, long node, long mesh_index, const doub
         int has_uvs = 0;
         char path[96];
         snprintf(path, sizeof path, "meshes[%ld].primitives[%ld]", mesh_index, p);
-        sss_result res = gltf_primitive_mesh(c, mesh_index, p, prim, world, &o.mesh, &has_uvs);
+        sss_result res = gltf_primitive_mesh(c, node, mesh_index, p, prim, world, &o.mesh, &has_uvs);
         if (res == SSS_OK) res = gltf_int(c, prim, path, "material", 0, -1, 0, 1L << 30, &material);
+        o.material_index = (int)material;
         if (res == SSS_OK) res = gltf_material(c, material, &o.material);
         if (res == SSS_OK && !has_uvs) gltf_material_free(&o.material); /* a texture needs UVs */
         if (res == SSS_OK) res = add_object(w, &o);
@@ -141,13 +130,13 @@ static sss_result visit(gltf_walk *w, long node, const double parent[16], int de
     if (depth > GLTF_MAX_DEPTH)
         return gltf_fail(c, SSS_ERROR_LIMIT, "%s: the hierarchy is deeper than %d", path, GLTF_MAX_DEPTH);
     w->visited[node] = 1;
-    const cJSON *n = cJSON_GetArrayItem(w->nodes, (int)node);
+    const cJSON *n = gltf_item(c, GLTF_NODES, node);
     double local[16], world[16];
     long mesh = -1, camera = -1, light = -1;
     sss_result res = gltf_object(c, n, path);
     if (res == SSS_OK) res = local_matrix(c, n, path, local);
     if (res != SSS_OK) return res;
-    mat_mul(parent, local, world);
+    m4_mul_rows(parent, local, world);
     if ((res = gltf_int(c, n, path, "mesh", 0, -1, 0, 1L << 30, &mesh)) != SSS_OK ||
         (res = gltf_int(c, n, path, "camera", 0, -1, 0, 1L << 30, &camera)) != SSS_OK)
         return res;
@@ -177,8 +166,7 @@ static sss_result visit(gltf_walk *w, long node, const double parent[16], int de
 static sss_result gltf_node_light(gltf_walk *w, long node, long light, const double world[16])
 {
     gltf_ctx *c = w->c;
-    const cJSON *lights = gltf_get(gltf_get(gltf_get(c->root, "extensions"), "KHR_lights_punctual"), "lights");
-    const cJSON *l = cJSON_IsArray(lights) ? cJSON_GetArrayItem(lights, (int)light) : NULL;
+    const cJSON *l = gltf_item(c, GLTF_LIGHTS, light);
     if (!l)
         return gltf_fail(c, SSS_ERROR_PARSE, "nodes[%ld].extensions.KHR_lights_punctual.light: light %ld does not exist",
                          node, light);
@@ -215,9 +203,13 @@ static sss_result gltf_node_light(gltf_walk *w, long node, long light, const dou
         out.direction[k] = dir[k];
         out.look_at[k] = out.position[k] + dir[k];
         moved |= out.look_at[k] != out.position[k];
-        if (!isfinite(v) || !isfinite(out.look_at[k]))
-            return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "nodes[%ld]: light %ld is not finite (%s)", node, light,
-                             isfinite(v) ? "position" : "intensity x color x scale");
+        if (!(v <= SSS_SCENE_MAX_LIGHT_VALUE))
+            return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT,
+                             "%s.intensity: %g x color[%d] %g x light scale %g = %g, beyond the %g sss renders "
+                             "(docs/limits.md)", path, intensity, k, color[k], scale, v, SSS_SCENE_MAX_LIGHT_VALUE);
+        if (!(fabs(out.look_at[k]) <= FLT_MAX))
+            return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "nodes[%ld]: places light %ld beyond the float range",
+                             node, light);
     }
     if (!moved) /* a spot's look_at, one unit away, must differ from its position in doubles */
         return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "nodes[%ld]: light %ld is too far from the origin", node, light);
@@ -289,8 +281,7 @@ static void scene_bounds(const sss_gltf_scene *s, double center[3], double *radi
  * placed at the depth of the scene's centre so that orbiting viewers turn around the content. */
 static sss_result asset_camera(gltf_ctx *c, gltf_walk *w, long index, sss_camera *cam)
 {
-    const cJSON *cameras = gltf_get(c->root, "cameras");
-    const cJSON *def = cJSON_IsArray(cameras) ? cJSON_GetArrayItem(cameras, (int)index) : NULL;
+    const cJSON *def = gltf_item(c, GLTF_CAMERAS, index);
     char path[48];
     snprintf(path, sizeof path, "cameras[%ld]", index);
     if (!def) return gltf_fail(c, SSS_ERROR_PARSE, "nodes[%ld].camera: camera %ld does not exist", w->camera_node, index);
@@ -300,14 +291,16 @@ static sss_result asset_camera(gltf_ctx *c, gltf_walk *w, long index, sss_camera
     snprintf(pp, sizeof pp, "%s.perspective", path);
     double yfov = 0, aspect = 0;
     sss_result res;
+    /* NAN: absent (a present value is finite) */
     if ((res = gltf_number(c, persp, pp, "yfov", NAN, &yfov)) != SSS_OK ||
-        (res = gltf_number(c, persp, pp, "aspectRatio", 0.0, &aspect)) != SSS_OK)
+        (res = gltf_number(c, persp, pp, "aspectRatio", NAN, &aspect)) != SSS_OK)
         return res;
     if (!(yfov > 0 && yfov < M_PI)) return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.yfov: must be in (0, pi)", pp);
-    if (!(aspect >= 0 && aspect <= SSS_SCENE_MAX_IMAGE_SIZE && (aspect == 0 || aspect >= 1.0 / SSS_SCENE_MAX_IMAGE_SIZE)))
-        return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.aspectRatio: must be in [1/%d, %d]", pp,
+    /* an aspect ratio given is used (0 or less is no ratio: refused, not taken as absent) */
+    if (!isnan(aspect) && !(aspect >= 1.0 / SSS_SCENE_MAX_IMAGE_SIZE && aspect <= SSS_SCENE_MAX_IMAGE_SIZE))
+        return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.aspectRatio: %g is outside [1/%d, %d]", pp, aspect,
                          SSS_SCENE_MAX_IMAGE_SIZE, SSS_SCENE_MAX_IMAGE_SIZE);
-    image_size(&c->desc, aspect, cam);
+    image_size(&c->desc, isnan(aspect) ? 0.0 : aspect, cam);
     /* yfov is vertical; sss's fov is along the shorter image axis. */
     double half = yfov / 2;
     if (cam->height > cam->width) half = atan(tan(half) * cam->width / cam->height);
@@ -366,18 +359,15 @@ static void framing_camera(const sss_gltf_scene *s, const sss_gltf_desc *d, sss_
 
 static sss_result walk_scene(gltf_ctx *c, sss_gltf_scene *out)
 {
-    gltf_walk w = {.c = c, .out = out, .camera_node = -1};
-    sss_result res = gltf_array(c, "nodes", &w.nodes, &w.node_count);
-    const cJSON *scenes = NULL;
-    size_t scene_count = 0;
+    gltf_walk w = {.c = c, .out = out, .camera_node = -1, .node_count = gltf_count(c, GLTF_NODES)};
+    size_t scene_count = gltf_count(c, GLTF_SCENES);
     long scene = 0;
-    if (res == SSS_OK) res = gltf_array(c, "scenes", &scenes, &scene_count);
-    if (res == SSS_OK) res = gltf_int(c, c->root, "(root)", "scene", 0, 0, 0, 1L << 30, &scene);
+    sss_result res = gltf_int(c, c->root, "(root)", "scene", 0, 0, 0, 1L << 30, &scene);
     if (res == SSS_OK && (size_t)scene >= scene_count)
         res = gltf_fail(c, SSS_ERROR_PARSE, "scene: scene %ld does not exist (%zu scenes)", scene, scene_count);
     if (res == SSS_OK && w.node_count && !(w.visited = calloc(w.node_count, 1)))
         res = gltf_fail(c, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
-    const cJSON *roots = res == SSS_OK ? gltf_get(cJSON_GetArrayItem(scenes, (int)scene), "nodes") : NULL;
+    const cJSON *roots = res == SSS_OK ? gltf_get(gltf_item(c, GLTF_SCENES, scene), "nodes") : NULL;
     if (res == SSS_OK && roots && !cJSON_IsArray(roots))
         res = gltf_fail(c, SSS_ERROR_PARSE, "scenes[%ld].nodes: expected an array", scene);
     static const double identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
@@ -396,7 +386,7 @@ static sss_result walk_scene(gltf_ctx *c, sss_gltf_scene *out)
                         scene);
     if (res == SSS_OK && w.camera_node >= 0) {
         long cam = -1;
-        gltf_int(c, cJSON_GetArrayItem(w.nodes, (int)w.camera_node), "node", "camera", 0, -1, 0, 1L << 30, &cam);
+        gltf_int(c, gltf_item(c, GLTF_NODES, w.camera_node), "node", "camera", 0, -1, 0, 1L << 30, &cam);
         res = asset_camera(c, &w, cam, &out->camera);
         out->camera_from_asset = 1;
     } else if (res == SSS_OK) {
@@ -405,8 +395,8 @@ static sss_result walk_scene(gltf_ctx *c, sss_gltf_scene *out)
     return res;
 }
 
-sss_result sss_gltf_parse(const void *data, size_t size, const char *base_dir, const char *name,
-                          const sss_gltf_desc *desc, sss_gltf_scene *out, sss_error *err)
+static sss_result gltf_parse(const void *data, size_t size, const char *base_dir, const char *name,
+                             const sss_gltf_desc *desc, int check, sss_gltf_scene *out, sss_error *err)
 {
     memset(out, 0, sizeof *out);
     gltf_ctx c = {.name = name ? name : "gltf", .base_dir = base_dir ? base_dir : ".", .err = err, .out = out};
@@ -417,13 +407,21 @@ sss_result sss_gltf_parse(const void *data, size_t size, const char *base_dir, c
         return gltf_fail(&c, SSS_ERROR_INVALID_ARGUMENT, "invalid import options");
     if (!data) return gltf_fail(&c, SSS_ERROR_INVALID_ARGUMENT, "no data");
     sss_result res = gltf_open(&c, data, size);
+    if (res == SSS_OK) res = gltf_list_files(&c, out);
     if (res == SSS_OK) res = walk_scene(&c, out);
     gltf_close(&c);
+    if (res == SSS_OK && check) res = scene_check_gltf(c.name, c.base_dir, out, err);
     if (res != SSS_OK) sss_gltf_scene_free(out);
     return res;
 }
 
-sss_result sss_gltf_load(const char *path, const sss_gltf_desc *desc, sss_gltf_scene *out, sss_error *err)
+sss_result sss_gltf_parse(const void *data, size_t size, const char *base_dir, const char *name,
+                          const sss_gltf_desc *desc, sss_gltf_scene *out, sss_error *err)
+{
+    return gltf_parse(data, size, base_dir, name, desc, 1, out, err);
+}
+
+sss_result gltf_load(const char *path, const sss_gltf_desc *desc, int check, sss_gltf_scene *out, sss_error *err)
 {
     memset(out, 0, sizeof *out);
     char *data = NULL;
@@ -435,10 +433,19 @@ sss_result sss_gltf_load(const char *path, const sss_gltf_desc *desc, sss_gltf_s
         free(data);
         return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     }
-    res = sss_gltf_parse(data, size, dir, path, desc, out, err);
+    res = gltf_parse(data, size, dir, path, desc, check, out, err);
+    if (res == SSS_OK && gltf_add_file(out, path) != SSS_OK) {
+        sss_gltf_scene_free(out);
+        res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    }
     free(dir);
     free(data);
     return res;
+}
+
+sss_result sss_gltf_load(const char *path, const sss_gltf_desc *desc, sss_gltf_scene *out, sss_error *err)
+{
+    return gltf_load(path, desc, 1, out, err);
 }
 
 void sss_gltf_scene_free(sss_gltf_scene *scene)
@@ -452,5 +459,7 @@ void sss_gltf_scene_free(sss_gltf_scene *scene)
     free(scene->images);
     free(scene->objects);
     free(scene->lights);
+    for (size_t i = 0; i < scene->file_count; i++) free(scene->files[i]);
+    free(scene->files);
     memset(scene, 0, sizeof *scene);
 }

@@ -1,10 +1,14 @@
 /* glTF materials -> sss materials (sss/gltf.h lists the mapping; docs/gltf.md explains it).
  * Sources: KHR_materials_volume (thicknessFactor, attenuationDistance, attenuationColor: "the color
  * that white light turns into due to absorption when reaching the attenuation distance", so
- * c = exp(-sigma_t d)); KHR_materials_volume_scatter (multiscatterColor, the multiple-scattering
- * albedo, and scatterAnisotropy, the Henyey-Greenstein g; its albedo inversion); KHR_materials_ior
- * (ior, default 1.5); KHR_materials_diffuse_transmission (only marks the surface as letting light
- * in diffusely; its factors are not used). */
+ * c = exp(-sigma_t d); thicknessFactor: the path length rasterizers assume through the volume);
+ * KHR_materials_volume_scatter (multiscatterColor, the multiple-scattering albedo, and
+ * scatterAnisotropy, the Henyey-Greenstein g; rho_ss = 1 - s^2); KHR_materials_scatter (the draft of
+ * KhronosGroup/glTF pull request 2579 that replaces volume_scatter and diffuse_transmission:
+ * scatterStrengthFactor scales multiscatterColorFactor, rho_ss = (1 - s^2) / (1 - g s^2));
+ * KHR_materials_ior (ior, default 1.5); KHR_materials_diffuse_transmission (diffuseTransmissionFactor
+ * and diffuseTransmissionColorFactor: with a volume and no scattering extension, mapped to the nearest
+ * subsurface medium, below). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,18 +18,26 @@
 #include "scene/gltf_internal.h"
 #include "sss/material.h"
 
-/* KHR_materials_volume_scatter: rho_ms = (1 - s)(1 - 0.139 s) / (1 + 1.17 s) with
- * s^2 = (1 - alpha) / (1 - g alpha). rho (1 + 1.17 s) = (1 - s)(1 - 0.139 s) is the quadratic
- * 0.139 s^2 - (1.139 + 1.17 rho) s + (1 - rho) = 0, whose smaller root is the one in [0, 1]
- * (rho = 0 gives s = 1, rho = 1 gives s = 0); written as 2c / (b + sqrt(b^2 - 4ac)) to keep its
- * precision near rho = 1. Then alpha = (1 - s^2) / (1 - g s^2). */
-static double single_scatter_albedo(double rho, double g)
+/* Both scatter extensions write the multiple-scattering albedo rho of Kulla & Conty (2017, "Revisiting
+ * Physically Based Shading at Imageworks", slide on the albedo inversion): rho = (1 - s)(1 - 0.139 s) /
+ * (1 + 1.17 s), inverted as s = 4.09712 + 4.20863 rho - sqrt(9.59217 + 41.6808 rho + 17.7126 rho^2),
+ * whose constants are those of the smaller root of 0.139 s^2 - (1.139 + 1.17 rho) s + (1 - rho) = 0,
+ * rounded (1.139 / 0.278 = 4.097122..., ...). The root itself, written 2c / (b + sqrt(b^2 - 4ac)) to keep
+ * its precision near rho = 1: s = 1 at rho = 0 and 0 at rho = 1 exactly. rho in [0, 1] (checked by the
+ * caller: outside, s leaves [0, 1]). */
+static double albedo_root(double rho)
 {
-    rho = rho < 0 ? 0 : rho > 1 ? 1 : rho;
     double a = 0.139, b = 1.139 + 1.17 * rho, cc = 1.0 - rho;
-    double s = 2.0 * cc / (b + sqrt(b * b - 4.0 * a * cc));
-    double s2 = s * s;
-    return (1.0 - s2) / (1.0 - g * s2);
+    return 2.0 * cc / (b + sqrt(b * b - 4.0 * a * cc));
+}
+
+/* The single-scattering albedo of rho: KHR_materials_volume_scatter's rho_ss = 1 - s^2 (its text has
+ * no g); KHR_materials_scatter's rho_ss = (1 - s^2) / (1 - g s^2) (with g: s^2 is then one minus the
+ * reduced albedo, (1 - alpha) / (1 - g alpha)). */
+static double single_scatter_albedo(double rho, double g, int with_g)
+{
+    double s2 = albedo_root(rho) * albedo_root(rho);
+    return with_g ? (1.0 - s2) / (1.0 - g * s2) : 1.0 - s2;
 }
 
 /* images[source] decoded into c->out->images[source] (once; PNG or JPEG by mimeType, from a bufferView
@@ -34,8 +46,7 @@ static sss_result embedded_image(gltf_ctx *c, const cJSON *image, long source)
 {
     char p[48];
     snprintf(p, sizeof p, "images[%ld]", source);
-    const cJSON *images = gltf_get(c->root, "images");
-    size_t count = (size_t)cJSON_GetArraySize(images);
+    size_t count = gltf_count(c, GLTF_IMAGES);
     if (!c->out->images) {
         if (!(c->out->images = calloc(count, sizeof *c->out->images)))
             return gltf_fail(c, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", p);
@@ -85,13 +96,12 @@ static sss_result base_color_texture(gltf_ctx *c, const cJSON *pbr, const char *
         (res = gltf_int(c, info, p, "texCoord", 0, 0, 0, 1L << 30, &texcoord)) != SSS_OK)
         return res;
     if (texcoord != 0) return SSS_OK; /* only TEXCOORD_0 is imported */
-    const cJSON *textures = gltf_get(c->root, "textures"), *images = gltf_get(c->root, "images");
-    const cJSON *t = cJSON_IsArray(textures) ? cJSON_GetArrayItem(textures, (int)tex) : NULL;
+    const cJSON *t = gltf_item(c, GLTF_TEXTURES, tex);
     if (!t) return gltf_fail(c, SSS_ERROR_PARSE, "%s.index: texture %ld does not exist", p, tex);
     snprintf(p, sizeof p, "textures[%ld]", tex);
     if ((res = gltf_int(c, t, p, "source", 0, -1, 0, 1L << 30, &source)) != SSS_OK) return res;
     if (source < 0) return SSS_OK;
-    const cJSON *img = cJSON_IsArray(images) ? cJSON_GetArrayItem(images, (int)source) : NULL;
+    const cJSON *img = gltf_item(c, GLTF_IMAGES, source);
     if (!img) return gltf_fail(c, SSS_ERROR_PARSE, "%s.source: image %ld does not exist", p, source);
     const cJSON *uri = gltf_get(img, "uri");
     if (!cJSON_IsString(uri) || strncmp(uri->valuestring, "data:", 5) == 0) {
@@ -112,44 +122,152 @@ static sss_result base_color_texture(gltf_ctx *c, const cJSON *pbr, const char *
     return SSS_OK;
 }
 
-/* sigma_a, sigma_s, g, eta of a material with KHR_materials_volume (+ _scatter, _ior). */
-static sss_result subsurface(gltf_ctx *c, const cJSON *ext, const char *path, sss_gltf_material *m)
+/* The note of a material whose scattering extension has no medium to act on. */
+#define THIN_NOTE                                                                                                    \
+    " without an attenuating volume (KHR_materials_volume with thicknessFactor > 0 and a finite "                    \
+    "attenuationDistance): imported as diffuse"
+
+/* The extension that gives a material its scattering, in the order one is preferred to another:
+ * KHR_materials_scatter replaces the two others (and excludes diffuse transmission). */
+enum { SCATTER_KHR, SCATTER_VOLUME, SCATTER_DIFFUSE_TRANSMISSION, SCATTER_KINDS };
+static const char *const scatter_names[SCATTER_KINDS] = {
+    "KHR_materials_scatter", "KHR_materials_volume_scatter", "KHR_materials_diffuse_transmission"};
+
+/* A scattering extension's values (validated against its schema): weight (scatterStrengthFactor,
+ * diffuseTransmissionFactor; 1 for volume_scatter), colour (multiscatterColor, diffuseTransmissionColor)
+ * and g (scatterAnisotropy; 0 for diffuse transmission). */
+typedef struct scatter_ext {
+    int kind;
+    double weight, color[3], g;
+    char path[160]; /* "materials[i].extensions.<name>" */
+} scatter_ext;
+
+/* v[0..n) in [0, 1] (the schemas' colours and factors): refused outside, never clamped (clamping turned
+ * multiscatterColor 1.5 into sigma_a = 0 and -0.1 into sigma_s = 0). */
+static sss_result check_unit(gltf_ctx *c, const char *path, const char *key, const double *v, int n)
+{
+    for (int k = 0; k < n; k++) {
+        if (v[k] >= 0 && v[k] <= 1) continue;
+        if (n == 1) return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.%s: %g is outside [0, 1]", path, key, v[k]);
+        return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.%s[%d]: %g is outside [0, 1]", path, key, k, v[k]);
+    }
+    return SSS_OK;
+}
+
+/* e's members by its kind; keys[0] the weight ("" when the extension has none), keys[1] the colour,
+ * keys[2] g, alias a second name of the weight or colour (drafts renamed them). */
+static sss_result read_scatter_ext(gltf_ctx *c, const cJSON *obj, scatter_ext *e)
 {
     static const double white[3] = {1, 1, 1}, black[3] = {0, 0, 0};
-    const cJSON *volume = gltf_get(ext, "KHR_materials_volume"), *scatter = gltf_get(ext, "KHR_materials_volume_scatter");
-    const cJSON *ior = gltf_get(ext, "KHR_materials_ior");
-    char vp[192], sp[192], ip[192];
-    snprintf(vp, sizeof vp, "%s.extensions.KHR_materials_volume", path);
-    snprintf(sp, sizeof sp, "%s.extensions.KHR_materials_volume_scatter", path);
-    snprintf(ip, sizeof ip, "%s.extensions.KHR_materials_ior", path);
-    double d = 0, color[3], rho[3];
+    static const struct {
+        const char *weight, *weight_alias, *color, *color_alias, *g;
+        double weight_def;
+        const double *color_def;
+    } keys[] = {
+        /* the draft's README names the weight scatterStrengthFactor, its schema file scatterFactor */
+        [SCATTER_KHR] = {"scatterStrengthFactor", "scatterFactor", "multiscatterColorFactor", NULL,
+                         "scatterAnisotropy", 0, white},
+        /* an earlier draft (and some sample assets) name the colour multiscatterColorFactor */
+        [SCATTER_VOLUME] = {NULL, NULL, "multiscatterColor", "multiscatterColorFactor", "scatterAnisotropy", 1,
+                            black},
+        [SCATTER_DIFFUSE_TRANSMISSION] = {"diffuseTransmissionFactor", NULL, "diffuseTransmissionColorFactor", NULL,
+                                          NULL, 0, white},
+    };
+    const char *weight = keys[e->kind].weight, *color = keys[e->kind].color;
+    if (weight && !gltf_get(obj, weight) && keys[e->kind].weight_alias && gltf_get(obj, keys[e->kind].weight_alias))
+        weight = keys[e->kind].weight_alias;
+    if (!gltf_get(obj, color) && keys[e->kind].color_alias && gltf_get(obj, keys[e->kind].color_alias))
+        color = keys[e->kind].color_alias;
+    e->weight = keys[e->kind].weight_def;
+    e->g = 0;
     sss_result res;
-    if ((res = gltf_number(c, volume, vp, "attenuationDistance", INFINITY, &d)) != SSS_OK ||
-        (res = gltf_vec(c, volume, vp, "attenuationColor", 3, white, color)) != SSS_OK ||
-        (res = gltf_vec(c, scatter, sp, "multiscatterColor", 3, black, rho)) != SSS_OK ||
-        /* an older draft (and some sample assets) name it multiscatterColorFactor */
-        (res = gltf_vec(c, scatter, sp, "multiscatterColorFactor", 3, NULL, rho)) != SSS_OK ||
-        (res = gltf_number(c, scatter, sp, "scatterAnisotropy", 0.0, &m->g)) != SSS_OK ||
+    if ((res = gltf_object(c, obj, e->path)) != SSS_OK ||
+        (weight && (res = gltf_number(c, obj, e->path, weight, e->weight, &e->weight)) != SSS_OK) ||
+        (res = gltf_vec(c, obj, e->path, color, 3, keys[e->kind].color_def, e->color)) != SSS_OK ||
+        (keys[e->kind].g && (res = gltf_number(c, obj, e->path, keys[e->kind].g, 0.0, &e->g)) != SSS_OK) ||
+        (weight && (res = check_unit(c, e->path, weight, &e->weight, 1)) != SSS_OK) ||
+        (res = check_unit(c, e->path, color, e->color, 3)) != SSS_OK)
+        return res;
+    if (!(e->g > -1 && e->g < 1))
+        return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.scatterAnisotropy: %g is outside (-1, 1)", e->path, e->g);
+    return SSS_OK;
+}
+
+/* sigma_t = -ln(c) / d per channel of KHR_materials_volume (vp: its JSON path), within what sss renders. */
+static sss_result volume_extinction(gltf_ctx *c, const cJSON *volume, const char *vp, double d, double sigma_t[3])
+{
+    static const double white[3] = {1, 1, 1};
+    double color[3];
+    sss_result res = gltf_vec(c, volume, vp, "attenuationColor", 3, white, color);
+    for (int k = 0; res == SSS_OK && k < 3; k++) {
+        sigma_t[k] = -log(color[k]) / d; /* c = exp(-sigma_t d) */
+        if (!(color[k] > 0 && color[k] <= 1) || !(sigma_t[k] >= SSS_SIGMA_T_MIN && sigma_t[k] <= SSS_SIGMA_T_MAX))
+            res = gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT,
+                            "%s.attenuationColor[%d]: %g with attenuationDistance %g gives the extinction %g per "
+                            "unit, outside the [%g, %g] sss renders",
+                            vp, k, color[k], d, sigma_t[k], SSS_SIGMA_T_MIN, SSS_SIGMA_T_MAX);
+    }
+    return res;
+}
+
+/* The multiple-scattering albedo each extension gives, per channel. KHR_materials_scatter: its colour
+ * scaled by scatterStrength ("rho_ms* = scatterStrength x rho_ms"). Diffuse transmission with a volume
+ * and no scattering extension (light crosses the surface diffusely, then the volume only absorbs): the
+ * fraction of the light reaching the base layer that the asset sends back out, taken as the medium's
+ * multiple-scattering albedo (Kulla & Conty's "perceived colour" of a dense medium), with the path
+ * length rasterizers assume (KHR_materials_volume's thicknessFactor t):
+ *     rho = (1 - f) baseColor + f diffuseTransmissionColor exp(-sigma_t t),
+ * reflected diffusely by the share 1 - f, transmitted by f through t units of the volume. */
+static void multiscatter_albedo(const scatter_ext *e, const double base[3], const double sigma_t[3],
+                                double thickness, double rho[3])
+{
+    for (int k = 0; k < 3; k++) {
+        if (e->kind == SCATTER_DIFFUSE_TRANSMISSION)
+            rho[k] = (1 - e->weight) * base[k] + e->weight * e->color[k] * exp(-sigma_t[k] * thickness);
+        else
+            rho[k] = e->weight * e->color[k];
+    }
+}
+
+/* sigma_a, sigma_s, g, eta of a material with an attenuating volume and the scattering extension e. */
+static sss_result subsurface(gltf_ctx *c, const cJSON *ext, const char *path, const scatter_ext *e,
+                             const double base[3], double thickness, double d, sss_gltf_material *m)
+{
+    const cJSON *volume = gltf_get(ext, "KHR_materials_volume"), *ior = gltf_get(ext, "KHR_materials_ior");
+    char vp[192], ip[192];
+    snprintf(vp, sizeof vp, "%s.extensions.KHR_materials_volume", path);
+    snprintf(ip, sizeof ip, "%s.extensions.KHR_materials_ior", path);
+    double sigma_t[3], rho[3];
+    sss_result res;
+    if ((res = volume_extinction(c, volume, vp, d, sigma_t)) != SSS_OK ||
         (res = gltf_number(c, ior, ip, "ior", 1.5, &m->eta)) != SSS_OK)
         return res;
-    if (!(d > 0)) return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.attenuationDistance: must be > 0", vp);
-    if (!(m->g > -1 && m->g < 1))
-        return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.scatterAnisotropy: %g is outside (-1, 1)", sp, m->g);
     if (!(m->eta >= SSS_ETA_MIN && m->eta <= SSS_ETA_MAX))
         return gltf_fail(c, SSS_ERROR_UNSUPPORTED, "%s.ior: %g is outside the [%g, %g] sss accepts", ip, m->eta,
                          SSS_ETA_MIN, SSS_ETA_MAX);
+    multiscatter_albedo(e, base, sigma_t, thickness, rho);
+    m->g = e->g;
     for (int k = 0; k < 3; k++) {
-        double sigma_t = -log(color[k]) / d; /* c = exp(-sigma_t d) */
-        if (!(color[k] > 0 && color[k] <= 1) || !(sigma_t >= SSS_SIGMA_T_MIN && sigma_t <= SSS_SIGMA_T_MAX))
-            return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT,
-                             "%s.attenuationColor[%d]: %g with attenuationDistance %g gives the extinction %g per "
-                             "unit, outside the [%g, %g] sss renders",
-                             vp, k, color[k], d, sigma_t, SSS_SIGMA_T_MIN, SSS_SIGMA_T_MAX);
-        double alpha = single_scatter_albedo(rho[k], m->g);
-        m->sigma_s[k] = alpha * sigma_t;
-        m->sigma_a[k] = sigma_t - m->sigma_s[k];
+        double alpha = single_scatter_albedo(rho[k], m->g, e->kind == SCATTER_KHR);
+        m->sigma_s[k] = alpha * sigma_t[k];
+        m->sigma_a[k] = sigma_t[k] - m->sigma_s[k];
     }
     m->subsurface = 1;
+    if (e->kind == SCATTER_DIFFUSE_TRANSMISSION)
+        m->note = "KHR_materials_volume + KHR_materials_diffuse_transmission without a scattering extension: "
+                  "mapped to the nearest subsurface material (docs/gltf.md)";
+    return SSS_OK;
+}
+
+/* The scattering extension of ext that applies (SCATTER_KINDS: none), read and validated into e. */
+static sss_result scatter_extension(gltf_ctx *c, const cJSON *ext, const char *path, scatter_ext *e)
+{
+    for (e->kind = 0; e->kind < SCATTER_KINDS; e->kind++) {
+        const cJSON *obj = gltf_get(ext, scatter_names[e->kind]);
+        if (!obj) continue;
+        snprintf(e->path, sizeof e->path, "%s.extensions.%s", path, scatter_names[e->kind]);
+        return read_scatter_ext(c, obj, e);
+    }
     return SSS_OK;
 }
 
@@ -162,8 +280,7 @@ sss_result gltf_material(gltf_ctx *c, long index, sss_gltf_material *m)
     snprintf(path, sizeof path, "materials[%ld]", index);
     for (int k = 0; k < 3; k++) m->albedo[k] = 1.0; /* the default material: white, diffuse */
     if (index < 0) return SSS_OK;
-    const cJSON *materials = gltf_get(c->root, "materials");
-    const cJSON *mat = cJSON_IsArray(materials) ? cJSON_GetArrayItem(materials, (int)index) : NULL;
+    const cJSON *mat = gltf_item(c, GLTF_MATERIALS, index);
     if (!mat) return gltf_fail(c, SSS_ERROR_PARSE, "%s: does not exist", path);
     const cJSON *pbr = gltf_get(mat, "pbrMetallicRoughness"), *ext = gltf_get(mat, "extensions");
     sss_result res;
@@ -171,23 +288,37 @@ sss_result gltf_material(gltf_ctx *c, long index, sss_gltf_material *m)
     char pp[192];
     snprintf(pp, sizeof pp, "%s.pbrMetallicRoughness", path);
     if ((res = gltf_object(c, mat, path)) != SSS_OK || (res = gltf_object(c, pbr, pp)) != SSS_OK ||
-        (res = gltf_vec(c, pbr, pp, "baseColorFactor", 4, white, base)) != SSS_OK)
+        (res = gltf_vec(c, pbr, pp, "baseColorFactor", 4, white, base)) != SSS_OK ||
+        (res = check_unit(c, pp, "baseColorFactor", base, 4)) != SSS_OK) /* alpha is not used, but as invalid */
         return res;
-    for (int k = 0; k < 3; k++) {
-        if (!(base[k] >= 0 && base[k] <= 1))
-            return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.baseColorFactor[%d]: %g is outside [0, 1]", pp, k, base[k]);
-        m->albedo[k] = base[k];
-    }
+    for (int k = 0; k < 3; k++) m->albedo[k] = base[k];
     const cJSON *volume = gltf_get(ext, "KHR_materials_volume");
     double thickness = 0, distance = INFINITY;
     snprintf(pp, sizeof pp, "%s.extensions.KHR_materials_volume", path);
     if ((res = gltf_number(c, volume, pp, "thicknessFactor", 0.0, &thickness)) != SSS_OK ||
         (res = gltf_number(c, volume, pp, "attenuationDistance", INFINITY, &distance)) != SSS_OK)
         return res;
-    /* thicknessFactor 0 means a thin wall: "all volumetric effects are disabled". */
-    if (!volume || !(thickness > 0) || isinf(distance) || !gltf_get(ext, "KHR_materials_volume_scatter"))
+    /* The schema's ranges (thicknessFactor >= 0, attenuationDistance > 0), also where the values end
+     * up unused: a negative thickness is not a thin wall. */
+    if (!(thickness >= 0))
+        return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.thicknessFactor: %g is negative", pp, thickness);
+    if (!(distance > 0))
+        return gltf_fail(c, SSS_ERROR_INVALID_ARGUMENT, "%s.attenuationDistance: %g is not > 0", pp, distance);
+    scatter_ext e = {0};
+    if ((res = scatter_extension(c, ext, path, &e)) != SSS_OK) return res;
+    /* No scattering extension, or one switched off (weight 0): a plain or clear (absorbing only)
+     * material, which no sss renderer draws as such: diffuse. */
+    if (e.kind == SCATTER_KINDS || !(e.weight > 0)) return SSS_OK;
+    /* thicknessFactor 0 means a thin wall: "all volumetric effects are disabled"; an infinite
+     * attenuationDistance a volume without extinction. Neither has a medium: diffuse, said in the note. */
+    static const char *const thin[SCATTER_KINDS] = {
+        "KHR_materials_scatter" THIN_NOTE, "KHR_materials_volume_scatter" THIN_NOTE,
+        "KHR_materials_diffuse_transmission" THIN_NOTE};
+    if (!volume || !(thickness > 0) || isinf(distance)) {
+        m->note = thin[e.kind];
         return SSS_OK;
-    if ((res = subsurface(c, ext, path, m)) != SSS_OK) return res;
+    }
+    if ((res = subsurface(c, ext, path, &e, base, thickness, distance, m)) != SSS_OK) return res;
     return pbr ? base_color_texture(c, pbr, path, &m->texture, &m->image) : SSS_OK;
 }
 

@@ -6,6 +6,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "core/text.h"
+
 void jr_init(jr *r, const char *name, sss_error *err)
 {
     r->name = name ? name : "scene";
@@ -89,6 +91,60 @@ sss_result jr_prefix(jr *r, const char *key, sss_result code)
     }
     jr_leave(r, mark);
     return code;
+}
+
+static int is_space(char ch)
+{
+    return ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r';
+}
+
+/* "line L, column C" (1-based) of offset in text, for messages. */
+static sss_result fail_at(jr *r, const char *text, size_t offset, const char *what)
+{
+    size_t line = 1, col = 1;
+    for (size_t i = 0; i < offset; i++) {
+        if (text[i] == '\n') {
+            line++;
+            col = 1;
+        } else {
+            col++;
+        }
+    }
+    return jr_fail(r, SSS_ERROR_PARSE, "line %zu, column %zu: %s", line, col, what);
+}
+
+sss_result jr_parse(jr *r, const char *text, size_t size, cJSON **root)
+{
+    *root = NULL;
+    if (!text && size) return jr_fail(r, SSS_ERROR_INVALID_ARGUMENT, "no text");
+    size_t start = size >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0; /* UTF-8 byte order mark */
+    size_t k = start;
+    while (k < size && is_space(text[k])) k++;
+    if (k == size) return jr_fail(r, SSS_ERROR_PARSE, "empty file (expected a JSON object)");
+    const char *end = NULL;
+    cJSON *value = cJSON_ParseWithLengthOpts(text + start, size - start, &end, 0);
+    if (!value) {
+        size_t off = end && end >= text + start && end <= text + size ? (size_t)(end - text) : start;
+        return fail_at(r, text, off, "malformed JSON");
+    }
+    size_t off = end ? (size_t)(end - text) : size;
+    while (off < size && is_space(text[off])) off++;
+    if (off < size) {
+        cJSON_Delete(value);
+        return fail_at(r, text, off, "unexpected text after the JSON value");
+    }
+    char nul_path[JR_PATH_SIZE];
+    if (sss_json_find_nul(text + start, size - start, nul_path, sizeof nul_path)) {
+        cJSON_Delete(value); /* cJSON keeps only the part before the NUL */
+        size_t mark = r->len;
+        if (nul_path[0] && nul_path[0] != '[' && r->len > 0) path_append(r, ".");
+        path_append(r, nul_path);
+        sss_result res = jr_fail(r, SSS_ERROR_PARSE, "a string holds a NUL character (\\u0000)");
+        jr_leave(r, mark);
+        return res;
+    }
+    *root = value;
+    return SSS_OK;
 }
 
 const cJSON *jr_get(const cJSON *obj, const char *key)

@@ -22,6 +22,14 @@ typedef struct jr {
 
 void jr_init(jr *r, const char *name, sss_error *err);
 
+/* Parses size bytes of text (no terminator needed) as one JSON value into *root (NULL on failure;
+ * free with cJSON_Delete). Every JSON sss reads goes through here (scenes, lights, glTF, the viewer's
+ * edits, reference sidecars), so all of them refuse the same things: empty text, malformed JSON and text
+ * after the value ("line L, column C: ..."), and a string holding a NUL character (the escape \u0000 or
+ * a raw 0 byte), which cJSON's C strings would silently cut ("a.bin\u0000../x" read as "a.bin"); that
+ * message names the string's JSON path after the current one. A UTF-8 byte order mark is skipped. */
+sss_result jr_parse(jr *r, const char *text, size_t size, cJSON **root);
+
 /* Path handling: enter returns a mark to pass to jr_leave. */
 size_t jr_enter_key(jr *r, const char *key);
 size_t jr_enter_index(jr *r, size_t index);

@@ -1,12 +1,13 @@
 /* A .gltf or .glb given where a scene is expected: imported (sss/gltf.h) into our scene JSON, parsed
  * by the scene loader without reading meshes, then given the imported world-space meshes and the
- * decoded embedded images. */
+ * decoded embedded images. The import itself ends with the same load, the meshes and images only lent
+ * (scene_check_gltf), so that a scene `sss import` writes is one every command loads. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene/gltf_internal.h"
 #include "scene/scene_internal.h"
-#include "sss/gltf.h"
 
 /* The names standing in for files in the generated JSON: "<asset file name>#meshes[m].primitives[p]"
  * per object, "<asset file name>#images[k]" per decoded embedded image (NULL for the others). They
@@ -47,52 +48,79 @@ static char **image_names(const char *asset_name, const sss_gltf_scene *g)
     return names;
 }
 
-/* The asset's meshes and decoded images handed to the loader (taken over; the rest freed by the caller). */
-static sss_result load_given(const char *path, sss_gltf_scene *g, const char *json, char **images,
-                             const sss_scene_load_desc *desc, sss_scene *scene, sss_error *err)
+/* The asset's meshes and decoded images handed to the loader with the scene text: taken over (the rest
+ * freed by the caller), or only lent (given.lent: checked, then left in g). */
+static sss_result load_given(const char *name, const char *dir, sss_gltf_scene *g, const char *json, char **images,
+                             unsigned flags, int lend, sss_scene *scene, sss_error *err)
 {
     /* the meshes stand in for the "mesh" files the scene text names, and go through the loader's
      * checks (bounds, world reach, texture UVs) like meshes read from files */
-    sss_scene_load_desc inner = {(desc ? desc->flags : 0) | SSS_SCENE_SKIP_FILE_CHECKS};
-    char *dir = scene_folder_of(path);
+    sss_scene_load_desc inner = {flags | SSS_SCENE_SKIP_FILE_CHECKS};
     scene_given given = {calloc(g->object_count ? g->object_count : 1, sizeof(sss_mesh)), g->object_count,
-                         calloc(g->image_count ? g->image_count : 1, sizeof(sss_scene_texture)), g->image_count};
+                         calloc(g->image_count ? g->image_count : 1, sizeof(sss_scene_texture)), g->image_count, lend};
     sss_result res = SSS_OK;
-    if (!dir || !given.meshes || !given.textures)
-        res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    if (!given.meshes || !given.textures) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", name);
     for (size_t i = 0; res == SSS_OK && i < g->object_count; i++) {
         given.meshes[i] = g->objects[i].mesh;
-        memset(&g->objects[i].mesh, 0, sizeof g->objects[i].mesh);
+        if (!lend) memset(&g->objects[i].mesh, 0, sizeof g->objects[i].mesh);
     }
     for (size_t k = 0; res == SSS_OK && k < g->image_count; k++) {
         given.textures[k].path = images[k] ? images[k] : "";
         given.textures[k].image = g->images[k];
-        memset(&g->images[k], 0, sizeof g->images[k]);
+        if (!lend) memset(&g->images[k], 0, sizeof g->images[k]);
     }
-    if (res == SSS_OK) res = scene_parse_given(json, strlen(json), dir, path, &inner, &given, scene, err);
-    for (size_t i = 0; given.meshes && i < g->object_count; i++) sss_mesh_free(&given.meshes[i]); /* not taken */
-    for (size_t k = 0; given.textures && k < g->image_count; k++) sss_image_free(&given.textures[k].image);
+    if (res == SSS_OK) res = scene_parse_given(json, strlen(json), dir, name, &inner, &given, scene, err);
+    for (size_t i = 0; !lend && given.meshes && i < g->object_count; i++)
+        sss_mesh_free(&given.meshes[i]); /* not taken */
+    for (size_t k = 0; !lend && given.textures && k < g->image_count; k++)
+        sss_image_free(&given.textures[k].image);
     free(given.meshes);
     free(given.textures);
-    free(dir);
+    return res;
+}
+
+/* The imported asset g (from the file name, in the folder dir) through the scene loader. */
+static sss_result gltf_to_scene(const char *name, const char *dir, sss_gltf_scene *g, unsigned flags, int lend,
+                                sss_scene *scene, sss_error *err)
+{
+    const char *slash = strrchr(name, '/');
+    const char *asset_name = slash ? slash + 1 : name;
+    char **meshes = mesh_names(asset_name, g), **images = image_names(asset_name, g), *json = NULL;
+    sss_result res = SSS_OK;
+    if (!meshes || !images) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", name);
+    if (res == SSS_OK)
+        res = sss_gltf_scene_json(g, (const char *const *)meshes, (const char *const *)images, &json, err);
+    if (res == SSS_OK) res = load_given(name, dir, g, json, images, flags, lend, scene, err);
+    free(json);
+    free_names(meshes, g->object_count);
+    free_names(images, g->image_count);
+    return res;
+}
+
+sss_result scene_check_gltf(const char *name, const char *dir, sss_gltf_scene *g, sss_error *err)
+{
+    sss_scene scene;
+    sss_result res = gltf_to_scene(name, dir, g, 0, 1, &scene, err);
+    if (res == SSS_OK) sss_scene_free(&scene);
     return res;
 }
 
 sss_result scene_load_gltf(const char *path, const sss_scene_load_desc *desc, sss_scene *scene, sss_error *err)
 {
     sss_gltf_scene g;
-    sss_result res = sss_gltf_load(path, NULL, &g, err);
+    /* unchecked: the load below makes the same checks */
+    sss_result res = gltf_load(path, NULL, 0, &g, err);
     if (res != SSS_OK) return res;
-    const char *slash = strrchr(path, '/');
-    const char *asset_name = slash ? slash + 1 : path;
-    char **meshes = mesh_names(asset_name, &g), **images = image_names(asset_name, &g), *json = NULL;
-    if (!meshes || !images) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
-    if (res == SSS_OK)
-        res = sss_gltf_scene_json(&g, (const char *const *)meshes, (const char *const *)images, &json, err);
-    if (res == SSS_OK) res = load_given(path, &g, json, images, desc, scene, err);
-    free(json);
-    free_names(meshes, g.object_count);
-    free_names(images, g.image_count);
+    char *dir = scene_folder_of(path);
+    if (!dir) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    if (res == SSS_OK) res = gltf_to_scene(path, dir, &g, desc ? desc->flags : 0, 0, scene, err);
+    if (res == SSS_OK) { /* the asset's files are the scene's inputs (an output must not replace them) */
+        scene->files = g.files;
+        scene->file_count = g.file_count;
+        g.files = NULL;
+        g.file_count = 0;
+    }
+    free(dir);
     sss_gltf_scene_free(&g);
     return res;
 }

@@ -19,6 +19,12 @@ typedef struct scene_ctx {
     sss_scene_texture *given_textures; /* decoded images standing in for texture files (path relative
                                         * to base_dir as the scene text names it); taken over when used */
     size_t given_texture_count;
+    int given_lent; /* the given meshes and textures are checked, then left with their owner */
+    /* load phase: per object, the first object with the same texture file; the given textures' resolved
+     * paths, sorted (both found once by sorting, not by comparing every pair) */
+    size_t *texture_owner;
+    struct scene_path_index *given_by_path;
+    size_t given_by_path_count;
 } scene_ctx;
 
 /* What an imported asset hands the loader in memory instead of files. */
@@ -27,6 +33,8 @@ typedef struct scene_given {
     size_t mesh_count;
     sss_scene_texture *textures;
     size_t texture_count;
+    int lent; /* nonzero: only lent, to be checked as taken ones are; they stay with the caller and the
+               * scene holds none of them (a check before writing an imported scene) */
 } scene_given;
 
 char *scene_strdup(const char *s);

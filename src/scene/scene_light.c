@@ -1,4 +1,5 @@
 /* Lights of docs/scene-format.md: point, spot, directional, area, environment. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,12 +11,21 @@ static double len3(const double v[3])
     return hypot(hypot(v[0], v[1]), v[2]); /* no overflow for components near DBL_MAX */
 }
 
+/* An intensity, radiance or scale: 0..SSS_SCENE_MAX_LIGHT_VALUE per channel (sss/scene.h says why). */
 static sss_result nonneg_colour(jr *r, const cJSON *obj, const char *key, int required, const double *def,
                                 double out[3])
 {
     sss_result res = jr_vec(r, obj, key, required, def, 3, out, NULL);
     if (res != SSS_OK) return res;
-    return jr_range_vec(r, key, out, 3, 0, 0, INFINITY, 0);
+    return jr_range_vec(r, key, out, 3, 0, 0, SSS_SCENE_MAX_LIGHT_VALUE, 0);
+}
+
+/* A position or extent: the renderers take it as floats, where a larger value is Inf. */
+static sss_result float_vec(jr *r, const cJSON *obj, const char *key, double out[3])
+{
+    sss_result res = jr_vec(r, obj, key, 1, NULL, 3, out, NULL);
+    if (res != SSS_OK) return res;
+    return jr_range_vec(r, key, out, 3, -FLT_MAX, 0, FLT_MAX, 0);
 }
 
 static sss_result nonzero_vec(jr *r, const char *key, const double v[3])
@@ -36,7 +46,7 @@ sss_result scene_parse_light(scene_ctx *c, const cJSON *item, sss_light *l)
         static const char *const fields[] = {"type", "position", "intensity"};
         l->type = SSS_LIGHT_POINT;
         if ((res = jr_check_fields(r, item, fields, SCENE_COUNT(fields))) != SSS_OK) return res;
-        if ((res = jr_vec(r, item, "position", 1, NULL, 3, l->position, NULL)) != SSS_OK) return res;
+        if ((res = float_vec(r, item, "position", l->position)) != SSS_OK) return res;
         return nonneg_colour(r, item, "intensity", 1, NULL, l->intensity);
     }
     if (strcmp(type, "spot") == 0) {
@@ -44,8 +54,8 @@ sss_result scene_parse_light(scene_ctx *c, const cJSON *item, sss_light *l)
                                              "intensity"};
         l->type = SSS_LIGHT_SPOT;
         if ((res = jr_check_fields(r, item, fields, SCENE_COUNT(fields))) != SSS_OK) return res;
-        if ((res = jr_vec(r, item, "position", 1, NULL, 3, l->position, NULL)) != SSS_OK) return res;
-        if ((res = jr_vec(r, item, "look_at", 1, NULL, 3, l->look_at, NULL)) != SSS_OK) return res;
+        if ((res = float_vec(r, item, "position", l->position)) != SSS_OK) return res;
+        if ((res = float_vec(r, item, "look_at", l->look_at)) != SSS_OK) return res;
         double d[3] = {l->look_at[0] - l->position[0], l->look_at[1] - l->position[1],
                        l->look_at[2] - l->position[2]};
         if (!(len3(d) > 0))
@@ -71,10 +81,10 @@ sss_result scene_parse_light(scene_ctx *c, const cJSON *item, sss_light *l)
         static const char *const fields[] = {"type", "center", "u", "v", "radiance", "two_sided"};
         l->type = SSS_LIGHT_AREA;
         if ((res = jr_check_fields(r, item, fields, SCENE_COUNT(fields))) != SSS_OK) return res;
-        if ((res = jr_vec(r, item, "center", 1, NULL, 3, l->center, NULL)) != SSS_OK) return res;
-        if ((res = jr_vec(r, item, "u", 1, NULL, 3, l->u, NULL)) != SSS_OK) return res;
+        if ((res = float_vec(r, item, "center", l->center)) != SSS_OK) return res;
+        if ((res = float_vec(r, item, "u", l->u)) != SSS_OK) return res;
         if ((res = nonzero_vec(r, "u", l->u)) != SSS_OK) return res;
-        if ((res = jr_vec(r, item, "v", 1, NULL, 3, l->v, NULL)) != SSS_OK) return res;
+        if ((res = float_vec(r, item, "v", l->v)) != SSS_OK) return res;
         if ((res = nonzero_vec(r, "v", l->v)) != SSS_OK) return res;
         const double *u = l->u, *v = l->v;
         double cr[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
@@ -122,8 +132,9 @@ sss_result sss_scene_set_light(sss_scene *scene, size_t index, const char *json_
     if (!json_text || size > SSS_SCENE_MAX_FILE_SIZE)
         return jr_fail(&ctx.r, SSS_ERROR_INVALID_ARGUMENT, "no light text, or more than %u bytes",
                        (unsigned)SSS_SCENE_MAX_FILE_SIZE);
-    cJSON *item = cJSON_ParseWithLength(json_text, size);
-    if (!item) return jr_fail(&ctx.r, SSS_ERROR_PARSE, "malformed JSON");
+    cJSON *item = NULL;
+    sss_result parsed = jr_parse(&ctx.r, json_text, size, &item);
+    if (parsed != SSS_OK) return parsed;
     sss_light *old = &scene->lights[index];
     if (old->type == SSS_LIGHT_ENVIRONMENT && cJSON_IsObject(item) && !jr_get(item, "file")) {
         ctx.base_dir = ""; /* the resolved path, as it is */

@@ -10,7 +10,6 @@
 #include <unistd.h>
 
 #include "core/file_util.h"
-#include "core/text.h"
 #include "sss/image.h"
 #include "scene/scene_internal.h"
 
@@ -173,21 +172,6 @@ static sss_result parse_light_cb(scene_ctx *c, const cJSON *e, void *out)
     return scene_parse_light(c, e, out);
 }
 
-/* Line and column (1-based) of offset in text. */
-static void line_column(const char *text, size_t offset, size_t *line, size_t *col)
-{
-    *line = 1;
-    *col = 1;
-    for (size_t i = 0; i < offset; i++) {
-        if (text[i] == '\n') {
-            (*line)++;
-            *col = 1;
-        } else {
-            (*col)++;
-        }
-    }
-}
-
 /* The optional top-level "version" (docs/scene-format.md): absent = 1. Checked before the field names,
  * so that a newer file is refused for its version rather than for a field this reader does not know. */
 static sss_result parse_version(jr *r, const cJSON *root)
@@ -294,39 +278,91 @@ static sss_result check_world_reach(jr *r, const sss_scene_object *o)
                        reach, reach > FLT_MAX ? " (not finite in single precision)" : "", SSS_SCENE_MAX_WORLD_COORD);
 }
 
+/* A texture file's path and whose it is (an object's or a given texture's index). */
+typedef struct scene_path_index {
+    char *path;
+    size_t index;
+} scene_path_index;
+
+static int cmp_path(const void *a, const void *b)
+{
+    return strcmp(((const scene_path_index *)a)->path, ((const scene_path_index *)b)->path);
+}
+
+static int cmp_path_then_index(const void *a, const void *b)
+{
+    const scene_path_index *x = a, *y = b;
+    int order = strcmp(x->path, y->path);
+    return order ? order : (x->index > y->index) - (x->index < y->index);
+}
+
+/* c->texture_owner[i]: the first object whose texture is object i's file, so that each file is decoded
+ * once; and the given textures by resolved path. Both sorted once: comparing every texture with every
+ * earlier one (and resolving every given path each time) took 9 s for 32,000 objects with distinct
+ * embedded images, quadratically more up to the 65,536 objects a scene may have. */
+static sss_result index_textures(scene_ctx *c, const sss_scene *s)
+{
+    size_t n = 0, g = 0;
+    scene_path_index *by_path = malloc((s->object_count ? s->object_count : 1) * sizeof *by_path);
+    c->texture_owner = malloc((s->object_count ? s->object_count : 1) * sizeof *c->texture_owner);
+    c->given_by_path = calloc(c->given_texture_count ? c->given_texture_count : 1, sizeof *c->given_by_path);
+    int ok = by_path && c->texture_owner && c->given_by_path;
+    for (size_t i = 0; ok && i < s->object_count; i++)
+        if (s->objects[i].material.texture) by_path[n++] = (scene_path_index){s->objects[i].material.texture, i};
+    if (ok) qsort(by_path, n, sizeof *by_path, cmp_path_then_index);
+    for (size_t k = 0; ok && k < n; k++)
+        c->texture_owner[by_path[k].index] = k > 0 && strcmp(by_path[k].path, by_path[k - 1].path) == 0
+                                                 ? c->texture_owner[by_path[k - 1].index]
+                                                 : by_path[k].index;
+    free(by_path);
+    for (size_t k = 0; ok && k < c->given_texture_count; k++) {
+        if (!c->given_textures[k].image.pixels) continue;
+        ok = (c->given_by_path[g].path = join_path(c->base_dir, c->given_textures[k].path)) != NULL;
+        c->given_by_path[g++].index = k;
+    }
+    c->given_by_path_count = g;
+    if (ok) qsort(c->given_by_path, g, sizeof *c->given_by_path, cmp_path);
+    return ok ? SSS_OK : jr_fail(&c->r, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+}
+
+static void free_texture_index(scene_ctx *c)
+{
+    for (size_t k = 0; c->given_by_path && k < c->given_by_path_count; k++) free(c->given_by_path[k].path);
+    free(c->given_by_path);
+    free(c->texture_owner);
+    c->given_by_path = NULL;
+    c->texture_owner = NULL;
+}
+
 /* A given texture (an imported asset's embedded image) standing in for the file at t->path. */
 static int take_given_texture(scene_ctx *c, sss_scene_texture *t)
 {
-    for (size_t k = 0; k < c->given_texture_count; k++) {
-        sss_scene_texture *g = &c->given_textures[k];
-        if (!g->image.pixels) continue;
-        char *resolved = join_path(c->base_dir, g->path);
-        int same = resolved && strcmp(resolved, t->path) == 0;
-        free(resolved);
-        if (same) {
-            t->image = g->image;
-            memset(&g->image, 0, sizeof g->image);
-            return 1;
-        }
-    }
-    return 0;
+    scene_path_index key = {t->path, 0};
+    scene_path_index *found = bsearch(&key, c->given_by_path, c->given_by_path_count, sizeof key, cmp_path);
+    sss_scene_texture *g = found ? &c->given_textures[found->index] : NULL;
+    if (!g || !g->image.pixels) return 0;
+    t->image = g->image;
+    if (!c->given_lent) memset(&g->image, 0, sizeof g->image);
+    return 1;
 }
 
 /* The material's texture, decoded once per file into s->textures (room for one per object) and refused
  * as the real-time renderer would refuse it (unreadable, NaN or Inf), so that every command that loads
  * the scene refuses the same files. */
-static sss_result load_texture(scene_ctx *c, sss_scene *s, sss_scene_material *m)
+static sss_result load_texture(scene_ctx *c, sss_scene *s, size_t index, sss_scene_material *m)
 {
-    for (size_t k = 0; k < s->texture_count; k++)
-        if (strcmp(s->textures[k].path, m->texture) == 0) {
-            m->texture_image = &s->textures[k].image;
-            return SSS_OK;
-        }
+    size_t owner = c->texture_owner[index];
+    if (owner != index) { /* an earlier object's file, loaded with it */
+        m->texture_image = s->objects[owner].material.texture_image;
+        return SSS_OK;
+    }
     sss_scene_texture *t = &s->textures[s->texture_count];
     if (!(t->path = scene_strdup(m->texture))) return sss_error_set(c->r.err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
-    sss_result res = take_given_texture(c, t) ? SSS_OK : sss_image_read(m->texture, &t->image, c->r.err);
+    int given = take_given_texture(c, t);
+    sss_result res = given ? SSS_OK : sss_image_read(m->texture, &t->image, c->r.err);
     if (res == SSS_OK && sss_image_count_nonfinite(&t->image))
         res = sss_error_set(c->r.err, SSS_ERROR_NUMERIC, "%s: albedo texture holds NaN or Inf", m->texture);
+    if (given && c->given_lent) memset(&t->image, 0, sizeof t->image); /* checked; stays with its owner */
     if (res != SSS_OK) {
         free(t->path);
         sss_image_free(&t->image);
@@ -354,7 +390,7 @@ static sss_result load_object(scene_ctx *c, sss_scene *s, sss_scene_object *o)
     size_t index = (size_t)(o - s->objects);
     if (index < c->given_count) {
         o->mesh = c->given_meshes[index];
-        memset(&c->given_meshes[index], 0, sizeof c->given_meshes[index]);
+        if (!c->given_lent) memset(&c->given_meshes[index], 0, sizeof c->given_meshes[index]);
         res = SSS_OK;
     } else if (o->mesh_path) {
         res = sss_mesh_read(o->mesh_path, &o->mesh, r->err);
@@ -372,7 +408,7 @@ static sss_result load_object(scene_ctx *c, sss_scene *s, sss_scene_object *o)
         jr_leave(r, mark);
         return res;
     }
-    if (o->material.texture && (res = load_texture(c, s, &o->material)) != SSS_OK) {
+    if (o->material.texture && (res = load_texture(c, s, index, &o->material)) != SSS_OK) {
         size_t mark = jr_enter_key(r, "material");
         res = jr_prefix(r, "texture", res);
         jr_leave(r, mark);
@@ -389,23 +425,21 @@ static sss_result load_phase(scene_ctx *c, sss_scene *s)
     if (!(c->flags & SSS_SCENE_SKIP_MESHES) && s->object_count &&
         !(s->textures = calloc(s->object_count, sizeof *s->textures)))
         return jr_fail(r, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
+    sss_result res = c->flags & SSS_SCENE_SKIP_MESHES ? SSS_OK : index_textures(c, s);
     size_t mark = jr_enter_key(r, "objects");
-    sss_result res = SSS_OK;
     for (size_t i = 0; i < s->object_count && res == SSS_OK; i++) {
         size_t m2 = jr_enter_index(r, i);
         res = load_object(c, s, &s->objects[i]);
         jr_leave(r, m2);
+        if (c->given_lent && i < c->given_count) /* checked; stays with its owner */
+            memset(&s->objects[i].mesh, 0, sizeof s->objects[i].mesh);
     }
     jr_leave(r, mark);
+    free_texture_index(c);
     return res;
 }
 
 /* ---- Entry points ---------------------------------------------------------------------------- */
-
-static int is_space(char ch)
-{
-    return ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r';
-}
 
 sss_result sss_scene_parse(const char *json_text, size_t size, const char *base_dir, const char *name,
                            const sss_scene_load_desc *desc, sss_scene *scene, sss_error *err)
@@ -417,11 +451,13 @@ sss_result scene_parse_given(const char *json_text, size_t size, const char *bas
                              const sss_scene_load_desc *desc, scene_given *given, sss_scene *scene, sss_error *err)
 {
     scene_ctx ctx;
+    memset(&ctx, 0, sizeof ctx);
     memset(scene, 0, sizeof *scene);
     ctx.given_meshes = given ? given->meshes : NULL;
     ctx.given_count = given && given->meshes ? given->mesh_count : 0;
     ctx.given_textures = given ? given->textures : NULL;
     ctx.given_texture_count = given && given->textures ? given->texture_count : 0;
+    ctx.given_lent = given ? given->lent : 0;
     if (!name) name = "scene";
     jr_init(&ctx.r, name, err);
     ctx.base_dir = base_dir ? base_dir : ".";
@@ -431,37 +467,9 @@ sss_result scene_parse_given(const char *json_text, size_t size, const char *bas
         return jr_fail(&ctx.r, SSS_ERROR_LIMIT, "%zu bytes, more than the %u accepted", size,
                        (unsigned)SSS_SCENE_MAX_FILE_SIZE);
 
-    size_t start = 0;
-    if (size >= 3 && memcmp(json_text, "\xEF\xBB\xBF", 3) == 0) start = 3; /* UTF-8 byte order mark */
-    size_t k = start;
-    while (k < size && is_space(json_text[k])) k++;
-    if (k == size) return jr_fail(&ctx.r, SSS_ERROR_PARSE, "empty file (expected a JSON object)");
-
-    const char *end = NULL;
-    cJSON *root = cJSON_ParseWithLengthOpts(json_text + start, size - start, &end, 0);
-    size_t line, col;
-    if (!root) {
-        size_t off = end && end >= json_text + start && end <= json_text + size ? (size_t)(end - json_text) : start;
-        line_column(json_text, off, &line, &col);
-        return jr_fail(&ctx.r, SSS_ERROR_PARSE, "line %zu, column %zu: malformed JSON", line, col);
-    }
-    size_t off = end ? (size_t)(end - json_text) : size;
-    while (off < size && is_space(json_text[off])) off++;
-    if (off < size) {
-        cJSON_Delete(root);
-        line_column(json_text, off, &line, &col);
-        return jr_fail(&ctx.r, SSS_ERROR_PARSE, "line %zu, column %zu: unexpected text after the JSON value",
-                       line, col);
-    }
-
-    char nul_path[JR_PATH_SIZE];
-    if (sss_json_find_nul(json_text + start, size - start, nul_path, sizeof nul_path)) {
-        cJSON_Delete(root); /* cJSON would keep only the part before the NUL */
-        return jr_fail(&ctx.r, SSS_ERROR_PARSE, "%s%sa string holds a NUL character (\\u0000)", nul_path,
-                       nul_path[0] ? ": " : "");
-    }
-
-    sss_result res = SSS_OK;
+    cJSON *root = NULL;
+    sss_result res = jr_parse(&ctx.r, json_text, size, &root);
+    if (res != SSS_OK) return res;
     scene->name = scene_strdup(name);
     scene->base_dir = scene_strdup(ctx.base_dir);
     if (!scene->name || !scene->base_dir) res = jr_fail(&ctx.r, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
@@ -505,6 +513,8 @@ void sss_scene_free(sss_scene *scene)
         sss_image_free(&scene->textures[i].image);
     }
     free(scene->textures);
+    for (size_t i = 0; i < scene->file_count; i++) free(scene->files[i]);
+    free(scene->files);
     free(scene->objects);
     free(scene->lights);
     free(scene->tables);
@@ -522,12 +532,6 @@ const char *sss_animation_type_name(sss_animation_type type)
     case SSS_ANIMATION_WAVE: return "wave";
     }
     return "unknown";
-}
-
-const char *sss_shape_name(sss_shape shape)
-{
-    static const char *const names[] = {"mesh", "sphere", "torus", "trefoil", "plane", "box"};
-    return (unsigned)shape < SCENE_COUNT(names) ? names[shape] : "unknown";
 }
 
 const char *sss_light_type_name(sss_light_type type)

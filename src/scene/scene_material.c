@@ -201,6 +201,8 @@ sss_result scene_resolve_material(scene_ctx *c, sss_scene_material *m, const sss
     if (res != SSS_OK) return jr_prefix(&c->r, NULL, res);
     if ((res = sss_material_validate(&m->optical, err)) != SSS_OK) return jr_prefix(&c->r, NULL, res);
     m->table = table;
+    res = sss_profile_init(&m->rd, sss_scene_material_profile_model(m), &m->optical, table, err);
+    if (res != SSS_OK) return jr_prefix(&c->r, NULL, res);
     /* The display albedo: the plane integral of the PBD profile (docs/physics.md §2.2, rho_eff), exactly the
      * requested reflectance for kdsubsurface. */
     for (int i = 0; i < 3; i++) {

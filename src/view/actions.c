@@ -40,6 +40,19 @@ static int technique_knows(const sss_gl_technique_info *info, const char *name)
     return find_param(info->params, info->param_count, name) >= 0 || find_param(shared, n, name) >= 0;
 }
 
+/* A param the panel or script set for technique `tech` (NaN when none). */
+double view_set_param_value(const viewer *v, const char *tech, const char *name)
+{
+    double value = NAN;
+    size_t tl = strlen(tech);
+    for (int i = 0; i < v->set_count; i++) {
+        const char *n = v->set_names[i];
+        if (strcmp(n, name) == 0) value = v->set_params[i].value;
+        else if (strncmp(n, tech, tl) == 0 && n[tl] == '.' && strcmp(n + tl + 1, name) == 0) value = v->set_params[i].value;
+    }
+    return value;
+}
+
 /* The value the user asked for (panel or script, else --param) or the technique's default. */
 static double user_value(const viewer *v, const sss_gl_technique_info *info, int index)
 {
@@ -79,24 +92,30 @@ sss_result view_renderer_desc(viewer *v, const sss_gl_technique_info *info, sss_
     return SSS_OK;
 }
 
-sss_result view_create_renderer(viewer *v, const sss_gl_technique_info *info, sss_gl_renderer **out,
-                                sss_error *err)
+sss_result view_create_renderer(viewer *v, const sss_gl_technique_info *info, const sss_scene *scene,
+                                const sss_gl_tables *tables, sss_gl_renderer **out, sss_error *err)
 {
     sss_gl_renderer_desc d;
     sss_gl_param_value *params = NULL;
     sss_result res = view_renderer_desc(v, info, &d, &params, err);
-    d.tables = v->tables;
-    if (res == SSS_OK) res = sss_gl_renderer_create(v->ctx, v->scene, &d, out, err);
+    d.tables = tables;
+    if (res == SSS_OK) res = sss_gl_renderer_create(v->ctx, scene, &d, out, err);
     free(params);
     return res;
 }
 
 sss_result view_make_renderer(viewer *v, int tech, sss_error *err)
 {
+    return view_make_renderer_for(v, tech, v->scene, NULL, err);
+}
+
+sss_result view_make_renderer_for(viewer *v, int tech, const sss_scene *scene, const sss_gl_tables *tables,
+                                  sss_error *err)
+{
     const sss_gl_technique_info *info = sss_gl_technique_at(tech);
     if (!info) return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "no technique %d", tech);
     sss_gl_renderer *r = NULL;
-    sss_result res = view_create_renderer(v, info, &r, err);
+    sss_result res = view_create_renderer(v, info, scene, tables, &r, err);
     if (res == SSS_OK) {
         sss_gl_timing_series_free(&v->timing_series);
         res = sss_gl_timing_series_init(&v->timing_series, SSS_GL_WARMUP_FRAMES, SSS_GL_TIMED_FRAMES, err);
@@ -124,7 +143,7 @@ sss_result view_make_renderer(viewer *v, int tech, sss_error *err)
     return SSS_OK;
 }
 
-static void switch_technique(viewer *v, int tech, int quiet)
+void view_switch_technique(viewer *v, int tech, int quiet)
 {
     sss_error err = {0};
     const sss_gl_technique_info *info = sss_gl_technique_at(tech);
@@ -139,8 +158,8 @@ void view_apply_part(viewer *v, int part)
     int back = v->part_saved_tech;
     v->part = part;
     v->part_saved_tech = -1;
-    if (back >= 0 && back != v->tech) switch_technique(v, back, 1);
-    else switch_technique(v, v->tech, 1); /* re-applies the switches */
+    if (back >= 0 && back != v->tech) view_switch_technique(v, back, 1);
+    else view_switch_technique(v, v->tech, 1); /* re-applies the switches */
     static const char *const names[3] = {"all parts", "translucency alone", "screen-space part alone"};
     view_message(v, "%s%s%s%s", names[part], v->part_buffer ? " (through the technique's buffer " : "",
                  v->part_buffer ? v->part_buffer : "", v->part_buffer ? ")" : "");
@@ -160,7 +179,7 @@ static void part_buffer_failed(viewer *v)
         for (int i = 0; i < sss_gl_technique_count(); i++)
             if (strcmp(sss_gl_technique_at(i)->name, "screen") == 0 && i != v->tech) {
                 int saved = v->tech;
-                switch_technique(v, i, 1);
+                view_switch_technique(v, i, 1);
                 if (v->tech == i) {
                     v->part_saved_tech = saved;
                     view_message(v, "%s has no screen-space switch: showing technique screen", name);
@@ -190,22 +209,6 @@ int view_buffer_to_show(viewer *v, sss_image *out)
     return 0;
 }
 
-static void next_buffer(viewer *v, int step)
-{
-    /* skip the buffers the technique does not have */
-    for (int k = 1; k < VIEW_BUFFER_COUNT; k++) {
-        int b = ((v->buffer + step * k) % VIEW_BUFFER_COUNT + VIEW_BUFFER_COUNT) % VIEW_BUFFER_COUNT;
-        sss_image tmp = {0};
-        if (b == 0 || sss_gl_renderer_read_buffer(v->r, view_buffer_names[b], &tmp, NULL) == SSS_OK) {
-            sss_image_free(&tmp);
-            v->buffer = b;
-            v->shown_gen = 0;
-            view_message(v, "buffer %s", view_buffer_names[b]);
-            return;
-        }
-    }
-}
-
 /* ---- Scene edits ---------------------------------------------------------------------------- */
 
 void view_invalidate(viewer *v)
@@ -222,6 +225,20 @@ void view_camera_changed(viewer *v)
     sss_camera_basis b;
     if (sss_camera_basis_init(&v->scene->camera, &b, NULL) == SSS_OK) v->scene->basis = b;
     view_invalidate(v);
+}
+
+/* The split renderer again after the scene or size changed (none when the split is not a technique). */
+void view_split_refresh(viewer *v)
+{
+    sss_gl_renderer_destroy(v->split_r);
+    v->split_r = NULL;
+    if (v->split != VIEW_SPLIT_TECHNIQUE) return;
+    sss_error err = {0};
+    if (view_create_renderer(v, sss_gl_technique_at(v->split_tech), v->scene, NULL, &v->split_r, &err) != SSS_OK) {
+        view_message(v, "split view: %s", err.message);
+        v->split = VIEW_SPLIT_OFF;
+    }
+    v->composed_gen = 0;
 }
 
 void view_light_changed(viewer *v)
@@ -246,17 +263,6 @@ sss_result view_edited_json(viewer *v, char **json, sss_error *err)
     e.medium = v->medium;
     e.scale_factor = v->scale_factor;
     return view_scene_json(v->text, v->text_size, v->scene->name, &e, json, err);
-}
-
-static void rebuild_scene(viewer *v)
-{
-    char what[128];
-    if (v->medium >= 0)
-        snprintf(what, sizeof what, "medium %s, scale x%g", sss_measured_medium_at((size_t)v->medium)->name,
-                 v->scale_factor);
-    else
-        snprintf(what, sizeof what, "the scene's materials, scale x%g", v->scale_factor);
-    view_request_rebuild(v, what, 0);
 }
 
 /* ---- Reference and DSSIM -------------------------------------------------------------------- */
@@ -384,49 +390,18 @@ int view_next_screenshot_name(char *buf, size_t cap)
     return 0;
 }
 
-/* ---- The pending actions of the keys -------------------------------------------------------- */
-
-void view_run_actions(viewer *v)
+sss_result view_check_outputs(const viewer *v, const char *const *paths, size_t count, sss_error *err)
 {
-    int n = sss_gl_technique_count();
-    if (v->act_tech && n > 0) {
-        int t = ((v->tech + v->act_tech) % n + n) % n;
-        v->act_tech = 0;
-        v->part_saved_tech = -1;
-        switch_technique(v, t, 0);
-    }
-    if (v->act_part) {
-        int p = v->act_part - 1;
-        v->act_part = 0;
-        view_apply_part(v, p);
-    }
-    if (v->act_buffer) {
-        next_buffer(v, v->act_buffer);
-        v->act_buffer = 0;
-    }
-    if (v->act_medium || v->act_scale != 0.0) {
-        if (v->act_medium) {
-            int m = (int)sss_measured_medium_count() + 1; /* -1 (the file's) and the table */
-            v->medium = ((v->medium + 1 + v->act_medium) % m + m) % m - 1;
-        }
-        if (v->act_scale != 0.0) v->scale_factor *= v->act_scale;
-        v->act_medium = 0;
-        v->act_scale = 0.0;
-        rebuild_scene(v);
-    }
-    if (v->act_light) {
-        if (v->has_light) {
-            view_rotate_light_y(&v->scene->lights[0], v->scene->camera.look_at, 15.0 * v->act_light);
-            v->light_angle = fmod(v->light_angle + 15.0 * v->act_light + 540.0, 360.0) - 180.0;
-            view_light_changed(v);
-            view_message(v, "light 0 at %+.0f degrees about the vertical through look_at", v->light_angle);
-        } else {
-            view_message(v, "the scene has no light to move");
-        }
-        v->act_light = 0;
-    }
-    if (v->act_reference) {
-        view_request_reference(v, v->act_reference == 2 || v->desc->reference_draft);
-        v->act_reference = 0;
-    }
+    sss_io_set io = {0};
+    for (size_t i = 0; i < v->files.input_count; i++) sss_io_add_input(&io, v->files.inputs[i]);
+    for (size_t i = 0; i < count; i++) sss_io_add_output(&io, paths[i]);
+    sss_result res = sss_io_check(&io, err);
+    sss_io_free(&io);
+    return res;
+}
+
+sss_result view_save_screenshot(const viewer *v, const char *path, sss_error *err)
+{
+    sss_result res = view_check_outputs(v, &path, 1, err);
+    return res == SSS_OK ? view_gl_screenshot(v->width, v->height, path, err) : res;
 }

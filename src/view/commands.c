@@ -1,7 +1,10 @@
-/* view/commands.c — what the panel's widgets and the script's lines do, one function per action, so
- * that both go through the same code: technique, parameter, material field (the scene file's JSON is
- * edited and loaded again: LUTs and kernels follow), light (moved or recoloured in place, no rebuild),
- * buffer, split view (a wipe against the reference or a second technique), error map. */
+/* view/commands.c — what the user asks the viewer for, one function per action, so that every front end
+ * goes through the same code: the panel's widgets and the script's lines (technique, parameter,
+ * material field: the scene file's JSON is edited and loaded again, LUTs and kernels follow; light:
+ * moved or recoloured in place, no rebuild; buffer; split view; error map; reference), the mouse and
+ * the C key (the camera), and the keys that input.c queues in v->act_* (view_cmd_keys).
+ * Layering: input.c, panel_imgui.cpp and the loop's script runner call down into here; this calls
+ * rebuild.c (material edits over frames) and actions.c, never back up. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,18 +12,6 @@
 
 #include "view/script.h"
 #include "view/viewer.h"
-
-double view_set_param_value(const viewer *v, const char *tech, const char *name)
-{
-    double value = NAN;
-    size_t tl = strlen(tech);
-    for (int i = 0; i < v->set_count; i++) {
-        const char *n = v->set_names[i];
-        if (strcmp(n, name) == 0) value = v->set_params[i].value;
-        else if (strncmp(n, tech, tl) == 0 && n[tl] == '.' && strcmp(n + tl + 1, name) == 0) value = v->set_params[i].value;
-    }
-    return value;
-}
 
 sss_result view_cmd_technique(viewer *v, int tech, sss_error *err)
 {
@@ -158,19 +149,6 @@ sss_result view_cmd_buffer(viewer *v, int buffer, sss_error *err)
     return SSS_OK;
 }
 
-void view_split_refresh(viewer *v)
-{
-    sss_gl_renderer_destroy(v->split_r);
-    v->split_r = NULL;
-    if (v->split != VIEW_SPLIT_TECHNIQUE) return;
-    sss_error err = {0};
-    if (view_create_renderer(v, sss_gl_technique_at(v->split_tech), &v->split_r, &err) != SSS_OK) {
-        view_message(v, "split view: %s", err.message);
-        v->split = VIEW_SPLIT_OFF;
-    }
-    v->composed_gen = 0;
-}
-
 sss_result view_cmd_split(viewer *v, const char *what, double position, sss_error *err)
 {
     if (!(position > 0.0 && position < 1.0))
@@ -204,6 +182,8 @@ void view_cmd_errormap(viewer *v, int on)
     if (on && !v->ref && !v->job) view_request_reference(v, v->desc->reference_draft);
 }
 
+void view_cmd_reference(viewer *v, int draft) { view_request_reference(v, draft || v->desc->reference_draft); }
+
 sss_result view_cmd_run(viewer *v, const view_command *c, sss_error *err)
 {
     switch (c->kind) {
@@ -220,15 +200,124 @@ sss_result view_cmd_run(viewer *v, const view_command *c, sss_error *err)
     case VIEW_CMD_SPLIT: return view_cmd_split(v, c->name, c->values[0], err);
     case VIEW_CMD_ERRORMAP: view_cmd_errormap(v, c->index); return SSS_OK;
     case VIEW_CMD_PANEL: v->overlay = c->index; return SSS_OK;
-    case VIEW_CMD_REFERENCE: view_request_reference(v, c->index || v->desc->reference_draft); return SSS_OK;
-    case VIEW_CMD_KEY:
-        if (!view_input_event(v, c->name, 1))
-            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "key: unknown input event '%s'", c->name);
-        view_run_actions(v);
-        return SSS_OK;
+    case VIEW_CMD_REFERENCE: view_cmd_reference(v, c->index); return SSS_OK;
+    case VIEW_CMD_KEY: /* input events: the loop hands them to input.c, which comes back here */
     case VIEW_CMD_FRAMES:
     case VIEW_CMD_WAIT:
     case VIEW_CMD_SCREENSHOT: break;
     }
     return SSS_OK;
+}
+
+/* ---- The camera (mouse, C key) ------------------------------------------------------------------ */
+
+void view_cmd_orbit(viewer *v, double azimuth_deg, double elevation_deg)
+{
+    view_orbit(&v->scene->camera, azimuth_deg, elevation_deg);
+    view_camera_changed(v);
+}
+
+void view_cmd_pan(viewer *v, double dx, double dy)
+{
+    view_pan(&v->scene->camera, dx, dy, v->width, v->height);
+    view_camera_changed(v);
+}
+
+void view_cmd_zoom(viewer *v, double factor)
+{
+    view_zoom(&v->scene->camera, factor);
+    view_camera_changed(v);
+}
+
+void view_cmd_camera_home(viewer *v)
+{
+    v->home.width = v->scene->camera.width;
+    v->home.height = v->scene->camera.height;
+    v->scene->camera = v->home;
+    view_camera_changed(v);
+}
+
+/* ---- The key actions (input.c queues them in v->act_*, the loop runs them) ---------------------- */
+
+static void next_buffer(viewer *v, int step)
+{
+    /* skip the buffers the technique does not have */
+    for (int k = 1; k < VIEW_BUFFER_COUNT; k++) {
+        int b = ((v->buffer + step * k) % VIEW_BUFFER_COUNT + VIEW_BUFFER_COUNT) % VIEW_BUFFER_COUNT;
+        sss_image tmp = {0};
+        if (b == 0 || sss_gl_renderer_read_buffer(v->r, view_buffer_names[b], &tmp, NULL) == SSS_OK) {
+            sss_image_free(&tmp);
+            v->buffer = b;
+            v->shown_gen = 0;
+            view_message(v, "buffer %s", view_buffer_names[b]);
+            return;
+        }
+    }
+}
+
+/* M / Shift+M (the next measured medium for every subsurface material), + / - (the scale). */
+static void medium_and_scale(viewer *v, int medium_step, double scale)
+{
+    if (medium_step) {
+        int m = (int)sss_measured_medium_count() + 1; /* -1 (the file's) and the table */
+        v->medium = ((v->medium + 1 + medium_step) % m + m) % m - 1;
+    }
+    if (scale != 0.0) v->scale_factor *= scale;
+    char what[128];
+    if (v->medium >= 0)
+        snprintf(what, sizeof what, "medium %s, scale x%g", sss_measured_medium_at((size_t)v->medium)->name,
+                 v->scale_factor);
+    else
+        snprintf(what, sizeof what, "the scene's materials, scale x%g", v->scale_factor);
+    view_request_rebuild(v, what, 0);
+}
+
+/* L / Shift+L: lights[0] turned by steps x 15 degrees about the vertical through look_at. */
+static void turn_light(viewer *v, int steps)
+{
+    if (!v->has_light) {
+        view_message(v, "the scene has no light to move");
+        return;
+    }
+    view_rotate_light_y(&v->scene->lights[0], v->scene->camera.look_at, 15.0 * steps);
+    v->light_angle = fmod(v->light_angle + 15.0 * steps + 540.0, 360.0) - 180.0;
+    view_light_changed(v);
+    view_message(v, "light 0 at %+.0f degrees about the vertical through look_at", v->light_angle);
+}
+
+void view_cmd_keys(viewer *v)
+{
+    int n = sss_gl_technique_count();
+    if (v->act_tech && n > 0) {
+        int t = ((v->tech + v->act_tech) % n + n) % n;
+        v->act_tech = 0;
+        v->part_saved_tech = -1;
+        view_switch_technique(v, t, 0);
+    }
+    if (v->act_part) {
+        int p = v->act_part - 1;
+        v->act_part = 0;
+        view_apply_part(v, p);
+    }
+    if (v->act_buffer) {
+        next_buffer(v, v->act_buffer);
+        v->act_buffer = 0;
+    }
+    if (v->act_medium || v->act_scale != 0.0) {
+        int step = v->act_medium;
+        double scale = v->act_scale;
+        v->act_medium = 0;
+        v->act_scale = 0.0;
+        medium_and_scale(v, step, scale);
+    }
+    if (v->act_light) {
+        int steps = v->act_light;
+        v->act_light = 0;
+        turn_light(v, steps);
+    }
+    if (v->act_reference) {
+        int draft = v->act_reference == 2;
+        v->act_reference = 0;
+        view_cmd_reference(v, draft);
+    }
 }

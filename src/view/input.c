@@ -1,5 +1,8 @@
-/* view/input.c — mouse and keys. The camera moves at once (the renderer reads the scene's camera every
- * frame); everything that rebuilds GL resources is queued for the loop (view_run_actions). */
+/* view/input.c — mouse and keys (the GLFW callbacks, and the --input / `key` events of scripts), the
+ * top of the viewer's command path: events go to the panel first, then to commands.c. The camera
+ * moves at once (the renderer reads the scene's camera every frame); everything that rebuilds GL
+ * resources is queued in v->act_* for the loop (view_cmd_keys). The key bindings' help text is
+ * status.c's. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -12,23 +15,6 @@
 
 #define ORBIT_DEG_PER_PIXEL 0.3
 #define ZOOM_PER_WHEEL_STEP 0.9
-
-static const char help_text[] =
-    "mouse: left drag orbit around look_at, right/middle drag pan, wheel zoom\n"
-    "Tab / Shift+Tab   next / previous technique (all registered techniques)\n"
-    "1 / 2 / 3         all parts / translucency alone / screen-space part alone\n"
-    "B / Shift+B       next / previous intermediate buffer (final, reflected, ...)\n"
-    "R / Shift+R       reference of this view in the background (Shift: draft), then DSSIM\n"
-    "M / Shift+M       next / previous measured medium for every subsurface material\n"
-    "+ / -             scattering scale x2 / /2 (coefficients; mean free path /2 / x2)\n"
-    "L / Shift+L       turn the first light +15 / -15 degrees about the vertical through look_at\n"
-    "Space             start / stop the animation\n"
-    "S or F12          screenshot sss-view-NNNN.png (the image without the overlay)\n"
-    "C                 camera back to the scene's\n"
-    "O                 panel on / off        H or F1  this help on / off (text overlay)\n"
-    "Esc or Q          quit\n";
-
-const char *sss_view_help_text(void) { return help_text; }
 
 static viewer *get(GLFWwindow *w) { return glfwGetWindowUserPointer(w); }
 
@@ -63,12 +49,7 @@ static void handle_key(viewer *v, int key, int action, int mods)
         break;
     case GLFW_KEY_S:
     case GLFW_KEY_F12: v->act_screenshot = 1; break;
-    case GLFW_KEY_C:
-        v->home.width = v->scene->camera.width;
-        v->home.height = v->scene->camera.height;
-        v->scene->camera = v->home;
-        view_camera_changed(v);
-        break;
+    case GLFW_KEY_C: view_cmd_camera_home(v); break;
     case GLFW_KEY_O:
         if (action == GLFW_PRESS) v->overlay = !v->overlay;
         break;
@@ -98,18 +79,14 @@ static void on_char(GLFWwindow *w, unsigned codepoint)
 static void drag(viewer *v, int button, double dx, double dy)
 {
     if (dx == 0.0 && dy == 0.0) return;
-    if (button == GLFW_MOUSE_BUTTON_LEFT)
-        view_orbit(&v->scene->camera, -dx * ORBIT_DEG_PER_PIXEL, dy * ORBIT_DEG_PER_PIXEL);
-    else
-        view_pan(&v->scene->camera, dx, dy, v->width, v->height);
-    view_camera_changed(v);
+    if (button == GLFW_MOUSE_BUTTON_LEFT) view_cmd_orbit(v, -dx * ORBIT_DEG_PER_PIXEL, dy * ORBIT_DEG_PER_PIXEL);
+    else view_cmd_pan(v, dx, dy);
 }
 
 static void wheel(viewer *v, double steps)
 {
     if (steps == 0.0) return;
-    view_zoom(&v->scene->camera, pow(ZOOM_PER_WHEEL_STEP, steps));
-    view_camera_changed(v);
+    view_cmd_zoom(v, pow(ZOOM_PER_WHEEL_STEP, steps));
 }
 
 static void on_button(GLFWwindow *w, int button, int action, int mods)

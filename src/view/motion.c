@@ -4,33 +4,19 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/vecmath.h"
 #include "view/view_internal.h"
 
 static void sub3(const double a[3], const double b[3], double o[3])
 {
     for (int k = 0; k < 3; k++) o[k] = a[k] - b[k];
 }
-static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static void cross3(const double a[3], const double b[3], double o[3])
-{
-    double t[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-    memcpy(o, t, sizeof t);
-}
-static double norm3(const double a[3]) { return sqrt(dot3(a, a)); }
-static int normalize3(double a[3])
-{
-    double l = norm3(a);
-    if (!(l > 0.0) || !isfinite(l)) return 0;
-    for (int k = 0; k < 3; k++) a[k] /= l;
-    return 1;
-}
-
 /* Rodrigues: v rotated by angle (radians) about the unit axis k (right-handed). */
 static void rotate_about(const double v[3], const double k[3], double angle, double out[3])
 {
     double c = cos(angle), s = sin(angle), kxv[3];
-    cross3(k, v, kxv);
-    double kv = dot3(k, v);
+    v3_cross(k, v, kxv);
+    double kv = v3_dot(k, v);
     double t[3];
     for (int i = 0; i < 3; i++) t[i] = v[i] * c + kxv[i] * s + k[i] * kv * (1.0 - c);
     memcpy(out, t, sizeof t);
@@ -39,7 +25,7 @@ static void rotate_about(const double v[3], const double k[3], double angle, dou
 static void camera_up(const sss_camera *cam, double up[3])
 {
     memcpy(up, cam->up, sizeof cam->up);
-    if (!normalize3(up)) up[0] = 0.0, up[1] = 1.0, up[2] = 0.0;
+    if (!v3_unit(up)) up[0] = 0.0, up[1] = 1.0, up[2] = 0.0;
 }
 
 void view_orbit(sss_camera *cam, double azimuth_deg, double elevation_deg)
@@ -47,18 +33,18 @@ void view_orbit(sss_camera *cam, double azimuth_deg, double elevation_deg)
     double up[3], off[3];
     camera_up(cam, up);
     sub3(cam->position, cam->look_at, off);
-    double dist = norm3(off);
+    double dist = v3_len(off);
     if (!(dist > 0.0) || !isfinite(dist)) return;
     rotate_about(off, up, azimuth_deg * M_PI / 180.0, off);
     /* Elevation: the polar angle between the offset and up, clamped away from the poles so the view
      * direction never becomes parallel to up (the camera basis would be undefined). */
-    double polar = acos(fmax(-1.0, fmin(1.0, dot3(off, up) / dist)));
+    double polar = acos(fmax(-1.0, fmin(1.0, v3_dot(off, up) / dist)));
     double target = polar - elevation_deg * M_PI / 180.0;
     double lo = M_PI / 180.0, hi = M_PI - lo;
     target = fmin(hi, fmax(lo, target));
     double axis[3];
-    cross3(up, off, axis); /* horizontal, perpendicular to the offset */
-    if (normalize3(axis)) rotate_about(off, axis, target - polar, off);
+    v3_cross(up, off, axis); /* horizontal, perpendicular to the offset */
+    if (v3_unit(axis)) rotate_about(off, axis, target - polar, off);
     for (int k = 0; k < 3; k++) cam->position[k] = cam->look_at[k] + off[k];
 }
 
@@ -66,12 +52,12 @@ void view_pan(sss_camera *cam, double dx, double dy, int width, int height)
 {
     double fwd[3], up[3], right[3], u[3];
     sub3(cam->look_at, cam->position, fwd);
-    double dist = norm3(fwd);
-    if (!normalize3(fwd) || width < 1 || height < 1) return;
+    double dist = v3_len(fwd);
+    if (!v3_unit(fwd) || width < 1 || height < 1) return;
     camera_up(cam, up);
-    cross3(fwd, up, right);
-    if (!normalize3(right)) return;
-    cross3(right, fwd, u);
+    v3_cross(fwd, up, right);
+    if (!v3_unit(right)) return;
+    v3_cross(right, fwd, u);
     /* World size of one pixel at look_at's depth: the shorter axis spans 2 tan(fov / 2) (sss/scene.h). */
     int shorter = width < height ? width : height;
     double px = dist * 2.0 * tan(cam->fov * M_PI / 360.0) / shorter;
@@ -87,7 +73,7 @@ void view_zoom(sss_camera *cam, double factor)
     if (!(factor > 0.0) || !isfinite(factor)) return;
     double off[3];
     sub3(cam->position, cam->look_at, off);
-    double dist = norm3(off), next = dist * factor;
+    double dist = v3_len(off), next = dist * factor;
     if (!(dist > 0.0) || !isfinite(next) || next < 1e-9) return;
     for (int k = 0; k < 3; k++) cam->position[k] = cam->look_at[k] + off[k] * (next / dist);
 }

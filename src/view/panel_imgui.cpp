@@ -304,7 +304,7 @@ static void view_section(viewer *v)
     bool map = v->errormap != 0;
     if (ImGui::Checkbox("error map (DSSIM vs reference)", &map)) view_cmd_errormap(v, map);
     if (v->errormap) colour_bar(v);
-    if (ImGui::Button("reference of this view (R)")) view_request_reference(v, v->desc->reference_draft);
+    if (ImGui::Button("reference of this view (R)")) view_cmd_reference(v, 0);
     if (v->ref && v->dssim_gen) ImGui::Text("DSSIM %.4f (%s reference)", v->dssim, v->ref_draft ? "draft" : "final");
     else if (v->job) ImGui::Text("reference: rendering...");
 }

@@ -84,21 +84,14 @@ void view_request_rebuild(viewer *v, const char *what, int line)
     else view_message(v, "%s: rebuilding (after the running build)", what);
 }
 
-/* The renderers take the new scene in place (same meshes, lights and programs: only materials differ),
- * or, when that fails, new ones are created from it. */
-static sss_result update_renderers(viewer *v, const sss_gl_tables *tables, sss_error *err)
+/* The renderer takes scene s in place (same meshes, lights and programs: only materials differ), or,
+ * when that fails, a new one is created from it; on failure it keeps drawing the viewer's scene. */
+static sss_result update_renderer(viewer *v, const sss_scene *s, const sss_gl_tables *tables, sss_error *err)
 {
     sss_error why = {0};
-    sss_result res = sss_gl_renderer_update_materials(v->r, v->scene, tables, &why);
+    sss_result res = sss_gl_renderer_update_materials(v->r, s, tables, &why);
     v->rebuild_in_place = res == SSS_OK;
-    if (res != SSS_OK) {
-        v->tables = tables;
-        res = view_make_renderer(v, v->tech, err);
-        v->tables = NULL;
-    }
-    if (res == SSS_OK && v->split_r && sss_gl_renderer_update_materials(v->split_r, v->scene, tables, &why) != SSS_OK)
-        view_split_refresh(v); /* it read the old scene */
-    return res;
+    return res == SSS_OK ? SSS_OK : view_make_renderer_for(v, v->tech, s, tables, err);
 }
 
 /* The worker's scene replaces the one on screen; the camera and lights are the window's (they may
@@ -114,13 +107,12 @@ static sss_result apply(viewer *v, view_build_result *b, sss_error *err)
         s->lights[i] = old->lights[i];
         s->lights[i].file = file;
     }
+    sss_result res = update_renderer(v, s, b->tables, err);
+    if (res != SSS_OK) return res; /* b still owns s */
     v->scene = s;
-    sss_result res = update_renderers(v, b->tables, err);
-    if (res != SSS_OK) {
-        v->scene = old; /* b still owns s */
-        return res;
-    }
     b->scene = old;
+    if (v->split_r && sss_gl_renderer_update_materials(v->split_r, s, b->tables, NULL) != SSS_OK)
+        view_split_refresh(v); /* it read the old scene */
     v->rebuild_window_ms = 1000.0 * (sss_time_seconds() - start);
     return SSS_OK;
 }

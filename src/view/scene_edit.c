@@ -9,7 +9,7 @@
 
 #include <cjson/cJSON.h>
 
-#include "core/text.h"
+#include "scene/json_reader.h"
 #include "sss/material.h"
 #include "sss/scene.h"
 #include "view/view_internal.h"
@@ -93,10 +93,10 @@ static int edit_material(cJSON *m, int medium, double factor)
 
 static sss_result parse_root(const char *text, size_t size, const char *name, cJSON **root, sss_error *err)
 {
-    char nul_path[256];
-    if (sss_json_find_nul(text, size, nul_path, sizeof nul_path))
-        return sss_error_set(err, SSS_ERROR_PARSE, "%s: %s: a string holds a NUL character (\\u0000)", name, nul_path);
-    *root = cJSON_ParseWithLength(text, size);
+    jr r;
+    jr_init(&r, name, err);
+    sss_result res = jr_parse(&r, text, size, root);
+    if (res != SSS_OK) return res;
     if (!cJSON_IsObject(*root)) {
         cJSON_Delete(*root);
         *root = NULL;

@@ -1,6 +1,7 @@
 /* view/status.c — the overlay's text (technique, part, buffer, frame time, milliseconds per pass,
- * material, light, animation, reference and DSSIM, the last message, the key help) and the window title
- * (the frame time). */
+ * material, light, animation, reference and DSSIM, the last message, the key help), the key help itself
+ * (sss_view_help_text, also the panel's and `sss view --help`'s) and the window title (the frame time).
+ * It reads the viewer's state and calls nothing above it. */
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
@@ -10,6 +11,24 @@
 
 #include "sss/material.h"
 #include "view/viewer.h"
+
+/* The key bindings of input.c (handle_key, on_button, on_scroll): keep the two in step. */
+static const char help_text[] =
+    "mouse: left drag orbit around look_at, right/middle drag pan, wheel zoom\n"
+    "Tab / Shift+Tab   next / previous technique (all registered techniques)\n"
+    "1 / 2 / 3         all parts / translucency alone / screen-space part alone\n"
+    "B / Shift+B       next / previous intermediate buffer (final, reflected, ...)\n"
+    "R / Shift+R       reference of this view in the background (Shift: draft), then DSSIM\n"
+    "M / Shift+M       next / previous measured medium for every subsurface material\n"
+    "+ / -             scattering scale x2 / /2 (coefficients; mean free path /2 / x2)\n"
+    "L / Shift+L       turn the first light +15 / -15 degrees about the vertical through look_at\n"
+    "Space             start / stop the animation\n"
+    "S or F12          screenshot sss-view-NNNN.png (the image without the overlay)\n"
+    "C                 camera back to the scene's\n"
+    "O                 panel on / off        H or F1  this help on / off (text overlay)\n"
+    "Esc or Q          quit\n";
+
+const char *sss_view_help_text(void) { return help_text; }
 
 typedef struct text_buf {
     char *p;

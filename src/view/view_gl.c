@@ -8,7 +8,7 @@
 
 #include <epoxy/gl.h>
 
-#include "gl/gl_internal.h"
+#include "gl/core/gl_base.h"
 #include "view/view_gl.h"
 
 static sss_result gl_error(const char *what, sss_error *err)

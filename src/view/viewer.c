@@ -11,6 +11,7 @@
 #include <epoxy/gl.h>
 
 #include "core/file_util.h"
+#include "scene/scene_files.h"
 #include "view/panel.h"
 #include "view/script.h"
 #include "view/viewer.h"
@@ -130,13 +131,75 @@ static sss_result draw_overlay(viewer *v, sss_error *err)
     return res;
 }
 
-/* One frame. Render failures end a fixed-frame run; interactively they become a message. */
+/* The technique's frame (and the split view's second technique's) when something changed or in a
+ * fixed-frame run, whose render failure ends the run (interactively it becomes a message). */
+static sss_result render(viewer *v, int fixed, int *rendered, sss_error *err)
+{
+    *rendered = 0;
+    if (!v->need_render && !fixed) return SSS_OK;
+    sss_error rerr = {0};
+    if (sss_gl_renderer_render(v->r, v->t, &rerr) != SSS_OK) {
+        v->need_render = 0;
+        if (fixed) {
+            *err = rerr;
+            return rerr.code;
+        }
+        view_message(v, "render: %s", rerr.message);
+    } else {
+        sss_gl_timings frame;
+        sss_gl_renderer_timings(v->r, &frame);
+        sss_gl_timing_series_add(&v->timing_series, &frame);
+        sss_gl_timing_series_median(&v->timing_series, &v->timings);
+        v->image_gen++;
+        v->need_render = 0;
+        *rendered = 1;
+    }
+    if (v->split_r && sss_gl_renderer_render(v->split_r, v->t, &rerr) != SSS_OK) {
+        view_message(v, "split view: %s", rerr.message);
+        v->split = VIEW_SPLIT_OFF;
+        view_split_refresh(v);
+    }
+    return SSS_OK;
+}
+
+/* The S key's sss-view-NNNN.png, from the back buffer before the overlay is drawn. */
+static void key_screenshot(viewer *v)
+{
+    v->act_screenshot = 0;
+    char name[64];
+    sss_error serr = {0};
+    if (!view_next_screenshot_name(name, sizeof name)) view_message(v, "screenshot: sss-view-0000..9999.png all exist");
+    else if (view_save_screenshot(v, name, &serr) != SSS_OK) view_message(v, "%s", serr.message);
+    else view_message(v, "saved %s", name);
+}
+
+/* The panel or the text overlay, timed (v->overlay_ms); a failure hides it interactively. */
+static sss_result draw_ui(viewer *v, int fixed, sss_error *err)
+{
+    if (fixed) glFinish(); /* scripts time the panel alone: the frame's own work done first */
+    double overlay_start = sss_time_seconds();
+    sss_result res = SSS_OK;
+    if (v->overlay && v->panel) res = view_panel_draw(v, err);
+    else if (v->overlay) res = draw_overlay(v, err);
+    if (fixed) glFinish();
+    v->overlay_ms = v->overlay ? 1000.0 * (sss_time_seconds() - overlay_start) : 0.0;
+    if (res != SSS_OK && !fixed) {
+        view_message(v, "%s", err->message);
+        v->overlay = 0;
+        res = SSS_OK;
+    }
+    return res;
+}
+
+/* One frame: the queued keys and a finished rebuild first, then render, show, screenshots (the back
+ * buffer before the overlay and the swap; a script's after the panel), the overlay, swap. Failures
+ * end a fixed-frame run; interactively they become a message. */
 static sss_result frame(viewer *v, int fixed, const char *screenshot, sss_error *err)
 {
     double entered = sss_time_seconds();
-    int building = view_rebuild_busy(v);
+    int building = view_rebuild_busy(v), rendered = 0;
     check_size(v);
-    view_run_actions(v);
+    view_cmd_keys(v);
     view_poll_rebuild(v);
     if (v->playing && !fixed) {
         double now = glfwGetTime();
@@ -145,61 +208,19 @@ static sss_result frame(viewer *v, int fixed, const char *screenshot, sss_error 
         view_invalidate(v);
     }
     double start = sss_time_seconds();
-    int rendered = 0;
-    if (v->need_render || fixed) {
-        sss_error rerr = {0};
-        if (sss_gl_renderer_render(v->r, v->t, &rerr) != SSS_OK) {
-            v->need_render = 0;
-            if (fixed) {
-                *err = rerr;
-                return rerr.code;
-            }
-            view_message(v, "render: %s", rerr.message);
-        } else {
-            sss_gl_timings frame;
-            sss_gl_renderer_timings(v->r, &frame);
-            sss_gl_timing_series_add(&v->timing_series, &frame);
-            sss_gl_timing_series_median(&v->timing_series, &v->timings);
-            v->image_gen++;
-            v->need_render = 0;
-            rendered = 1;
-        }
-        if (v->split_r && sss_gl_renderer_render(v->split_r, v->t, &rerr) != SSS_OK) {
-            view_message(v, "split view: %s", rerr.message);
-            v->split = VIEW_SPLIT_OFF;
-            view_split_refresh(v);
-        }
-    }
+    sss_result res = render(v, fixed, &rendered, err);
+    if (res != SSS_OK) return res;
     view_poll_reference(v);
     view_update_dssim(v);
-    sss_result res = show_image(v, err);
-    if (res != SSS_OK) {
+    if ((res = show_image(v, err)) != SSS_OK) {
         if (fixed) return res;
         view_message(v, "%s", err->message);
     }
-    /* Screenshots: the back buffer before the overlay is drawn and before the swap. */
-    if (screenshot && (res = view_gl_screenshot(v->width, v->height, screenshot, err)) != SSS_OK) return res;
-    if (v->act_screenshot) {
-        v->act_screenshot = 0;
-        char name[64];
-        sss_error serr = {0};
-        if (!view_next_screenshot_name(name, sizeof name)) view_message(v, "screenshot: sss-view-0000..9999.png all exist");
-        else if (view_gl_screenshot(v->width, v->height, name, &serr) != SSS_OK) view_message(v, "%s", serr.message);
-        else view_message(v, "saved %s", name);
-    }
-    if (fixed) glFinish(); /* scripts time the panel alone: the frame's own work done first */
-    double overlay_start = sss_time_seconds();
-    if (v->overlay && v->panel) res = view_panel_draw(v, err);
-    else if (v->overlay) res = draw_overlay(v, err);
-    if (fixed) glFinish();
-    v->overlay_ms = v->overlay ? 1000.0 * (sss_time_seconds() - overlay_start) : 0.0;
-    if (res != SSS_OK) {
-        if (fixed) return res;
-        view_message(v, "%s", err->message);
-        v->overlay = 0;
-    }
+    if (screenshot && (res = view_save_screenshot(v, screenshot, err)) != SSS_OK) return res;
+    if (v->act_screenshot) key_screenshot(v);
+    if ((res = draw_ui(v, fixed, err)) != SSS_OK) return res;
     if (v->shot_path) { /* a script's screenshot: the window as shown, the panel included */
-        res = view_gl_screenshot(v->width, v->height, v->shot_path, err);
+        res = view_save_screenshot(v, v->shot_path, err);
         v->shot_path = NULL;
         if (res != SSS_OK) return res;
     }
@@ -308,50 +329,70 @@ static sss_result wait_rebuild(viewer *v, int *frames, double *longest_ms, sss_e
     return res;
 }
 
-/* --script: each line's action, `frames N` renders N frames, `screenshot F` renders one and writes
- * the window as shown (after the reference in the background, when one is running, has finished). */
+/* A script's `frames N` (N frames, their median times reported) or `screenshot F` (one frame, the
+ * window as shown written after the edits and the reference in the background are done). */
+static sss_result script_frames(viewer *v, const view_command *c, sss_error *err)
+{
+    int n = c->kind == VIEW_CMD_FRAMES ? c->index : 1;
+    sss_result res = SSS_OK;
+    if (c->kind == VIEW_CMD_SCREENSHOT) {
+        int waited = 0;
+        double longest = 0.0;
+        res = wait_rebuild(v, &waited, &longest, err);
+        wait_reference(v);
+        v->shot_path = c->text;
+    }
+    double *ms = calloc(2 * (size_t)n, sizeof *ms), *overlay_ms = ms + n;
+    if (!ms) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (frame times)");
+    for (int k = 0; k < n && res == SSS_OK; k++) {
+        glfwPollEvents();
+        res = frame(v, 1, NULL, err);
+        ms[k] = v->frame_ms;
+        overlay_ms[k] = v->overlay_ms;
+        if (res == SSS_OK) res = script_build_error(v, err);
+    }
+    if (res == SSS_OK && c->kind == VIEW_CMD_SCREENSHOT) view_message(v, "saved %s", c->text);
+    else if (res == SSS_OK) /* wall time from render to swap, the panel (when shown) included */
+        view_message(v, "%d frames: median frame time %.2f ms, of which %s %.2f ms", n, sss_median(ms, n),
+                     v->overlay ? (v->panel ? "panel" : "text overlay") : "hidden panel", sss_median(overlay_ms, n));
+    free(ms);
+    return res;
+}
+
+/* One line of a script: frames and waits run here (they draw), input events go to input.c, the
+ * other actions to commands.c. */
+static sss_result script_line(viewer *v, const view_command *c, sss_error *err)
+{
+    sss_result res = SSS_OK;
+    if (c->kind == VIEW_CMD_FRAMES || c->kind == VIEW_CMD_SCREENSHOT) {
+        res = script_frames(v, c, err);
+    } else if (c->kind == VIEW_CMD_WAIT) {
+        int frames = 0;
+        double longest = 0.0;
+        res = wait_rebuild(v, &frames, &longest, err);
+        if (res == SSS_OK)
+            view_message(v, "wait: %d frames drawn until the material edits were applied (longest %.1f ms)", frames,
+                         longest);
+    } else if (c->kind == VIEW_CMD_KEY) {
+        if (!view_input_event(v, c->name, 1))
+            return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "key: unknown input event '%s'", c->name);
+        view_cmd_keys(v);
+    } else {
+        v->script_line = c->line;
+        res = view_cmd_run(v, c, err);
+        v->script_line = 0;
+    }
+    return res;
+}
+
+/* --script: each line's action; a failure stops the script, naming its line (for a material edit
+ * that failed in the worker, the edit's line). */
 static sss_result run_script(viewer *v, const view_script *script, sss_error *err)
 {
     for (int i = 0; i < script->count; i++) {
         const view_command *c = &script->commands[i];
-        sss_result res = SSS_OK;
         sss_error cerr = {0};
-        if (c->kind == VIEW_CMD_FRAMES || c->kind == VIEW_CMD_SCREENSHOT) {
-            int n = c->kind == VIEW_CMD_FRAMES ? c->index : 1;
-            if (c->kind == VIEW_CMD_SCREENSHOT) {
-                int waited = 0;
-                double longest = 0.0;
-                res = wait_rebuild(v, &waited, &longest, &cerr);
-                wait_reference(v);
-                v->shot_path = c->text;
-            }
-            double *ms = calloc(2 * (size_t)n, sizeof *ms), *overlay_ms = ms + n;
-            if (!ms) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (frame times)");
-            for (int k = 0; k < n && res == SSS_OK; k++) {
-                glfwPollEvents();
-                res = frame(v, 1, NULL, &cerr);
-                ms[k] = v->frame_ms;
-                overlay_ms[k] = v->overlay_ms;
-                if (res == SSS_OK) res = script_build_error(v, &cerr);
-            }
-            if (res == SSS_OK && c->kind == VIEW_CMD_SCREENSHOT) view_message(v, "saved %s", c->text);
-            else if (res == SSS_OK) /* wall time from render to swap, the panel (when shown) included */
-                view_message(v, "%d frames: median frame time %.2f ms, of which %s %.2f ms", n, sss_median(ms, n),
-                             v->overlay ? (v->panel ? "panel" : "text overlay") : "hidden panel",
-                             sss_median(overlay_ms, n));
-            free(ms);
-        } else if (c->kind == VIEW_CMD_WAIT) {
-            int frames = 0;
-            double longest = 0.0;
-            res = wait_rebuild(v, &frames, &longest, &cerr);
-            if (res == SSS_OK)
-                view_message(v, "wait: %d frames drawn until the material edits were applied (longest %.1f ms)",
-                             frames, longest);
-        } else {
-            v->script_line = c->line;
-            res = view_cmd_run(v, c, &cerr);
-            v->script_line = 0;
-        }
+        sss_result res = script_line(v, c, &cerr);
         if (res != SSS_OK) {
             v->shot_path = NULL;
             int line = v->build_failed_line ? v->build_failed_line : c->line;
@@ -379,11 +420,119 @@ static void run_interactive(viewer *v)
     }
 }
 
+/* The viewer's inputs, and its planned outputs (--screenshot, the script's screenshot lines, in
+ * order) checked against them and each other before the window opens: a refused script writes
+ * nothing. */
+static sss_result check_files(viewer *v, const view_script *script, sss_error *err)
+{
+    const sss_view_desc *d = v->desc;
+    scene_add_inputs(&v->files, v->scene);
+    sss_io_add_input(&v->files, d->script);
+    const char **planned = calloc((size_t)script->count + 1, sizeof *planned);
+    if (!planned) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (screenshots)");
+    size_t n = 0;
+    sss_result res = SSS_OK;
+    if (d->screenshot) {
+        planned[n++] = d->screenshot;
+        res = view_check_outputs(v, planned, n, err);
+    }
+    for (int i = 0; res == SSS_OK && i < script->count; i++) {
+        const view_command *c = &script->commands[i];
+        if (c->kind != VIEW_CMD_SCREENSHOT) continue;
+        planned[n++] = c->text;
+        sss_error cerr = {0};
+        if ((res = view_check_outputs(v, planned, n, &cerr)) != SSS_OK)
+            sss_error_set(err, res, "%s:%d: screenshot: %s", d->script, c->line, cerr.message);
+    }
+    free(planned);
+    return res;
+}
+
 static int technique_index(const char *name)
 {
     for (int i = 0; i < sss_gl_technique_count(); i++)
         if (strcmp(sss_gl_technique_at(i)->name, name) == 0) return i;
     return -1;
+}
+
+/* The scene (loaded, and its text for edits), the first technique, the --input events and the
+ * script (its key events too), the files: all checked before a window opens. */
+static sss_result load_inputs(viewer *v, view_script *script, sss_error *err)
+{
+    const sss_view_desc *desc = v->desc;
+    sss_result res = sss_scene_load(desc->scene_path, NULL, v->scene, err);
+    if (res == SSS_OK) res = sss_read_file(desc->scene_path, SSS_SCENE_MAX_FILE_SIZE, &v->text, &v->text_size, err);
+    if (res != SSS_OK) return res;
+    const char *tname = desc->technique ? desc->technique : v->scene->render.technique;
+    if ((v->tech = technique_index(tname)) < 0) {
+        char list[256] = "";
+        size_t at = 0;
+        for (int i = 0; i < sss_gl_technique_count() && at < sizeof list; i++)
+            at += (size_t)snprintf(list + at, sizeof list - at, "%s%s", i ? ", " : "", sss_gl_technique_at(i)->name);
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "unknown technique '%s' (known: %s)", tname, list);
+    }
+    if (desc->input && (res = check_input(v, desc->input, err)) != SSS_OK) return res;
+    if (desc->script && (res = view_script_load(desc->script, script, err)) != SSS_OK) return res;
+    for (int i = 0; i < script->count; i++)
+        if (script->commands[i].kind == VIEW_CMD_KEY && !view_input_event(v, script->commands[i].name, 0))
+            return sss_error_set(err, SSS_ERROR_PARSE, "%s:%d: key: unknown input event '%s'", desc->script,
+                                 script->commands[i].line, script->commands[i].name);
+    return check_files(v, script, err);
+}
+
+/* The window (its GL context) at the asked size, the first renderer, the overlay's GL objects. */
+static sss_result open_window(viewer *v, sss_error *err)
+{
+    const sss_view_desc *desc = v->desc;
+    v->has_light = v->scene->light_count > 0;
+    v->home = v->scene->camera;
+    sss_gl_context_desc cd;
+    memset(&cd, 0, sizeof cd);
+    cd.platform = SSS_GL_PLATFORM_WINDOW;
+    cd.window_width = desc->width > 0 ? desc->width : v->scene->camera.width;
+    cd.window_height = desc->height > 0 ? desc->height : v->scene->camera.height;
+    cd.window_title = desc->scene_path;
+    sss_result res = sss_gl_context_create(&cd, &v->ctx, err);
+    if (res != SSS_OK) return res;
+    v->window = glfwGetCurrentContext(); /* the context's window: it was just made current */
+    sss_gl_window_size(v->ctx, &v->width, &v->height);
+    if (v->width < 1 || v->height < 1) v->width = cd.window_width, v->height = cd.window_height;
+    v->scene->camera.width = v->width;
+    v->scene->camera.height = v->height;
+    view_camera_changed(v);
+    res = view_make_renderer(v, v->tech, err);
+    v->live_text = view_dup_str(v->text);
+    v->live_medium = v->medium;
+    v->live_scale = v->scale_factor;
+    if (res == SSS_OK && !v->live_text) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene text)");
+    if (res == SSS_OK) res = view_gl_init(&v->gl, err);
+    return res;
+}
+
+static void viewer_free(viewer *v)
+{
+    view_rebuild_free(v);
+    if (v->job) view_ref_abandon(v->job); /* the worker finishes on its own and frees its job */
+    free(v->job_key);
+    view_ref_cache_free(&v->cache);
+    free(v->view_key);
+    sss_image_free(&v->frame_img);
+    sss_image_free(&v->other_img);
+    sss_image_free(&v->composed_img);
+    sss_image_free(&v->map_img);
+    if (v->ctx) {
+        sss_gl_context_make_current(v->ctx);
+        view_panel_destroy(v);
+        view_gl_free(&v->gl);
+    }
+    sss_gl_renderer_destroy(v->split_r);
+    sss_gl_renderer_destroy(v->r);
+    sss_gl_timing_series_free(&v->timing_series);
+    sss_gl_context_destroy(v->ctx);
+    sss_scene_free(v->scene);
+    free(v->scene);
+    free(v->text);
+    sss_io_free(&v->files);
 }
 
 sss_result sss_view_run(const sss_view_desc *desc, sss_error *err)
@@ -402,51 +551,11 @@ sss_result sss_view_run(const sss_view_desc *desc, sss_error *err)
     v.overlay = !desc->no_overlay;
     v.t = desc->time;
     v.playing = desc->animate;
-    sss_result res = SSS_OK;
     v.scene = calloc(1, sizeof *v.scene);
     if (!v.scene) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene)");
-    res = sss_scene_load(desc->scene_path, NULL, v.scene, err);
-    if (res == SSS_OK) res = sss_read_file(desc->scene_path, SSS_SCENE_MAX_FILE_SIZE, &v.text, &v.text_size, err);
-    const char *tname = desc->technique ? desc->technique : v.scene->render.technique;
-    if (res == SSS_OK && (v.tech = technique_index(tname)) < 0) {
-        char list[256] = "";
-        size_t at = 0;
-        for (int i = 0; i < sss_gl_technique_count() && at < sizeof list; i++)
-            at += (size_t)snprintf(list + at, sizeof list - at, "%s%s", i ? ", " : "", sss_gl_technique_at(i)->name);
-        res = sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "unknown technique '%s' (known: %s)", tname, list);
-    }
-    if (res == SSS_OK && desc->input) res = check_input(&v, desc->input, err);
     view_script script = {0};
-    if (res == SSS_OK && desc->script) res = view_script_load(desc->script, &script, err);
-    for (int i = 0; res == SSS_OK && i < script.count; i++)
-        if (script.commands[i].kind == VIEW_CMD_KEY && !view_input_event(&v, script.commands[i].name, 0))
-            res = sss_error_set(err, SSS_ERROR_PARSE, "%s:%d: key: unknown input event '%s'", desc->script,
-                                script.commands[i].line, script.commands[i].name);
-    if (res == SSS_OK) {
-        v.has_light = v.scene->light_count > 0;
-        v.home = v.scene->camera;
-        sss_gl_context_desc cd;
-        memset(&cd, 0, sizeof cd);
-        cd.platform = SSS_GL_PLATFORM_WINDOW;
-        cd.window_width = desc->width > 0 ? desc->width : v.scene->camera.width;
-        cd.window_height = desc->height > 0 ? desc->height : v.scene->camera.height;
-        cd.window_title = desc->scene_path;
-        res = sss_gl_context_create(&cd, &v.ctx, err);
-        if (res == SSS_OK) {
-            v.window = glfwGetCurrentContext(); /* the context's window: it was just made current */
-            sss_gl_window_size(v.ctx, &v.width, &v.height);
-            if (v.width < 1 || v.height < 1) v.width = cd.window_width, v.height = cd.window_height;
-            v.scene->camera.width = v.width;
-            v.scene->camera.height = v.height;
-            view_camera_changed(&v);
-            res = view_make_renderer(&v, v.tech, err);
-            v.live_text = view_dup_str(v.text);
-            v.live_medium = v.medium;
-            v.live_scale = v.scale_factor;
-            if (res == SSS_OK && !v.live_text) res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene text)");
-        }
-    }
-    if (res == SSS_OK) res = view_gl_init(&v.gl, err);
+    sss_result res = load_inputs(&v, &script, err);
+    if (res == SSS_OK) res = open_window(&v, err);
     if (res == SSS_OK) {
         sss_error perr = {0};
         if (view_panel_create(&v, &perr) != SSS_OK) view_message(&v, "panel: %s (the text overlay instead)", perr.message);
@@ -455,26 +564,6 @@ sss_result sss_view_run(const sss_view_desc *desc, sss_error *err)
         else run_interactive(&v);
     }
     view_script_free(&script);
-    view_rebuild_free(&v);
-    if (v.job) view_ref_abandon(v.job); /* the worker finishes on its own and frees its job */
-    free(v.job_key);
-    view_ref_cache_free(&v.cache);
-    free(v.view_key);
-    sss_image_free(&v.frame_img);
-    sss_image_free(&v.other_img);
-    sss_image_free(&v.composed_img);
-    sss_image_free(&v.map_img);
-    if (v.ctx) {
-        sss_gl_context_make_current(v.ctx);
-        view_panel_destroy(&v);
-        view_gl_free(&v.gl);
-    }
-    sss_gl_renderer_destroy(v.split_r);
-    sss_gl_renderer_destroy(v.r);
-    sss_gl_timing_series_free(&v.timing_series);
-    sss_gl_context_destroy(v.ctx);
-    sss_scene_free(v.scene);
-    free(v.scene);
-    free(v.text);
+    viewer_free(&v);
     return res;
 }

@@ -50,7 +50,7 @@ scan "the help texts" "$T"/*.txt
 for f in docs/scene-format.md docs/physics.md docs/references.md LICENSE assets/README.md; do
     [ -s "$f" ] || err "$f missing"
 done
-# Every repository file the sources and docs cite by path (src/gl/ssss/tech_ssss.c, docs/dss.md) exists.
+# Every repository file the sources and docs cite by path (src/gl/techniques/ssss/tech_ssss.c, docs/dss.md) exists.
 mapfile -t cited < <(grep -I -rhoE '(^|[^A-Za-z0-9_./-])(src|docs|include|tests|bench|tools|scenes|examples|python)/[A-Za-z0-9_./-]*[A-Za-z0-9_]\.(c|h|cpp|md|glsl|json|py|sh)\b' \
                          "${files[@]}" | sed -E 's/^[^A-Za-z]*//' | sort -u)
 [ "${#cited[@]}" -ge 20 ] || err "only ${#cited[@]} cited paths found"

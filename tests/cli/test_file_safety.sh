@@ -131,6 +131,88 @@ expect 1 "same file as the input" -- export pbrt "$S/s.json" -o "$S/s.json"
 [ "$(sums)" = "$before" ] || fail "an input changed"
 [ "$(ls -A "$S" | wc -l)" -eq 6 ] || fail "refused commands left files: $(ls -A "$S")"
 
+# ---- Two outputs of one command that are one file: refused before the work (a transaction renames
+# both, and the last one wins: `-o o.png --timings-json o.png` used to leave the JSON and no image)
+O=$T/twice
+mkdir -p "$O"
+expect 1 "o\.png: is the same file as the output" -- render "$I/s.json" -o "$O/o.png" --timings-json "$O/./o.png" \
+    --width 8 --height 8
+expect 1 "r\.exr: is the same file as the output" -- reference "$I/s.json" -o "$O/r.exr" --exr "$O/../twice/r.exr" \
+    --quality draft --spp 1 -q
+empty "$O" "two outputs in one file"
+
+# ---- import and export pbrt write side files (<stem>_objN.ply, <stem>_imgK.png): none of them, nor
+# the scene, may be a file the asset or scene is made of. Every spelling of the buffer, a symlink and a
+# hard link to it, a mesh or image side file named like a buffer, and a scene mesh named like an
+# export's side file are refused before anything is written; the inputs stay as they were.
+G=$T/gltf
+mkdir -p "$G"
+cp "$ROOT/tests/data/gltf/external.gltf" "$ROOT/tests/data/gltf/external data.bin" "$G/"
+ln -s "external data.bin" "$G/link.json"
+ln "$G/external data.bin" "$G/hard.json"
+sed 's/external%20data\.bin/s_obj0.ply/' "$G/external.gltf" >"$G/obj.gltf"
+cp "$G/external data.bin" "$G/s_obj0.ply"
+"${PY:-python3}" - "$ROOT/tests/data/gltf/textured_datauri.gltf" "$G/img.gltf" "$G/t_img0.png" <<'PYEOF' ||
+import base64, json, sys
+a = json.load(open(sys.argv[1]))
+b = a["buffers"][0]
+open(sys.argv[3], "wb").write(base64.b64decode(b["uri"].split(",", 1)[1]))
+b["uri"] = "t_img0.png"  # the buffer, in the file import writes the embedded image to for -o t.json
+json.dump(a, open(sys.argv[2], "w"))
+PYEOF
+    fail "could not write the external-buffer asset"
+scene a.png m_obj0.ply >"$G/mesh.json"
+cp "$I/a.png" "$I/m.ply" "$G/"
+cp "$I/m.ply" "$G/m_obj0.ply"
+gsums() { (cd "$G" && cksum "external data.bin" s_obj0.ply t_img0.png m_obj0.ply obj.gltf img.gltf mesh.json); }
+before=$(gsums)
+listing=$(ls -A "$G")
+expect 1 "external data\.bin: is the same file as the input" -- import "$G/external.gltf" -o "$G/external data.bin"
+expect 1 "same file as the input" -- import "$G/external.gltf" -o "$G/./external data.bin"
+expect 1 "link\.json: is the same file as the input" -- import "$G/external.gltf" -o "$G/link.json"
+expect 1 "hard\.json: is the same file as the input" -- import "$G/external.gltf" -o "$G/hard.json"
+expect 1 "s_obj0\.ply: is the same file as the input" -- import "$G/obj.gltf" -o "$G/s.json"
+expect 1 "t_img0\.png: is the same file as the input" -- import "$G/img.gltf" -o "$G/t.json"
+expect 1 "m_obj0\.ply: is the same file as the input" -- export pbrt "$G/mesh.json" -o "$G/m.pbrt"
+# a .gltf given as a scene: its buffer is an input of render too
+expect 1 "hard\.json: is the same file as the input" -- render "$G/external.gltf" -o "$G/x.png" \
+    --timings-json "$G/hard.json" --width 8 --height 8
+[ "$(gsums)" = "$before" ] || fail "import/export changed an input"
+[ "$(ls -A "$G")" = "$listing" ] || fail "refused imports/exports left files: $(ls -A "$G")"
+mkdir -p "$G/fine"
+"$SSS" import "$G/obj.gltf" -o "$G/fine/s.json" >/dev/null 2>"$T/err.txt" && [ -s "$G/fine/s_obj0.ply" ] ||
+    fail "import to another folder failed: $(head -c 300 "$T/err.txt")"
+
+# ---- The viewer writes through the same rules: a --screenshot or a script's screenshot line that is
+# an input (the scene's texture, the scene, the script itself) or another screenshot of the script is
+# refused, naming the line and the file, before the window opens; nothing is written.
+if command -v xvfb-run >/dev/null 2>&1; then
+    V=$T/view
+    mkdir -p "$V"
+    cp "$I/a.png" "$I/s.json" "$V/"
+    printf 'frames 1\nscreenshot a.png\n' >"$V/texture.txt"
+    printf 'frames 1\nscreenshot self.png\n' >"$V/self.png"
+    printf 'frames 1\nscreenshot x.png\nframes 1\nscreenshot ./x.png\n' >"$V/twice.txt"
+    vsums() { (cd "$V" && cksum a.png s.json self.png texture.txt twice.txt); }
+    before=$(vsums)
+    vexpect() { # vexpect PATTERN ARGS: sss view ARGS in $V under Xvfb exits 1 with PATTERN on stderr
+        local pattern=$1
+        shift
+        (cd "$V" && timeout 60 xvfb-run -a "$SSS" view "$@") >"$T/out.txt" 2>"$T/err.txt"
+        local got=$?
+        [ "$got" -eq 1 ] || fail "sss view $* exited $got, expected 1 ($(head -c 300 "$T/err.txt"))"
+        grep -Eq -e "$pattern" "$T/err.txt" || fail "sss view $* stderr lacks /$pattern/: $(head -c 300 "$T/err.txt")"
+    }
+    vexpect "texture\.txt:2: screenshot: a\.png: is the same file as the input" s.json --script texture.txt
+    vexpect "self\.png:2: screenshot: self\.png: is the same file as the input" s.json --script self.png
+    vexpect "twice\.txt:4: screenshot: \./x\.png: is the same file as the output x\.png" s.json --script twice.txt
+    vexpect "a\.png: is the same file as the input" s.json --frames 1 --screenshot "$V/../view/a.png"
+    [ "$(vsums)" = "$before" ] || fail "sss view changed an input"
+    [ "$(ls -A "$V" | wc -l)" -eq 5 ] || fail "refused viewer runs left files: $(ls -A "$V")"
+else
+    echo "note: xvfb-run not installed; the viewer's output checks are skipped"
+fi
+
 # ---- PNG decompression bomb: a valid all-black 16384^2 PNG (260 kB, 268 M pixels) is refused from
 # its header, within 400 MB of address space; compare checks both sizes before decoding either (an
 # 8192^2 PNG would need about 1 GB decoded).

@@ -51,7 +51,7 @@ sed 's/"mesh": 0/"mesh": 0, "scale": [1e20, 1e20, 1e20]/' "$data/external.gltf" 
 cp "$data/external data.bin" "$dir/"
 out=$("$SSS" reference "$dir/huge.gltf" -o "$dir/huge.png" --quality draft -q 2>&1); code=$?
 [ $code = 1 ] || err "reference of a .gltf beyond the world range: exit $code"
-case "$out" in *"huge.gltf: objects[0]"*"beyond 1e+18"*) ;; *) err "reference: message does not name the object: $out";; esac
+case "$out" in *"huge.gltf: nodes[0] places"*"beyond 1e+18"*) ;; *) err "reference: message does not name the node: $out";; esac
 # export gltf, then import: the default scene comes back with its subsurface material.
 "$SSS" export gltf "$ROOT/scenes/default.json" -o "$dir/d.glb" >/dev/null || err "export gltf failed"
 "$SSS" import "$dir/d.glb" -o "$dir/d.json" >/dev/null || err "import of the export failed"
@@ -74,10 +74,41 @@ if command -v xvfb-run >/dev/null 2>&1; then
 fi
 rm -rf "$dir"/rt_* "$dir/ev" "$dir/ev.txt" "$dir/view.txt"
 "$SSS" export gltf "$ROOT/scenes/default.json" >/dev/null 2>&1; [ $? = 2 ] || err "export gltf without -o is not a usage error"
+# --scatter-extension scatter writes the draft KHR_materials_scatter, which imports to the same medium.
+"$SSS" export gltf "$ROOT/scenes/default.json" -o "$dir/ks.glb" --scatter-extension scatter >/dev/null || err "export --scatter-extension scatter failed"
+grep -aq '"KHR_materials_scatter"' "$dir/ks.glb" || err "--scatter-extension scatter wrote no KHR_materials_scatter"
+"$SSS" import "$dir/ks.glb" -o "$dir/ks.json" >/dev/null || err "import of the KHR_materials_scatter export failed"
+"$SSS" import "$dir/d.glb" -o "$dir/d2.json" >/dev/null
+python3 - "$dir/d2.json" "$dir/ks.json" <<'PY' || err "the two scatter extensions import to different media"
+import json, sys
+a, b = (json.load(open(p))["objects"][0]["material"] for p in sys.argv[1:])
+assert a["type"] == b["type"] == "subsurface"
+for key in ("sigma_a", "sigma_s"):
+    assert all(abs(x - y) <= 1e-9 * abs(x) for x, y in zip(a[key], b[key])), (key, a[key], b[key])
+PY
+out=$("$SSS" export gltf "$ROOT/scenes/default.json" -o "$dir/x.glb" --scatter-extension scater 2>&1); code=$?
+[ $code = 2 ] || err "--scatter-extension scater: exit $code"
+case "$out" in *"did you mean 'scatter'"*) ;; *) err "--scatter-extension scater: $out";; esac
+rm -f "$dir"/ks.* "$dir"/ks_* "$dir"/d2*
+# A volume with diffuse transmission and no scattering extension (gltf_transform.glb) imports as a
+# subsurface material, with a warning that says so (it was a plain diffuse material, silently).
+"$SSS" import "$data/gltf_transform.glb" -o "$dir/gt.json" >/dev/null 2>"$dir/stderr" || err "import of gltf_transform.glb failed"
+grep -q '"subsurface"' "$dir/gt.json" || err "gltf_transform.glb: the volume + diffuse transmission is not subsurface"
+grep -q "warning: .*gltf_transform.glb: materials\[0\]: KHR_materials_volume + KHR_materials_diffuse_transmission" "$dir/stderr" ||
+    err "gltf_transform.glb: no warning: $(cat "$dir/stderr")"
+"$SSS" import "$data/gltf_transform.glb" -o "$dir/gt.json" -q >/dev/null 2>"$dir/stderr"
+[ -s "$dir/stderr" ] && err "-q still warns: $(cat "$dir/stderr")"
+rm -f "$dir"/gt*
 # An output onto the asset itself is refused before the work, the asset unchanged.
 cp "$data/external.gltf" "$data/external data.bin" "$dir/"
 "$SSS" import "$dir/external.gltf" -o "$dir/external.gltf" >/dev/null 2>&1; [ $? = 1 ] || err "import onto its input not refused"
 cmp -s "$dir/external.gltf" "$data/external.gltf" || err "import overwrote its input"
+# -o into folders that do not exist: created (the import used to fail: "cannot write: No such file or
+# directory"); a refused import creates none.
+"$SSS" import "$data/scatter.glb" -o "$dir/new/sub/s.json" >/dev/null 2>"$dir/stderr" || err "import into a new folder: $(cat "$dir/stderr")"
+[ -s "$dir/new/sub/s.json" ] && [ -s "$dir/new/sub/s_obj5.ply" ] || err "import into a new folder wrote $(ls -R "$dir/new")"
+"$SSS" import "$data/bad/index_range.gltf" -o "$dir/none/s.json" >/dev/null 2>&1; [ $? = 1 ] || err "bad import into a new folder"
+[ -e "$dir/none" ] && err "a refused import left the folder it would have written into"
 # Usage errors: exit 2.
 "$SSS" import "$data/scatter.glb" >/dev/null 2>&1; [ $? = 2 ] || err "missing -o is not a usage error"
 "$SSS" import "$data/scatter.glb" -o "$dir/x.json" --light-scale 0 >/dev/null 2>&1; [ $? = 2 ] || err "--light-scale 0 is not a usage error"

@@ -78,7 +78,18 @@ for c in profile lut kernel compare "mesh info" reference render techniques vers
     for o in "-q, --quiet" "--progress" "-h, --help"; do
         grep -q -- "$o" "$T/help.txt" || fail "sss $c --help lacks $o"
     done
+    # The usage lines name every option the command documents (the common ones and aliases,
+    # "the same as X", aside): both come from the one table, so none can be left out of the synopsis.
+    usage=$(awk '/^$/ {exit} {print}' "$T/help.txt")
+    awk '/^options:/ {on = 1; next} on && /^$/ {exit} on && /^  -/ {print}' "$T/help.txt" |
+        grep -v -e "the same as" -e "--quiet" -e "--progress" -e "--help" | while read -r names _; do
+        long=$(printf '%s\n' "$names" | grep -oE -- '--[a-z0-9-]+' | head -n 1)
+        short=$(printf '%s\n' "$names" | grep -oE -- '^-[a-z]' | head -n 1)
+        printf '%s\n' "$usage" | grep -qE -- "(^|[[ ])(${long}${short:+|$short})([] ]|\$)" ||
+            echo "FAIL: sss $c --help: the usage lines lack ${long}" >&2
+    done 2>>"$T/usage_fails.txt"
 done
+[ ! -s "$T/usage_fails.txt" ] || fail "$(cat "$T/usage_fails.txt")"
 "$SSS" techniques --quiet >/dev/null || fail "techniques --quiet"
 "$SSS" profile Marble --r 0:1:2 --quiet >/dev/null || fail "profile --quiet"
 "$SSS" version -q >/dev/null || fail "version -q"

@@ -1,6 +1,7 @@
 /* File helpers: whole-file reads honour the size limit, atomic writes leave either the complete new
  * file or nothing, extensions are lower-cased; inputs that are not regular files fail without
- * blocking; output transactions rename all their files or none; outputs that are inputs are found. */
+ * blocking; output transactions rename all their files or none and, when asked, create the missing
+ * folders of their outputs (removed again when they abort); outputs that are inputs are found. */
 #include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
@@ -97,6 +98,55 @@ static void test_transaction(const char *dir)
     remove(a);
 }
 
+/* A transaction with create_folders creates an output's missing folders (sss import -o newdir/scene.json
+ * used to fail): kept on commit, also through a nested transaction, removed on abort; never through a
+ * file. Elsewhere a missing folder is an error naming it. */
+static void test_missing_folders(const char *dir)
+{
+    char deep[512], top[512], file[512], under_file[512];
+    snprintf(top, sizeof top, "%s/new", dir);
+    snprintf(deep, sizeof deep, "%s/new/sub/x.txt", dir);
+    snprintf(file, sizeof file, "%s/plain.txt", dir);
+    snprintf(under_file, sizeof under_file, "%s/plain.txt/sub/y.txt", dir);
+    sss_error err = {0};
+    sss_outputs t, inner;
+    CHECK(!write_atomic(deep, "x", &err)); /* no transaction: refused, the folder named */
+    CHECK_MSG(strstr(err.message, "x.txt: cannot write: the folder") && strstr(err.message, "new/sub does not exist"),
+              "%s", err.message);
+    sss_outputs_begin(&t); /* a transaction that does not ask for folders: the same */
+    CHECK(!write_atomic(deep, "x", &err));
+    CHECK(sss_outputs_end(&t, 1, &err) == SSS_OK);
+    CHECK(count_entries(dir) == 0);
+
+    sss_outputs_begin(&t);
+    sss_outputs_begin(&inner);
+    inner.create_folders = 1;
+    CHECK_MSG(write_atomic(deep, "x", &err), "%s", err.message);
+    CHECK(sss_outputs_end(&inner, 1, &err) == SSS_OK);
+    CHECK(sss_outputs_end(&t, 0, &err) == SSS_OK); /* abort: the file and both folders go */
+    CHECK(count_entries(dir) == 0);
+
+    sss_outputs_begin(&t);
+    t.create_folders = 1;
+    CHECK_MSG(write_atomic(deep, "x", &err), "%s", err.message);
+    CHECK(sss_outputs_end(&t, 1, &err) == SSS_OK);
+    CHECK(has_text(deep, "x"));
+    remove(deep);
+    snprintf(deep, sizeof deep, "%s/new/sub", dir);
+    rmdir(deep);
+    rmdir(top);
+
+    CHECK(write_atomic(file, "f", &err)); /* a file where a folder is needed: refused, not replaced */
+    sss_outputs_begin(&t);
+    t.create_folders = 1;
+    CHECK(!write_atomic(under_file, "y", &err));
+    CHECK_MSG(strstr(err.message, "y.txt: cannot write: Not a directory"), "%s", err.message);
+    CHECK(sss_outputs_end(&t, 0, &err) == SSS_OK);
+    CHECK(has_text(file, "f"));
+    remove(file);
+    CHECK(count_entries(dir) == 0);
+}
+
 /* The temporary file is new (O_EXCL): a symlink at an old-style name is never followed, and two
  * opens of one output get different names. */
 static void test_temp_names(const char *dir)
@@ -138,6 +188,46 @@ static void test_same_file(const char *dir)
     remove(in);
     remove(other);
     remove(hard);
+}
+
+/* A command's file set: two outputs that name one entry (spelled apart, not written yet) or one
+ * existing file (a hard link) are refused, as is an output that is an input; distinct ones pass. */
+static void test_io_set(const char *dir)
+{
+    char in[512], sub[512], a[512], a2[512], a3[512], b[512], hard[512];
+    snprintf(in, sizeof in, "%s/in.txt", dir);
+    snprintf(sub, sizeof sub, "%s/sub", dir);
+    snprintf(a, sizeof a, "%s/a.png", dir);
+    snprintf(a2, sizeof a2, "%s/./a.png", dir);
+    snprintf(a3, sizeof a3, "%s/sub/../a.png", dir);
+    snprintf(b, sizeof b, "%s/b.png", dir);
+    snprintf(hard, sizeof hard, "%s/hard.png", dir);
+    sss_error err = {0};
+    CHECK(write_atomic(in, "in", &err) && mkdir(sub, 0777) == 0);
+    const char *pairs[][2] = {{a, a}, {a, a2}, {a3, a}, {in, b}, {b, hard}};
+    int refused[] = {1, 1, 1, 1, 0};
+    for (int i = 0; i < 5; i++) {
+        sss_io_set io = {0};
+        sss_io_add_input(&io, in);
+        sss_io_add_input(&io, NULL);
+        sss_io_add_output(&io, pairs[i][0]);
+        sss_io_add_output(&io, pairs[i][1]);
+        sss_result r = sss_io_check(&io, &err);
+        CHECK_MSG(r == (refused[i] ? SSS_ERROR_INVALID_ARGUMENT : SSS_OK), "pair %d: %s", i, err.message);
+        sss_io_free(&io);
+    }
+    CHECK_MSG(strstr(err.message, "is the same file as the input") != NULL, "%s", err.message);
+    CHECK(write_atomic(b, "b", &err) && link(b, hard) == 0); /* now one existing file */
+    sss_io_set io = {0};
+    sss_io_add_output(&io, b);
+    sss_io_add_output(&io, hard);
+    CHECK(sss_io_check(&io, &err) == SSS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(strstr(err.message, "hard.png: is the same file as the output") != NULL, "%s", err.message);
+    sss_io_free(&io);
+    remove(in);
+    remove(b);
+    remove(hard);
+    rmdir(sub);
 }
 
 int main(void)
@@ -183,7 +273,9 @@ int main(void)
     test_fifo(dir);
     test_transaction(dir);
     test_temp_names(dir);
+    test_missing_folders(dir);
     test_same_file(dir);
+    test_io_set(dir);
     rmdir(dir);
     return CHECK_DONE();
 }

@@ -1,6 +1,7 @@
 /* glTF export round trip: a scene exported by sss_export_gltf and imported by sss_gltf_load gives
  * back its world meshes, coefficients (sigma_a, sigma_s, g, eta per scene unit), camera basis and
- * punctual lights; area lights are counted as left out; the file is a valid .glb container; albedo
+ * punctual lights, with either scattering extension (KHR_materials_volume_scatter, KHR_materials_scatter);
+ * area lights are counted as left out; the file is a valid .glb container; albedo
  * textures travel as embedded PNGs with their pixels. */
 #include <math.h>
 #include <stdint.h>
@@ -75,7 +76,24 @@ static void check_light(const sss_light *a, const sss_light *b)
     CHECK_NEAR(a->cone_delta, b->cone_delta, 1e-9); /* delta 0 becomes a delta of one ulp of the angle */
 }
 
-static void test_round_trip(void)
+/* The JSON chunk of the .glb at path (malloc'd, NUL-terminated), or NULL. */
+static char *json_chunk(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    unsigned char head[20];
+    uint32_t length = 0;
+    char *json = NULL;
+    if (f && fread(head, 1, 20, f) == 20) {
+        memcpy(&length, head + 12, 4);
+        json = length < (1u << 26) ? calloc(length + 1, 1) : NULL;
+        if (json && fread(json, 1, length, f) != length) json[0] = '\0';
+    }
+    if (f) fclose(f);
+    return json;
+}
+
+/* Exported with either scattering extension, imported: the same coefficients (which = the extension). */
+static void round_trip(sss_export_gltf_scatter which)
 {
     sss_scene scene;
     sss_error err = {0};
@@ -85,9 +103,22 @@ static void test_round_trip(void)
     CHECK(mkdtemp(dir) != NULL);
     snprintf(path, sizeof path, "%s/rt.glb", dir);
     const double time = 0.7; /* the animated box is exported posed */
-    sss_export_gltf_desc desc = {.time = time};
+    sss_export_gltf_desc desc = {.time = time, .scatter_extension = which};
     CHECK_MSG(sss_export_gltf(&scene, &desc, path, &err) == SSS_OK, "%s", err.message);
     CHECK(desc.skipped_lights == 1); /* the area light */
+    /* the chosen extension and its companions only: KHR_materials_scatter excludes diffuse transmission
+     * and needs transmission (KhronosGroup/glTF pull request 2579) */
+    char *json = json_chunk(path);
+    CHECK(json != NULL);
+    if (json) {
+        int scatter = which == SSS_EXPORT_GLTF_SCATTER;
+        CHECK((strstr(json, "\"KHR_materials_scatter\"") != NULL) == scatter);
+        CHECK((strstr(json, "KHR_materials_transmission") != NULL) == scatter);
+        CHECK((strstr(json, "KHR_materials_volume_scatter") == NULL) == scatter);
+        CHECK((strstr(json, "KHR_materials_diffuse_transmission") == NULL) == scatter);
+        CHECK(!scatter || strstr(json, "\"scatterStrengthFactor\":1"));
+    }
+    free(json);
 
     sss_gltf_desc in = {.width = scene.camera.width, .height = scene.camera.height};
     sss_gltf_scene g;
@@ -143,6 +174,17 @@ static void test_round_trip(void)
     remove(path);
     CHECK(rmdir(dir) == 0); /* empty: no temporary file left */
     sss_scene_free(&scene);
+}
+
+static void test_round_trip(void)
+{
+    round_trip(SSS_EXPORT_GLTF_VOLUME_SCATTER);
+    round_trip(SSS_EXPORT_GLTF_SCATTER);
+    sss_scene scene = {0};
+    sss_export_gltf_desc bad = {.scatter_extension = (sss_export_gltf_scatter)7};
+    sss_error err = {0};
+    CHECK(sss_export_gltf(&scene, &bad, "/tmp/unused.glb", &err) == SSS_ERROR_INVALID_ARGUMENT);
+    CHECK(access("/tmp/unused.glb", F_OK) != 0);
 }
 
 /* A textured object (the JPEG of the image tests, decoded once by the scene loader) exports as an

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "export/export_test.h"
 #include "sss/export.h"
 #include "sss/reference.h"
 
@@ -121,7 +122,7 @@ static void test_environment_mapping(void)
     double worst = 0;
     for (int r = 0; r < 4; r++) {
         double rot = -90.0 + 70.0 * r, m[16];
-        sss_export_pbrt_env_light_to_world(rot, m);
+        export_pbrt_env_light_to_world(rot, m);
         for (int k = 0; k < 200; k++) {
             double z = 1.0 - 2.0 * (k + 0.5) / 200.0, a = 2.39996 * k, s = sqrt(1 - z * z);
             double d[3] = {s * cos(a), z, s * sin(a)}, L[3];

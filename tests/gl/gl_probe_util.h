@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "gl/gl_internal.h"
+#include "gl/core/gl_base.h"
 
 typedef struct gt_probe {
     sss_gl_context *ctx;

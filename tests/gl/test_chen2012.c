@@ -1,4 +1,4 @@
-/* chen2012 (Chen et al. 2012 as Maisch & Ropinski 2020 configure it, src/gl/chen2012/tech_chen2012.c):
+/* chen2012 (Chen et al. 2012 as Maisch & Ropinski 2020 configure it, src/gl/techniques/chen2012/tech_chen2012.c):
  *  - energy: a large flat plane lit at normal incidence by a directional light (E = 1) shows
  *    c_o F_t E rho_eff in the middle of the view (docs/physics.md §1; rho_eff the scene material's PBD albedo;
  *    F_t and c from the physics module). Each splat carries a texel's flux F_t E A and the

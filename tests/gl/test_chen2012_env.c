@@ -1,6 +1,6 @@
-/* chen2012 under environment lighting (src/gl/chen2012/tech_chen2012.c; issue 5).
+/* chen2012 under environment lighting (src/gl/techniques/chen2012/tech_chen2012.c; issue 5).
  *
- * An environment map becomes 32 directional lights (median cut, src/gl/lights.c), each with its own
+ * An environment map becomes 32 directional lights (median cut, src/gl/core/lights.c), each with its own
  * irradiance buffer and splats, so the splats of all lights together run into the millions. The
  * splat buffer had a fixed capacity (1M): every splat past it was dropped, i.e. the last lights
  * whole; on eval_skin_env half the directions and the point light after them vanished (DSSIM 0.12).

@@ -1,4 +1,4 @@
-/* dss (Deep Screen Space as Maisch & Ropinski 2020 configure it, src/gl/dss/tech_dss.c):
+/* dss (Deep Screen Space as Maisch & Ropinski 2020 configure it, src/gl/techniques/dss/tech_dss.c):
  *  - energy: a large flat plane lit at normal incidence by a directional light (E = 1) shows
  *    c_o F_t E rho_eff in the middle of the view (docs/physics.md §1; rho_eff the plane integral of R_d, the
  *    scene material's PBD albedo; F_t and c from the physics module). The splats tile the plane and

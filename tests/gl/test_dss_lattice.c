@@ -1,4 +1,4 @@
-/* dss's surfel lattice must not print into the image (footprint, dss_splat.frag.glsl; docs/dss.md).
+/* dss's surfel lattice must not print into the image (footprint, shell_splat.frag.glsl; docs/dss.md).
  *
  * A uniformly lit plane scatters light uniformly: the reference image of its middle is flat (docs/physics.md
  * 1: c_o F_t E rho_eff at every pixel, whatever R_d's width). dss tessellates the splat mesh's

@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "gl/env_cut.h"
+#include "gl/core/env_cut.h"
 
 typedef enum { MAP_UNIFORM, MAP_BLACK, MAP_SPIKE, MAP_SPARSE } map_kind;
 

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "gl/gl_internal.h"
+#include "gl/core/gl_base.h"
 
 static void test_headless(void)
 {

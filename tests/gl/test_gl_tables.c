@@ -6,8 +6,8 @@
 #include <pthread.h>
 
 #include "gl_test_util.h"
-#include "gl/gl_internal.h"
-#include "gl/sam/tech_sam.h"
+#include "gl/gl_test.h"
+#include "gl/techniques/sam/tech_sam.h"
 
 #define W 64
 #define H 48
@@ -105,7 +105,7 @@ static void check_same_image(void)
 static int render_sam(const sss_scene *scene, const sss_gl_tables *tables, sss_image *out, double *build_seconds)
 {
     sss_gl_renderer *r = render_with("sam", scene, tables, out);
-    *build_seconds = r ? ((sam_state *)r->tech_state)->build_seconds : -1.0;
+    *build_seconds = r ? ((sam_state *)gl_test_renderer_state(r))->build_seconds : -1.0;
     sss_gl_renderer_destroy(r);
     return out->pixels != NULL;
 }

@@ -184,7 +184,12 @@ static void test_buffers_and_timings(void)
     CHECK(st.per_pixel_bytes > 0 && st.texture_bytes > st.lut_bytes);
     /* parameters: unknown names and values out of range are errors naming them */
     CHECK(sss_gl_renderer_set_param(r, "no_such_param", 1, &err) == SSS_ERROR_INVALID_ARGUMENT);
-    CHECK(strstr(err.message, "no_such_param") && strstr(err.message, "layers"));
+    CHECK(strstr(err.message, "no_such_param") && strstr(err.message, "sss techniques"));
+    /* a misspelt name gets the closest known one (one letter left out: edit distance 1) */
+    CHECK(sss_gl_renderer_set_param(r, "layrs", 1, &err) == SSS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(strstr(err.message, "did you mean 'layers'?") != NULL, "%s", err.message);
+    CHECK(sss_gl_renderer_set_param(r, "shadow_szie", 64, &err) == SSS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(strstr(err.message, "did you mean 'shadow_size'?") != NULL, "%s", err.message);
     CHECK(sss_gl_renderer_set_param(r, "layers", -1, &err) == SSS_ERROR_INVALID_ARGUMENT);
     CHECK(strstr(err.message, "layers") != NULL);
     CHECK(sss_gl_renderer_set_param(r, "n", 1.5, &err) == SSS_ERROR_INVALID_ARGUMENT);

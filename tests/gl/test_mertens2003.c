@@ -1,4 +1,4 @@
-/* mertens2003 (Mertens et al. 2003, src/gl/mertens2003/tech_mertens2003.c):
+/* mertens2003 (Mertens et al. 2003, src/gl/techniques/mertens2003/tech_mertens2003.c):
  *  - unbiasedness: a large flat plane under a directional light at normal incidence, seen head-on,
  *    has B(x_o) = rho_eff E everywhere, so the pixels show c_o F_t E rho_eff (docs/physics.md §1; rho_eff the
  *    material's PBD albedo, F_t and c from the physics module). On the plane the sample p' is the

@@ -1,4 +1,4 @@
-/* mertens2003's importance-sampling tables (src/gl/mertens2003/tech_mertens2003_table.c), without GL:
+/* mertens2003's importance-sampling tables (src/gl/techniques/mertens2003/tech_mertens2003_table.c), without GL:
  *  - the tabulated radii are the exact sampler's quantiles: sss_pbd_sample_radius at the nodes (PBD),
  *    and for the dipole the empirical CDF of sss_dipole_sample_radius (Mertens et al. 2003's two-uniform Newton
  *    sampler, 20000 draws) agrees with the table's CDF (Kolmogorov-Smirnov distance below 1.63 /
@@ -10,7 +10,7 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "gl/mertens2003/tech_mertens2003.h"
+#include "gl/techniques/mertens2003/tech_mertens2003.h"
 #include "sss/material.h"
 #include "sss/profile.h"
 

@@ -10,7 +10,8 @@
 #include <unistd.h>
 
 #include "gl_test_util.h"
-#include "gl/sam/tech_sam.h"
+#include "gl/gl_test.h"
+#include "gl/techniques/sam/tech_sam.h"
 #include "sss/sam.h"
 
 static void *read_buffer(GLuint b, size_t bytes)
@@ -76,7 +77,7 @@ static void test_twist(void)
         sss_scene_free(&scene);
         return;
     }
-    sam_state *st = r->tech_state;
+    sam_state *st = gl_test_renderer_state(r);
     CHECK(st->count == 1);
     const sam_object *o = &st->objs[0];
     uint32_t V = o->vertices, n = o->n;
@@ -165,7 +166,7 @@ static void test_twist_back(void)
         fprintf(stderr, "%s\n", err.message);
         CHECK(0);
     } else {
-        sam_state *st = r->tech_state;
+        sam_state *st = gl_test_renderer_state(r);
         const sam_object *o = &st->objs[0];
         uint32_t V = o->vertices, n = o->n, B = o->back_vertices;
         CHECK(o->from_file && o->has_back && B == coarse.vertex_count && V == obj->mesh.vertex_count);
@@ -250,7 +251,7 @@ static void test_static(void)
     CHECK(sss_gl_renderer_create(gt_ctx(), &scene, &d, &r, &err) == SSS_OK);
     for (int f = 0; r && f < 3; f++) CHECK(sss_gl_renderer_render(r, 0.1 * f, &err) == SSS_OK);
     if (r) {
-        sam_state *st = r->tech_state;
+        sam_state *st = gl_test_renderer_state(r);
         const sam_object *o = &st->objs[0];
         uint32_t *links = read_buffer(o->links, sizeof(uint32_t) * o->vertices * o->n);
         sss_sam sam;

@@ -11,7 +11,7 @@
  *    layer i + 1 was and gets sqrt(i) instead of sqrt(i + 1) (section 6.1's brightening): +11% in red;
  *  - mertens2003 (pattern x k): Monte Carlo noise per pixel (bound 5%, measured 2.3%), mean within
  *    0.1% (measured 0.02%);
- *  - chen2012 and dss, whose shell pyramid counts output pixels (tech_dss_shells.h) and dss's
+ *  - chen2012 and dss, whose shell pyramid counts output pixels (common/shells.h) and dss's
  *    surfel_pixels too: without the render-resolution level (fine_radius / view_fine_radius 0) the
  *    k = 1 image itself, every pixel within 2.5e-4 (float sums; measured 2e-5 dss, 1.4e-6 chen2012), at
  *    k = 2 (the level-0 receivers are means of the four render pixels around the output pixel's
@@ -34,7 +34,6 @@
  *    only 36-48 fragments a splat and the fine level's quads, (2 (2.5 + 0.375) k)^2 = 132, weigh; +5%
  *    on eval_backlit, +10% on eval_front). The pyramid starting at the render pixel made 3.0x
  *    (chen2012) and 12x (dss). */
-#include "gl/dss/tech_dss_shells.h"
 #include "splat_plane_util.h"
 #include "gl_test_util.h"
 
@@ -75,7 +74,7 @@ static int render_k(const sss_scene *scene, const char *technique, const sss_gl_
     sss_gl_stats st;
     sss_gl_renderer_stats(r, &st);
     work->drawn = st.splat_drawn;
-    work->fragments = shell_splat_fragments(shell_targets_of(r));
+    work->fragments = st.splat_fragments;
     sss_gl_renderer_destroy(r);
     return 1;
 }

@@ -8,6 +8,7 @@
 
 #include "check.h"
 #include "kernel/kernel_internal.h"
+#include "kernel/kernel_test.h"
 #include "kernel_test_util.h"
 #include "sss/kernel.h"
 
@@ -291,8 +292,8 @@ static void check_guided(const sss_profile *p, double k, const char *what)
             t += ap[c] * h;
         }
         for (int i = 0; i < n; i++) start[i] *= sqrt(sss_profile_total(p, c)) / t;
-        double f = sss_kernel_guided_objective(p, n, extent, k, b, c, ac);
-        double f0 = sss_kernel_guided_objective(p, n, extent, k, b, c, start);
+        double f = kernel_guided_objective(p, n, extent, k, b, c, ac);
+        double f0 = kernel_guided_objective(p, n, extent, k, b, c, start);
         CHECK_MSG(f <= f0, "%s ch %d: objective %g above the start's %g", what, c, f, f0);
         /* Stationary along the constraint: moving mass between two cells (sum kept) does not lower
          * the objective to first order (central differences), unlike at the start. */
@@ -303,11 +304,11 @@ static void check_guided(const sss_profile *p, double k, const char *what)
             for (int q = 0; q < n; q++) d[q] = ac[q], d0[q] = start[q];
             d[i] += e, d[n - 1 - i] += e, d[j] -= e, d[n - 1 - j] -= e;
             d0[i] += e, d0[n - 1 - i] += e, d0[j] -= e, d0[n - 1 - j] -= e;
-            double fp = sss_kernel_guided_objective(p, n, extent, k, b, c, d);
-            double fp0 = sss_kernel_guided_objective(p, n, extent, k, b, c, d0);
+            double fp = kernel_guided_objective(p, n, extent, k, b, c, d);
+            double fp0 = kernel_guided_objective(p, n, extent, k, b, c, d0);
             for (int q = 0; q < n; q++) d[q] = 2.0 * ac[q] - d[q], d0[q] = 2.0 * start[q] - d0[q];
-            double fm = sss_kernel_guided_objective(p, n, extent, k, b, c, d);
-            double fm0 = sss_kernel_guided_objective(p, n, extent, k, b, c, d0);
+            double fm = kernel_guided_objective(p, n, extent, k, b, c, d);
+            double fm0 = kernel_guided_objective(p, n, extent, k, b, c, d0);
             worst = fmax(worst, fabs(fp - fm) / (2.0 * e));
             worst0 = fmax(worst0, fabs(fp0 - fm0) / (2.0 * e));
         }
@@ -316,7 +317,7 @@ static void check_guided(const sss_profile *p, double k, const char *what)
     CHECK(sss_kernel_guided(p, 1, extent, k, b, a, &err) == SSS_ERROR_INVALID_ARGUMENT);
     CHECK(sss_kernel_guided(p, n, extent, -1.0, b, a, &err) == SSS_ERROR_INVALID_ARGUMENT);
     CHECK(sss_kernel_guided(p, n, extent, k, 0.0, a, &err) == SSS_ERROR_INVALID_ARGUMENT);
-    CHECK(isnan(sss_kernel_guided_objective(p, n, extent, k, b, 3, a)));
+    CHECK(isnan(kernel_guided_objective(p, n, extent, k, b, 3, a)));
 }
 
 int main(void)

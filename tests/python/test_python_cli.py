@@ -80,6 +80,24 @@ class ReferenceMatchesCli(unittest.TestCase):
         np.testing.assert_array_equal(from_dict, expected)  # the image depends on the seed, not the threads
         self.assertIsNotNone(from_dict.base)  # the library's memory, owned through a capsule
 
+    def test_reference_size(self):
+        """width/height as `sss reference --width --height`; the scene keeps its camera."""
+        with tempdir() as tmp:
+            path = os.path.join(tmp, "small.json")
+            with open(path, "w") as f:
+                json.dump(SMALL_SCENE, f)
+            out = os.path.join(tmp, "ref.pfm")
+            cli("reference", path, "-o", out, "--quality", "draft", "--bounces", 1, "--width", 16, "--height", 12,
+                "--quiet")
+            expected = sss.read_image(out)
+        scene = sss.Scene.load(SMALL_SCENE)
+        image = sss.reference(scene, quality="draft", bounces=1, width=16, height=12)
+        self.assertEqual(image.shape, (12, 16, 3))
+        np.testing.assert_array_equal(image, expected)
+        self.assertEqual((scene.width, scene.height), (24, 20))
+        with self.assertRaises(sss.Error):
+            sss.reference(scene, quality="draft", width=-1)
+
 
 class PhysicsMatchesCli(unittest.TestCase):
     def test_lut(self):
@@ -151,6 +169,33 @@ class ImagesAndMetrics(unittest.TestCase):
         self.assertEqual((same["dssim"], same["rmse"], same["psnr"], same["flip"]), (0.0, 0.0, math.inf, 0.0))
         with_map = sss.compare(self.a, self.b, dssim_map=True)
         self.assertEqual(with_map["dssim_map"].shape, self.a.shape)
+
+    def test_flip_map(self):
+        """The FLIP map's mean is the FLIP value (its definition), one value per pixel in [0, 1]."""
+        m = sss.compare(self.a, self.b, flip_map=True, dssim_map=True)
+        fm = m["flip_map"]
+        self.assertEqual(fm.shape, self.a.shape)
+        np.testing.assert_array_equal(fm[..., 0], fm[..., 2])
+        self.assertTrue(0.0 <= float(fm.min()) and float(fm.max()) <= 1.0)
+        self.assertAlmostEqual(float(np.mean(fm[..., 0], dtype=np.float64)), m["flip"], delta=1e-6)
+        self.assertIn("dssim_map", m)
+
+    def test_to_srgb(self):
+        """to_srgb is the sRGB OETF of the clamped, exposed image, rounded to 8 bits (IEC 61966-2-1)."""
+        x = np.array([[[0.0, 0.002, 0.0031308], [0.18, 0.5, 1.0], [2.0, -1.0, 0.75]]], dtype=np.float32)
+        got = sss.to_srgb(x, exposure=1.0)
+        self.assertEqual(got.dtype, np.uint8)
+        self.assertEqual(got.shape, x.shape)
+        v = np.clip(x.astype(np.float64) * 2.0, 0, 1)
+        want = np.round(255 * np.where(v <= 0.0031308, 12.92 * v, 1.055 * v ** (1 / 2.4) - 0.055))
+        self.assertLessEqual(int(np.abs(got.astype(int) - want.astype(int)).max()), 1)
+        self.assertEqual(got[0, 1, 2], 255)
+
+    def test_size_mismatch_names_numpy_shapes(self):
+        with self.assertRaises(sss.Error) as e:
+            sss.compare(self.a, self.a[:20])
+        self.assertIn("(24, 32, 3)", str(e.exception))
+        self.assertIn("(20, 32, 3)", str(e.exception))
 
     def test_compare_matches_cli(self):
         with tempdir() as tmp:

@@ -69,7 +69,7 @@ class Errors(unittest.TestCase):
             self.assertEqual(sorted(os.listdir(tmp)), ["junk.pfm"])
         with self.assertRaises(ValueError):
             sss.write_image("/tmp/never.pfm", np.zeros((4, 4, 4), np.float32))
-        self.assertError(INVALID_ARGUMENT, "size", sss.compare, np.zeros((12, 12, 3)), np.zeros((12, 13, 3)))
+        self.assertError(INVALID_ARGUMENT, "(12, 13, 3)", sss.compare, np.zeros((12, 12, 3)), np.zeros((12, 13, 3)))
 
     def test_bad_physics_arguments(self):
         self.assertError(INVALID_ARGUMENT, "Unobtainium", sss.profile, "Unobtainium", [1.0])

@@ -18,7 +18,8 @@ class Install(unittest.TestCase):
                      if os.path.basename(root) == "sss" and "__init__.py" in files]
             self.assertEqual(len(sites), 1, sites)
             site = os.path.dirname(sites[0])
-            self.assertRegex(os.path.relpath(site, prefix), r"^lib/python3[.0-9]*/(site|dist)-packages$")
+            # docs/python.md: a prefix off Debian's sys.path gets lib/python3.X/site-packages
+            self.assertEqual(os.path.relpath(site, prefix), "lib/python%d.%d/site-packages" % sys.version_info[:2])
             code = ("import sss, sys; s = sss.Scene.load(sys.argv[1]); "
                     "img = sss.render(s, technique='local', params={'shadow_size': 64}, width=16, height=16); "
                     "print(sss.__file__, img.shape, float(img.max()) > 0)")
@@ -34,6 +35,16 @@ class Install(unittest.TestCase):
             libs = {line.split()[-1] for line in maps.splitlines() if "libsss.so" in line}
             self.assertEqual(len(libs), 1, libs)
             self.assertTrue(libs.pop().startswith(os.path.realpath(prefix)))
+
+    def test_system_prefix_gets_its_dist_packages(self):
+        """docs/python.md: under /usr/local the module goes where Debian's python3 looks (dist-packages),
+        also when the build was configured for another prefix (DESTDIR stages the install)."""
+        with tempdir() as stage:
+            env = dict(os.environ, DESTDIR=stage)
+            subprocess.run(["cmake", "--install", BUILD, "--prefix", "/usr/local", "--component", "Unspecified"],
+                           env=env, check=True, capture_output=True)
+            want = os.path.join(stage, "usr/local/lib/python%d.%d/dist-packages/sss/__init__.py" % sys.version_info[:2])
+            self.assertTrue(os.path.isfile(want), want)
 
 
 if __name__ == "__main__":

@@ -9,8 +9,8 @@
  *    5.5% less at eta 1.33, if the reflected light were lost).
  * N bounces give single (1 - q^N) / (1 - q), the default single / (1 - q) (within what the stopping
  * rule leaves out); each bounce adds less than the one before; bounces = 1 is the single-event image
- * of the old renderer bit for bit (tests/data/reference/bounces1.pfm, rendered before interreflection
- * existed; Embree's hits are the same on every x86-64 ISA it dispatches to for these rays). */
+ * of the old renderer (tests/data/reference/bounces1.pfm, rendered before interreflection existed, on
+ * another machine: compared within a tolerance, test_single_event_unchanged). */
 #include "ref_test_util.h"
 
 #include "sss/scene.h"
@@ -162,8 +162,27 @@ static void test_subsurface_sphere(void)
     tmesh_free(&sphere);
 }
 
+/* Values of a and b that differ by more than the relative tolerance (of the larger magnitude). */
+static size_t count_beyond(const sss_image *a, const sss_image *b, double tolerance, double *worst)
+{
+    size_t n = 0;
+    *worst = 0.0;
+    for (size_t i = 0; i < 3 * (size_t)a->width * a->height; i++) {
+        double d = fabs(a->pixels[i] - b->pixels[i]) / fmax(fmax(fabs(a->pixels[i]), fabs(b->pixels[i])), 1e-30);
+        *worst = fmax(*worst, d);
+        n += d > tolerance;
+    }
+    return n;
+}
+
 /* bounces = 1 against the image the renderer made before interreflection existed (same scene file,
- * seed and quality): bit for bit. */
+ * seed and quality), rendered on another machine: Embree picks its traversal kernels by instruction set,
+ * and hits differ in the last bits between them (worst relative 2.2e-7 with AVX2, 4.3e-6 with SSE4.2
+ * against the AVX-512 image). So every value within 1e-4 relative, where the tolerance still catches
+ * any change of the estimator: another seed (a different sample pattern, same scene) moves most values
+ * by more than that, which the test checks too. */
+#define SINGLE_EVENT_TOLERANCE 1e-4
+
 static void test_single_event_unchanged(void)
 {
     sss_scene scene;
@@ -172,7 +191,7 @@ static void test_single_event_unchanged(void)
         CHECK_MSG(0, "%s", err.message);
         return;
     }
-    sss_image old, img;
+    sss_image old, img, reseeded;
     CHECK(sss_image_read(SSS_TEST_DATA "/reference/bounces1.pfm", &old, &err) == SSS_OK);
     sss_reference_desc d;
     memset(&d, 0, sizeof d);
@@ -181,21 +200,21 @@ static void test_single_event_unchanged(void)
         CHECK_MSG(0, "%s", err.message);
     } else {
         CHECK(img.width == old.width && img.height == old.height);
-        size_t differ = 0;
-        double worst = 0.0;
-        for (size_t i = 0; i < 3 * (size_t)img.width * img.height; i++)
-            if (img.pixels[i] != old.pixels[i]) {
-                differ++;
-                worst = fmax(worst, fabs(img.pixels[i] - old.pixels[i]) / fmax(fabs(old.pixels[i]), 1e-30));
-            }
-        CHECK_MSG(differ == 0, "bounces 1: %zu values differ from the single-event image (worst relative %.3g)", differ,
-                  worst);
+        size_t values = 3 * (size_t)img.width * img.height;
+        double worst;
+        size_t beyond = count_beyond(&img, &old, SINGLE_EVENT_TOLERANCE, &worst);
+        CHECK_MSG(beyond == 0, "bounces 1: %zu of %zu values differ from the single-event image by more than %g "
+                               "(worst relative %.3g)", beyond, values, SINGLE_EVENT_TOLERANCE, worst);
+        d.seed = 2;
+        CHECK(sss_reference_render(&scene, &d, &reseeded, NULL, NULL, NULL, &err) == SSS_OK);
+        beyond = count_beyond(&reseeded, &old, SINGLE_EVENT_TOLERANCE, &worst);
+        CHECK_MSG(beyond > values / 2, "another seed moves only %zu of %zu values by more than %g", beyond, values,
+                  SINGLE_EVENT_TOLERANCE);
+        sss_image_free(&reseeded);
         /* and the default differs: the torus lights itself and the floor */
-        sss_image full;
-        d.bounces = 0;
+        sss_image full, draft1;
+        d.seed = 0;
         d.quality = SSS_REFERENCE_DRAFT;
-        sss_image draft1;
-        d.bounces = 1;
         CHECK(sss_reference_render(&scene, &d, &draft1, NULL, NULL, NULL, &err) == SSS_OK);
         d.bounces = 0;
         CHECK(sss_reference_render(&scene, &d, &full, NULL, NULL, NULL, &err) == SSS_OK);

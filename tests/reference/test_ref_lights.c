@@ -11,6 +11,8 @@
 
 /* Camera height above the plane (below the area light's rectangle for that test). */
 static double H_CAM = 4.0;
+/* A black object between the lights and the plane (NULL: none). */
+static const sss_mesh *OCCLUDER = NULL;
 
 /* The plane point seen through raster point (px, py) of the downward camera at height H_CAM. */
 static void plane_point(double px, double py, double *x, double *z)
@@ -31,11 +33,12 @@ static double check_plane(const sss_light *lights, size_t nl, irr_fn f, const vo
 {
     tmesh plane = {0};
     tmesh_plane(&plane, 60.0, 0, 0, 0, 4, 0);
-    sss_reference_object o = object_diffuse(&plane.m, RHO);
+    sss_reference_object o[2] = {object_diffuse(&plane.m, RHO)};
+    if (OCCLUDER) o[1] = object_diffuse(OCCLUDER, 0.0);
     sss_reference_world w;
     memset(&w, 0, sizeof w);
     camera_set(&w.camera, 0, H_CAM, 0, 0, 0, 0, FOV, W, W);
-    w.objects = &o, w.object_count = 1, w.lights = lights, w.light_count = nl;
+    w.objects = o, w.object_count = OCCLUDER ? 2 : 1, w.lights = lights, w.light_count = nl;
     w.environment_maps = env;
     sss_reference_desc d;
     memset(&d, 0, sizeof d);
@@ -149,6 +152,61 @@ static double irr_const(const void *ctx, double x, double z)
     return *(const double *)ctx;
 }
 
+/* Many point lights (more than REF_EXACT_POINT_LIGHTS: drawn from the light tree) on a 16 x 16 grid at
+ * height 6, part of them hidden behind a black slab at height 5..5.1 over x >= 0.3: the closed form
+ * sums I cos / d^2 over the lights that the segment to the plane point passes by the slab. */
+#define GRID_LIGHTS 16
+#define SLAB_LO 5.0
+#define SLAB_HI 5.1
+#define SLAB_X 0.3
+
+typedef struct light_set {
+    const sss_light *lights;
+    size_t count;
+    int slab;
+} light_set;
+
+static int slab_blocks(const sss_light *l, double x, double z)
+{
+    (void)z; /* the slab spans z = -50..50 */
+    double x_lo = x + (l->position[0] - x) * SLAB_LO / l->position[1];
+    double x_hi = x + (l->position[0] - x) * SLAB_HI / l->position[1];
+    return (x_lo >= SLAB_X && x_lo <= 50.0) || (x_hi >= SLAB_X && x_hi <= 50.0);
+}
+
+static double irr_many(const void *ctx, double x, double z)
+{
+    const light_set *set = ctx;
+    double e = 0.0;
+    for (size_t i = 0; i < set->count; i++)
+        if (!set->slab || !slab_blocks(&set->lights[i], x, z)) e += irr_point(&set->lights[i], x, z);
+    return e;
+}
+
+/* The plane's mean over the image against the closed form's: unbiased draws average out. */
+static void check_many_lights(void)
+{
+    sss_light lights[GRID_LIGHTS * GRID_LIGHTS];
+    for (int i = 0; i < GRID_LIGHTS; i++)
+        for (int j = 0; j < GRID_LIGHTS; j++)
+            lights[i * GRID_LIGHTS + j] = light_point(-3.0 + 6.0 * i / (GRID_LIGHTS - 1), 6.0,
+                                                      -3.0 + 6.0 * j / (GRID_LIGHTS - 1), 0.05);
+    light_set open = {lights, GRID_LIGHTS * GRID_LIGHTS, 0};
+    double dev = check_plane(lights, open.count, irr_many, &open, NULL);
+    CHECK_MSG(dev < 0.02, "%zu point lights: worst deviation %.4g of the maximum", open.count, dev);
+    printf("%zu point lights: %.3g\n", open.count, dev);
+    tmesh slab = {0};
+    const double lo[3] = {SLAB_X, SLAB_LO, -50.0}, hi[3] = {50.0, SLAB_HI, 50.0};
+    tmesh_box(&slab, lo, hi, 2);
+    OCCLUDER = &slab.m;
+    light_set hidden = {lights, GRID_LIGHTS * GRID_LIGHTS, 1};
+    dev = check_plane(lights, hidden.count, irr_many, &hidden, NULL);
+    CHECK_MSG(dev < 0.05, "%zu point lights, part hidden: worst deviation %.4g of the maximum", hidden.count, dev);
+    printf("%zu point lights, part hidden: %.3g\n", hidden.count, dev);
+    OCCLUDER = NULL;
+    tmesh_free(&slab);
+}
+
 /* Renders w as the single-event integral the closed forms describe (draft, no adaptive sampling),
  * without (a) and with (b) the camera ray's mirror reflection; 1 when both rendered. */
 static int render_specular_pair(const sss_reference_world *w, sss_image *a, sss_image *b)
@@ -198,6 +256,7 @@ static void check_mirror_of_scene(void)
 
 int main(void)
 {
+    check_many_lights();
     double dev;
     sss_light l = light_point(0.7, 3.0, -0.4, 5.0);
     dev = check_plane(&l, 1, irr_point, &l, NULL);

@@ -109,6 +109,22 @@ static void test_defaults(void)
                       "   \"material\": {\"type\": \"subsurface\", \"medium\": \"Skin1\", \"texture\": \"assets/albedo.png\"}}]}";
     if (parse_ok(tex, "tex.json", &s)) CHECK(s.objects[0].mesh.uvs != NULL && strstr(s.objects[0].material.texture, "albedo.png"));
     sss_scene_free(&s);
+
+    /* One decoded image per texture file, in the order of first use, shared by the objects naming it. */
+#define TEX_PLANE(t) "{\"procedural\": {\"shape\": \"plane\", \"size\": 2}, \"material\": {\"type\": " \
+                     "\"subsurface\", \"medium\": \"Skin1\"" t "}}"
+    const char *shared = "{\"camera\": {\"position\": [0, 3, 3], \"look_at\": [0, 0, 0]}, \"objects\": ["
+        TEX_PLANE(", \"texture\": \"assets/albedo.png\"") "," TEX_PLANE(", \"texture\": \"assets/sky.hdr\"") ","
+        TEX_PLANE(", \"texture\": \"assets/albedo.png\"") "," TEX_PLANE("") "]}";
+#undef TEX_PLANE
+    if (parse_ok(shared, "shared.json", &s)) {
+        CHECK(s.texture_count == 2 && strstr(s.textures[0].path, "albedo.png") && strstr(s.textures[1].path, "sky.hdr"));
+        CHECK(s.objects[0].material.texture_image == &s.textures[0].image);
+        CHECK(s.objects[1].material.texture_image == &s.textures[1].image);
+        CHECK(s.objects[2].material.texture_image == &s.textures[0].image);
+        CHECK(s.objects[3].material.texture_image == NULL);
+    }
+    sss_scene_free(&s);
 }
 
 /* Finite values at the edge of the double range are either refused or give a unit basis, unit light
@@ -264,6 +280,15 @@ static const bad_case bad_cases[] = {
     {WITH_LIGHT("{\"type\": \"point\", \"position\": [0, 1, 0], \"intensity\": [1, -1, 1]}"), "lights[0].intensity[1]"},
     {WITH_LIGHT("{\"type\": \"directional\", \"direction\": [0, 0, 0], \"radiance\": [1, 1, 1]}"),
      "lights[0].direction: must be a non-zero vector"},
+    /* beyond what the real-time renderer carries in float (SSS_SCENE_MAX_LIGHT_VALUE, positions in float) */
+    {WITH_LIGHT("{\"type\": \"point\", \"position\": [0, 1, 0], \"intensity\": [1, 1, 1e39]}"),
+     "lights[0].intensity[2]: 1e+39: out of range [0, 1e+30]"},
+    {WITH_LIGHT("{\"type\": \"directional\", \"direction\": [0, -1, 0], \"radiance\": [2e30, 1, 1]}"),
+     "lights[0].radiance[0]: 2e+30: out of range [0, 1e+30]"},
+    {WITH_LIGHT("{\"type\": \"point\", \"position\": [0, -1e39, 0], \"intensity\": [1, 1, 1]}"),
+     "lights[0].position[1]: -1e+39: out of range [-3.40282e+38, 3.40282e+38]"},
+    {WITH_LIGHT("{\"type\": \"area\", \"center\": [0, 1, 0], \"u\": [1e39, 0, 0], \"v\": [0, 0, 1], \"radiance\": [1, 1, 1]}"),
+     "lights[0].u[0]: 1e+39"},
     {WITH_LIGHT("{\"type\": \"environment\", \"file\": \"sky.hdr\"}"), "lights[0].file: sky.hdr: cannot open"},
     {"{" CAM ", \"objects\": [" OBJ "], \"lights\": {}}", "lights: expected an array"},
     /* files */

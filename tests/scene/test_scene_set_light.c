@@ -44,7 +44,14 @@ int main(void)
     check_refused(&s, 0, "{\"type\": \"point\", \"position\": [1, 3, 2]}", "lights[0]");
     check_refused(&s, 0, "{\"type\": \"directional\", \"direction\": [0, -1, 0], \"radiance\": [1, 1, 1]}",
                   "lights[0].type: is directional, but the light is point");
-    check_refused(&s, 0, "{\"type\": \"point\", ", "lights[0]: malformed JSON");
+    check_refused(&s, 0, "{\"type\": \"point\", ", "lights[0]: line 1, column 18: malformed JSON");
+    /* the loader's JSON reader: a NUL would cut "point\u0000x" to "point"; text after the value */
+    check_refused(&s, 0, "{\"type\": \"point\\u0000x\", \"position\": [1, 3, 2], \"intensity\": [1, 1, 1]}",
+                  "lit.json: lights[0].type: a string holds a NUL character");
+    check_refused(&s, 0, "{\"type\": \"point\", \"position\": [1, 3, 2], \"intensity\": [1, 1, 1]} {}",
+                  "lights[0]: line 1, column 66: unexpected text after the JSON value");
+    check_refused(&s, 0, "{\"type\": \"point\", \"position\": [1, 3, 2], \"intensity\": [1e39, 1, 1]}",
+                  "lights[0].intensity[0]: 1e+39: out of range [0, 1e+30]");
     check_refused(&s, 1, "{\"type\": \"environment\", \"file\": \"gl_area.json\"}", "lights[1].file: differs");
     check_refused(&s, 1, "{\"type\": \"environment\", \"file\": \"missing.hdr\"}", "missing.hdr");
     err.message[0] = '\0';

@@ -254,7 +254,7 @@ def main():
     dump(os.path.join(OUT, "bad", "missing_buffer.gltf"), tri)
 
     tri, _ = triangle_doc("data:application/octet-stream;base64," + base64.b64encode(tri_blob).decode())
-    tri["extensionsUsed"] = tri["extensionsRequired"] = ["KHR_materials_volume", "KHR_draco_mesh_compression"]
+    tri["extensionsUsed"] = tri["extensionsRequired"] = ["KHR_materials_volume", "KHR_texture_basisu"]
     dump(os.path.join(OUT, "bad", "required_ext.gltf"), tri)
 
     tri, _ = triangle_doc("data:application/octet-stream;base64," +

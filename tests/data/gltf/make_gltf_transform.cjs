@@ -1,8 +1,8 @@
 // Writes gltf_transform.glb with the npm package @gltf-transform (an independent glTF writer:
 // interleaved vertex buffers with byteStride, its own .glb layout) for tests/scene/test_gltf.c.
 // The published 4.5.1 has no KHR_materials_volume_scatter yet, so this asset covers volume, ior,
-// diffuse transmission (a volume without scattering imports as diffuse), lights, a camera and a
-// TRS hierarchy. Regenerate:
+// diffuse transmission (a volume with diffuse transmission and no scattering extension imports as
+// the nearest subsurface medium, docs/gltf.md), lights, a camera and a TRS hierarchy. Regenerate:
 //   (cd /tmp/gt && npm install @gltf-transform/core@4.5.1 @gltf-transform/extensions@4.5.1)
 //   NODE_PATH=/tmp/gt/node_modules node make_gltf_transform.cjs [OUT_DIR]
 const { Document, NodeIO, VertexLayout } = require('@gltf-transform/core');
