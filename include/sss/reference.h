@@ -25,7 +25,8 @@
  *        diffuse surface y (its normal's side):  reflectance / pi * E_{k-1}(y);
  *    the light enters a subsurface sample with the factor 1 - F_r(cos theta) as direct light does.
  *    The image then shows T = T_1 + T_2 + ... in the sums above (linear in T, so the pixel pass runs
- *    once); diffuse objects show reflectance / pi * (E_1 + a final gather of bounces 1..N-1).
+ *    once); the last bounce is gathered at each camera sample's own point (below), so that
+ *    diffuse objects show reflectance / pi * (E_1 + a final gather of bounces 1..N-1).
  *  - no specular interface reflection of the camera ray unless desc.specular (then a smooth
  *    dielectric mirror F_r(cos theta_o) * L is added, L shaded along the reflected ray as along a
  *    camera ray: environment, area lights and the lit surfaces, up to 4 reflections deep; PBRT-v3's
@@ -73,12 +74,19 @@
  *    miss or reach a light link nowhere (that light is bounce 1). Geometric normals throughout.
  *  - bounce k: T_k(x_i) = sum over x_i's links of weight * X_{k-1}(hit), with X = M_{k-1} (subsurface,
  *    evaluated with the tree over the transport samples, tolerance 1e-3 of the lit level and angle
- *    criterion s <= d_min, plus the near part as S_near's integral times T_{k-1} at the sample itself)
+ *    criterion s <= d_min, plus the near part as S_near's integral times the area-weighted mean
+ *    T_{k-1} of the transport samples within R0 on the same side, normals within 60 degrees)
  *    or reflectance * E_{k-1} (diffuse); M is evaluated only at samples some link reaches. The same
  *    links serve every bounce (radiosity's form factors, sampled once).
- *  - pixels: subsurface sums add the transport samples' T_2 + ... + T_N (their own tree, the same
- *    tolerances) to the direct sums above; probes add T_ind of the transport cell they hit; diffuse
- *    pixels add E_ind of the transport cell under them.
+ *  - pixels (issue 27: pixel by pixel, not per transport sample): bounces 2..N by a final gather at
+ *    the camera sample's own surface point: stratified rays cosine-distributed about the shading
+ *    normal (256 per pixel, draft 64, spread over its camera samples; as many again over the extra
+ *    samples of a refined pixel; rays below the geometric surface see nothing), each adding what the
+ *    surface it reaches sends back after bounces 1..N-1 (the exit factors of the links above, with
+ *    the mirror chain, applied to M or reflectance * E of T_1 + ... + T_{N-1} at the hit's transport
+ *    sample). Diffuse pixels (their normal's side) add it as E; subsurface pixels take it as the T of
+ *    bounces 2..N in the near part (within R0 of x_o), and their far sums add the transport
+ *    samples' T_2 + ... + T_N (their own tree, the same tolerances) to the direct sums above.
  *  - stopping: desc.bounces = N computes bounces 1..N; 0 stops after the first bounce k whose light
  *    entering the surfaces (sum over the transport samples of T_k A, or E_k A, luminance) is below
  *    SSS_REFERENCE_BOUNCE_STOP of that of bounce 2 (or of STOP x bounce 1, if that is more) on every
@@ -117,9 +125,10 @@ extern "C" {
  * options give a different image, so that images cached with an older one are known to be stale
  * (sss eval's sidecars record it). 1: the first interreflection; 2: bounce gathers follow the mirror
  * reflection at subsurface interfaces, and the default stops relative to bounce 2; 3: the samples no
- * longer coarsen with the image size (the resolution cap), clusters of diameter R0. --bounces 1 has
- * not changed since before interreflection. */
-#define SSS_REFERENCE_TRANSPORT_VERSION 3
+ * longer coarsen with the image size (the resolution cap), clusters of diameter R0; 4: the last
+ * bounce gathered at the pixels' own points, the exitance's near part averaged over R0 (issue 27).
+ * --bounces 1 has not changed since before interreflection. */
+#define SSS_REFERENCE_TRANSPORT_VERSION 4
 
 typedef enum sss_reference_quality {
     SSS_REFERENCE_FINAL = 0, /* default */
@@ -199,7 +208,8 @@ typedef struct sss_reference_stats {
     double seconds_total;
     /* Interreflection: bounces computed (1 = single event), the samples that carry them (all
      * objects), and per bounce k (index k - 1) its seconds and its light entering the surfaces
-     * relative to bounce 1 (index 0: the direct samples, seconds_samples, 1.0). */
+     * relative to bounce 1 (index 0: the direct samples, seconds_samples, 1.0; the last bounce's
+     * seconds include the trees the pixels use, seconds_pixels the pixels' final gathers). */
     uint32_t bounces;
     uint64_t transport_samples;
     double seconds_bounce[SSS_REFERENCE_MAX_BOUNCES];

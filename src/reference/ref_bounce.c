@@ -8,6 +8,7 @@
  * T_k(x_i) = sum over its links of weight * M_{k-1}(hit) (radiosity's form factors, sampled); the
  * exitance M_{k-1} is evaluated only at the samples some link reaches. */
 #include <omp.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 
 #include "reference/ref_internal.h"
@@ -215,16 +216,16 @@ static int64_t transport_index(const ref_object *o, unsigned prim, double u, dou
     return k >= 0 && o->cluster_of ? (int64_t)o->cluster_of[k] : k;
 }
 
-void ref_indirect_at(const ref_ctx *ctx, size_t o, unsigned prim, double u, double v, const double facing[3],
-                     double out[3])
+double ref_indirect_share(const ref_ctx *ctx, size_t o, unsigned prim, double u, double v, const double direct[3])
 {
     const ref_object *ro = &ctx->objects[o];
     int64_t k = ro->indirect ? transport_index(ro, prim, u, v) : -1;
-    if (k >= 0 && facing && !ro->subsurface) {
-        const float *n = ro->bs[k].ng;
-        if (!(n[0] * facing[0] + n[1] * facing[1] + n[2] * facing[2] > 0.0)) k = -1;
-    }
-    for (int c = 0; c < 3; c++) out[c] = k >= 0 ? ro->indirect[k][c] : 0.0;
+    if (k < 0) return 1.0;
+    const float *ti = ro->indirect[k], *td = ro->bs[k].direct;
+    double ind = 0.2126 * ti[0] + 0.7152 * ti[1] + 0.0722 * ti[2];
+    double dir = direct ? 0.2126 * direct[0] + 0.7152 * direct[1] + 0.0722 * direct[2]
+                        : 0.2126 * td[0] + 0.7152 * td[1] + 0.0722 * td[2];
+    return dir > 0.0 ? ind / (ind + dir) : 1.0;
 }
 
 /* What one ray sees at its first hit: the link (the sample there, and the factor from that sample's
@@ -297,6 +298,39 @@ static uint32_t trace_mirror_chain(const ref_ctx *ctx, const ray_hit *first, ref
     return NO_LINK;
 }
 
+/* An orthonormal frame (t1, t2) about the unit normal n. */
+static void tangent_frame(const double n[3], double t1[3], double t2[3])
+{
+    double a[3] = {1, 0, 0};
+    if (fabs(n[0]) > 0.7) a[0] = 0, a[1] = 1;
+    v3_cross(n, a, t1);
+    v3_normalize(t1);
+    v3_cross(n, t1, t2);
+}
+
+/* The cosine-distributed direction of (u1, u2) in [0, 1)^2 about n; returns its cosine. */
+static double cosine_dir(const double n[3], const double t1[3], const double t2[3], double u1, double u2,
+                         double dir[3])
+{
+    double r = sqrt(u1), ph = 2.0 * REF_PI * u2, cz = sqrt(fmax(0.0, 1.0 - u1));
+    for (int c = 0; c < 3; c++) dir[c] = r * cos(ph) * t1[c] + r * sin(ph) * t2[c] + cz * n[c];
+    v3_normalize(dir);
+    return cz;
+}
+
+/* One gather ray from po along dir: its LINKS_PER_RAY links (the first hit, and one point of the mirror
+ * chain when the hit is subsurface) with their factors. */
+static void gather_ray(const ref_ctx *ctx, const double po[3], const double dir[3], ref_rng *chain_rng,
+                       uint32_t target[LINKS_PER_RAY], double factor[LINKS_PER_RAY])
+{
+    ray_hit h;
+    trace_link(ctx, po, dir, &h);
+    target[0] = h.target;
+    factor[0] = h.factor;
+    factor[1] = 0.0;
+    target[1] = h.target != NO_LINK && h.fresnel > 0.0 ? trace_mirror_chain(ctx, &h, chain_rng, &factor[1]) : NO_LINK;
+}
+
 /* The links of sample i of object o: k x k gather rays cosine-distributed about its geometric
  * normal (stratified), each weighted by pi / k^2 (the cosine-weighted estimate of int L cos dw) and,
  * for subsurface samples, by the entry factor 1 - F_r(cos theta); LINKS_PER_RAY per ray: the first
@@ -310,35 +344,32 @@ static void sample_links(const ref_ctx *ctx, size_t o, size_t i)
     ref_rng_seed(&rng, ctx->desc.seed, 0x424f554e00000000ull + (uint64_t)o, (uint64_t)i);
     ref_rng_seed(&chain_rng, ctx->desc.seed, 0x4d49525200000000ull + (uint64_t)o, (uint64_t)i);
     double ng[3] = {s->ng[0], s->ng[1], s->ng[2]}, p[3] = {s->p[0], s->p[1], s->p[2]};
-    double t1[3], t2[3], a[3] = {1, 0, 0}, po[3];
-    if (fabs(ng[0]) > 0.7) a[0] = 0, a[1] = 1;
-    v3_cross(ng, a, t1);
-    v3_normalize(t1);
-    v3_cross(ng, t1, t2);
+    double t1[3], t2[3], po[3];
+    tangent_frame(ng, t1, t2);
     ref_offset(ctx, p, ng, po);
     uint32_t *target = ro->link_target + i * (size_t)ro->gather * LINKS_PER_RAY;
     float *weight = ro->link_weight + i * (size_t)ro->gather * LINKS_PER_RAY;
     for (int a1 = 0; a1 < k; a1++)
         for (int a2 = 0; a2 < k; a2++) {
-            double u1 = (a1 + ref_rng_uniform(&rng)) / k, u2 = (a2 + ref_rng_uniform(&rng)) / k;
-            double r = sqrt(u1), ph = 2.0 * REF_PI * u2, cz = sqrt(fmax(0.0, 1.0 - u1)), dir[3];
-            for (int c = 0; c < 3; c++) dir[c] = r * cos(ph) * t1[c] + r * sin(ph) * t2[c] + cz * ng[c];
-            v3_normalize(dir);
+            double u1 = (a1 + ref_rng_uniform(&rng)) / k, u2 = (a2 + ref_rng_uniform(&rng)) / k, dir[3];
+            double cz = cosine_dir(ng, t1, t2, u1, u2, dir), factor[LINKS_PER_RAY];
             size_t l = ((size_t)a1 * (size_t)k + (size_t)a2) * LINKS_PER_RAY;
-            ray_hit h;
-            trace_link(ctx, po, dir, &h);
+            gather_ray(ctx, po, dir, &chain_rng, target + l, factor);
             double entry = ro->subsurface ? 1.0 - sss_fresnel_dielectric(cz, 1.0, ro->eta) : 1.0;
-            double ray_weight = REF_PI / (k * k) * entry, chain = 0.0;
-            target[l] = h.target;
-            weight[l] = (float)(ray_weight * h.factor);
-            target[l + 1] = h.target != NO_LINK && h.fresnel > 0.0 ? trace_mirror_chain(ctx, &h, &chain_rng, &chain)
-                                                                    : NO_LINK;
-            weight[l + 1] = (float)(ray_weight * chain);
+            for (int j = 0; j < LINKS_PER_RAY; j++) weight[l + j] = (float)(REF_PI / (k * k) * entry * factor[j]);
         }
 }
 
-/* Tree points in generation order with T A from the samples: `which` 0 = the current bounce's T,
- * 1 = the indirect sum. Sets abs_tol to `rel` times the lit level (ref_points.c). */
+/* Which T (E) of the samples a tree or an exitance is made of. */
+enum { T_BOUNCE, T_INDIRECT, T_BEFORE_LAST };
+
+static double t_value(const ref_object *ro, size_t i, int which, int c)
+{
+    return which == T_BOUNCE ? ro->bs[i].t[c] : which == T_INDIRECT ? ro->indirect[i][c] : ro->bs[i].t_before[c];
+}
+
+/* Tree points in generation order with T A from the samples (`which`). Sets abs_tol to `rel` times the
+ * lit level (ref_points.c). */
 static sss_result fill_tree(ref_object *ro, int which, double rel, ref_tree *tree, float abs_tol[3], sss_error *err)
 {
     memset(tree, 0, sizeof *tree);
@@ -351,8 +382,7 @@ static sss_result fill_tree(ref_object *ro, int which, double rel, ref_tree *tre
         ref_point *pt = &tree->points[i];
         memcpy(pt->p, s->p, sizeof pt->p);
         for (int c = 0; c < 3; c++) {
-            double T = which ? ro->indirect[i][c] : s->t[c];
-            double ta = T * s->area;
+            double ta = t_value(ro, i, which, c) * s->area;
             pt->ta[c] = isfinite(ta) && ta > 0.0 ? (float)ta : 0.0f;
             if (pt->ta[c] > 0.0f) ta_sum[c] += pt->ta[c], lit[c] += s->area;
         }
@@ -362,35 +392,71 @@ static sss_result fill_tree(ref_object *ro, int which, double rel, ref_tree *tre
     return ref_tree_build(tree, err);
 }
 
-/* exit = what the previous bounce's T (E) sends through the links, at the samples a link reaches
- * (needed): subsurface the exitance M (tree sum of S_far plus the near part with T at the sample
- * itself), diffuse reflectance * E. */
+/* M at sample i of a subsurface object from a tree over its samples' T (which): the tree sum of S_far
+ * plus the near part, int_0^R0 S_near 2 pi r dr times the area-weighted mean T of the samples within
+ * R0 (the near part's own support: the same second-order quadrature as T at the sample alone, but
+ * each sample's T is a gather of few rays, and a sample's own noise would pass into its exitance
+ * whole; for short mean free paths the near part is most of M). */
+static void exitance_at(const ref_object *ro, const ref_tree *tree, const float tol[3], int which, size_t i,
+                        float out[3])
+{
+    double far[3] = {0, 0, 0}, ta[3] = {0, 0, 0}, a = 0.0;
+    ref_tree_sum_angle(tree, &ro->prof, ro->bs[i].p, tol, BOUNCE_TREE_ANGLE, far, NULL);
+    for (uint64_t k = ro->nb_offset[i]; k < ro->nb_offset[i + 1]; k++) {
+        const ref_bsample *s = &ro->bs[ro->nb_index[k]];
+        a += s->area;
+        for (int c = 0; c < 3; c++) ta[c] += (double)s->area * t_value(ro, ro->nb_index[k], which, c);
+    }
+    for (int c = 0; c < 3; c++)
+        out[c] = (float)(far[c] + ro->prof.near[c] * (a > 0.0 ? ta[c] / a : t_value(ro, i, which, c)));
+}
+
+/* What the samples' T (E) of the current bounce send out into exit, at the samples a link reaches
+ * (needed; zero elsewhere): subsurface the exitance M, diffuse reflectance * E; exit_sum adds it up. */
 static sss_result bounce_exit(ref_object *ro, const uint8_t *needed, sss_error *err)
 {
     const int64_t n = (int64_t)ro->bs_count;
-    if (!ro->subsurface) {
-        for (int64_t i = 0; i < n; i++)
-            for (int c = 0; c < 3; c++) ro->bs[i].exit[c] = (float)(ro->src->reflectance[c] * ro->bs[i].t[c]);
-        return SSS_OK;
-    }
     ref_tree tree;
     float tol[3];
-    sss_result r = fill_tree(ro, 0, BOUNCE_TREE_ABS, &tree, tol, err);
+    memset(&tree, 0, sizeof tree);
+    sss_result r = ro->subsurface ? fill_tree(ro, T_BOUNCE, BOUNCE_TREE_ABS, &tree, tol, err) : SSS_OK;
     if (r == SSS_OK) {
 #pragma omp parallel for schedule(dynamic, 256)
         for (int64_t i = 0; i < n; i++) {
             ref_bsample *s = &ro->bs[i];
-            double far[3] = {0, 0, 0};
-            if (needed[i]) ref_tree_sum_angle(&tree, &ro->prof, s->p, tol, BOUNCE_TREE_ANGLE, far, NULL);
-            for (int c = 0; c < 3; c++) s->exit[c] = needed[i] ? (float)(far[c] + ro->prof.near[c] * s->t[c]) : 0.0f;
+            if (!needed[i])
+                s->exit[0] = s->exit[1] = s->exit[2] = 0.0f;
+            else if (ro->subsurface)
+                exitance_at(ro, &tree, tol, T_BOUNCE, (size_t)i, s->exit);
+            else
+                for (int c = 0; c < 3; c++) s->exit[c] = (float)(ro->src->reflectance[c] * s->t[c]);
+            for (int c = 0; c < 3; c++) s->exit_sum[c] += s->exit[c];
         }
     }
     ref_tree_free(&tree);
     return r;
 }
 
+/* What the final gathers see leave the samples: M (E) of T_1 + ... + T_{N-1}, the sum of the bounces'
+ * exit where a link reaches (needed). Diffuse: reflectance * E everywhere. Subsurface: elsewhere M is
+ * computed (M is linear in T: from the tree over T_1 + ... + T_{N-1}) when a final gather first
+ * reaches the sample, which is rare: the links reach what the surfaces see. */
+static sss_result sent_prepare(ref_object *ro, const uint8_t *needed, sss_error *err)
+{
+    if (!ro->subsurface) {
+        for (size_t i = 0; i < ro->bs_count; i++)
+            for (int c = 0; c < 3; c++) ro->bs[i].exit_sum[c] = (float)(ro->src->reflectance[c] * ro->bs[i].t_before[c]);
+        return SSS_OK;
+    }
+    ro->sent_state = calloc(ro->bs_count, sizeof *ro->sent_state);
+    if (!ro->sent_state) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (bounces)");
+    for (size_t i = 0; i < ro->bs_count; i++)
+        if (needed[i]) atomic_init(&ro->sent_state[i], 2);
+    return fill_tree(ro, T_BEFORE_LAST, BOUNCE_TREE_ABS, &ro->stree, ro->stol, err);
+}
+
 /* The sample with global index g. */
-static const ref_bsample *global_sample(const ref_ctx *ctx, uint32_t g)
+static const ref_bsample *global_sample(const ref_ctx *ctx, uint32_t g, size_t *object)
 {
     size_t lo = 0, hi = ctx->object_count - 1;
     while (lo < hi) { /* the last object whose base <= g (objects without samples share bases) */
@@ -401,7 +467,27 @@ static const ref_bsample *global_sample(const ref_ctx *ctx, uint32_t g)
             hi = mid - 1;
     }
     while (ctx->objects[lo].bs_count == 0 || g - ctx->objects[lo].base >= ctx->objects[lo].bs_count) lo--;
+    if (object) *object = lo;
     return &ctx->objects[lo].bs[g - ctx->objects[lo].base];
+}
+
+/* exit_sum of the sample with global index g: cached, or computed now (into tmp) and published for
+ * the other threads (the value depends only on the sample, so the race only duplicates work). */
+static const float *sent_exitance(const ref_ctx *ctx, uint32_t g, float tmp[3])
+{
+    size_t o;
+    const ref_bsample *s = global_sample(ctx, g, &o);
+    ref_object *ro = &ctx->objects[o];
+    if (!ro->sent_state) return s->exit_sum;
+    size_t i = (size_t)(s - ro->bs);
+    if (atomic_load_explicit(&ro->sent_state[i], memory_order_acquire) == 2) return s->exit_sum;
+    exitance_at(ro, &ro->stree, ro->stol, T_BEFORE_LAST, i, tmp);
+    unsigned char idle = 0;
+    if (atomic_compare_exchange_strong(&ro->sent_state[i], &idle, 1)) {
+        memcpy(ro->bs[i].exit_sum, tmp, sizeof ro->bs[i].exit_sum);
+        atomic_store_explicit(&ro->sent_state[i], 2, memory_order_release);
+    }
+    return tmp;
 }
 
 /* T_k (E_k) at every sample of object o into next, through its links; returns its light sum
@@ -418,7 +504,7 @@ static double bounce_gather(const ref_ctx *ctx, size_t o, float (*next)[3])
         const float *weight = ro->link_weight + (size_t)i * links;
         for (size_t l = 0; l < links; l++) {
             if (target[l] == NO_LINK) continue;
-            const float *e = global_sample(ctx, target[l])->exit;
+            const float *e = global_sample(ctx, target[l], NULL)->exit;
             for (int c = 0; c < 3; c++) T[c] += (double)weight[l] * e[c];
         }
         for (int c = 0; c < 3; c++) next[i][c] = isfinite(T[c]) && T[c] > 0.0 ? (float)T[c] : 0.0f;
@@ -450,6 +536,8 @@ static sss_result build_links(ref_ctx *ctx, uint8_t **needed, sss_error *err)
         ro->link_weight = malloc(sizeof(float) * links);
         if (!ro->indirect || !ro->link_target || !ro->link_weight)
             return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "reference: out of memory (%zu bounce links)", links);
+        sss_result r = ro->subsurface ? ref_neighbours_build(ro, ro->prof.r0, err) : SSS_OK;
+        if (r != SSS_OK) return r;
         const int64_t n = (int64_t)ro->bs_count;
 #pragma omp parallel for schedule(dynamic, 64)
         for (int64_t i = 0; i < n; i++) sample_links(ctx, o, (size_t)i);
@@ -460,12 +548,33 @@ static sss_result build_links(ref_ctx *ctx, uint8_t **needed, sss_error *err)
 }
 
 /* The indirect trees the pixels use: T_2 + ... + T_N at the transport samples. */
+/* The pixels' far sums add the transport samples' T_2 + ... + T_N: the links' gather of exit_sum, 16
+ * rays a sample. Through a wide profile its noise showed as blotches of the profile's size where a
+ * floor lights the object (the Marble bunny of default.json); a final gather of gather_refine more
+ * rays per sample joins it, weighted by ray count (the same estimate: T_k is the links' sum of
+ * exit_{k-1}, so T_2 + ... + T_N theirs of exit_sum). */
+static void refine_indirect(const ref_ctx *ctx, ref_object *ro, size_t o)
+{
+    const int64_t n = (int64_t)ro->bs_count;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (int64_t i = 0; i < n; i++) {
+        const ref_bsample *s = &ro->bs[i];
+        ref_rng rng;
+        ref_rng_seed(&rng, ctx->desc.seed, 0x46494e4c00000000ull + (uint64_t)o, (uint64_t)i);
+        double p[3] = {s->p[0], s->p[1], s->p[2]}, ng[3] = {s->ng[0], s->ng[1], s->ng[2]}, t[3];
+        int rays = ref_final_gather(ctx, p, ng, ng, ro->eta, ctx->gather_refine, 0, 1, &rng, t);
+        for (int c = 0; c < 3; c++)
+            ro->indirect[i][c] = (float)((ro->indirect[i][c] * (double)ro->gather + t[c] * rays) / (ro->gather + rays));
+    }
+}
+
 static sss_result build_indirect_trees(ref_ctx *ctx, sss_error *err)
 {
     for (size_t o = 0; o < ctx->object_count; o++) {
         ref_object *ro = &ctx->objects[o];
         if (!ro->subsurface || !ro->bs_count) continue;
-        sss_result r = fill_tree(ro, 1, BOUNCE_TREE_ABS, &ro->itree, ro->iabs_tol, err);
+        if (ctx->gather_refine > 0) refine_indirect(ctx, ro, o);
+        sss_result r = fill_tree(ro, T_INDIRECT, BOUNCE_TREE_ABS, &ro->itree, ro->iabs_tol, err);
         if (r != SSS_OK) return r;
     }
     return SSS_OK;
@@ -477,6 +586,35 @@ void ref_indirect_sum(const ref_ctx *ctx, size_t o, const float xo[3], double ou
     out[0] = out[1] = out[2] = 0.0;
     if (ro->itree.point_count)
         ref_tree_sum_angle(&ro->itree, &ro->prof, xo, ro->iabs_tol, BOUNCE_TREE_ANGLE, out, visits);
+}
+
+int ref_final_gather(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3], double eta,
+                     int pixel_rays, int stratum, int strata, ref_rng *rng, double out[3])
+{
+    int m = strata > 1 ? (int)lround(sqrt((double)strata)) : 1;
+    if (m < 1) m = 1;
+    int k = ((int)ceil(sqrt((double)(pixel_rays > 1 ? pixel_rays : 1))) + m - 1) / m; /* (k m)^2 >= pixel_rays */
+    int si = stratum % m, sj = (stratum / m) % m;
+    double t1[3], t2[3], po[3], acc[3] = {0, 0, 0};
+    tangent_frame(ns, t1, t2);
+    ref_offset(ctx, p, ng, po);
+    for (int a1 = 0; a1 < k; a1++)
+        for (int a2 = 0; a2 < k; a2++) {
+            double u1 = (a1 + (si + ref_rng_uniform(rng)) / m) / k, u2 = (a2 + (sj + ref_rng_uniform(rng)) / m) / k;
+            double dir[3], factor[LINKS_PER_RAY], cz = cosine_dir(ns, t1, t2, u1, u2, dir);
+            uint32_t target[LINKS_PER_RAY];
+            if (!(v3_dot(dir, ng) > 0.0)) continue; /* below the surface itself: no light (as PBRT-v3's BSDFs) */
+            gather_ray(ctx, po, dir, rng, target, factor);
+            double w = REF_PI / (k * k) * (eta > 0.0 ? 1.0 - sss_fresnel_dielectric(cz, 1.0, eta) : 1.0);
+            for (int j = 0; j < LINKS_PER_RAY; j++) {
+                if (target[j] == NO_LINK) continue;
+                float tmp[3];
+                const float *e = sent_exitance(ctx, target[j], tmp);
+                for (int c = 0; c < 3; c++) acc[c] += w * factor[j] * e[c];
+            }
+        }
+    for (int c = 0; c < 3; c++) out[c] = isfinite(acc[c]) && acc[c] > 0.0 ? acc[c] : 0.0;
+    return k * k;
 }
 
 /* Light of bounce k relative to bounce 2, the first interreflected one (or to STOP x bounce 1 when
@@ -517,13 +655,15 @@ sss_result ref_bounces_run(ref_ctx *ctx, sss_error *err)
     for (int k = 2; r == SSS_OK && k <= cap; k++) {
         double t1 = sss_time_seconds();
         for (size_t o = 0; r == SSS_OK && o < n_obj; o++)
-            if (ctx->objects[o].bs_count) r = bounce_exit(&ctx->objects[o], needed + ctx->objects[o].base, err);
+            if (ctx->objects[o].bs_count)
+                r = bounce_exit(&ctx->objects[o], needed + ctx->objects[o].base, err);
         if (r != SSS_OK) break;
         for (size_t o = 0; o < n_obj; o++) now[o] = ctx->objects[o].bs_count ? bounce_gather(ctx, o, next[o]) : 0.0;
         for (size_t o = 0; o < n_obj; o++) {
             ref_object *ro = &ctx->objects[o];
             for (size_t i = 0; i < ro->bs_count; i++)
                 for (int c = 0; c < 3; c++) {
+                    ro->bs[i].t_before[c] += ro->bs[i].t[c];
                     ro->bs[i].t[c] = next[o][i][c];
                     ro->indirect[i][c] += next[o][i][c];
                 }
@@ -538,9 +678,13 @@ sss_result ref_bounces_run(ref_ctx *ctx, sss_error *err)
         if (ctx->desc.bounces == 0 && !(fraction >= SSS_REFERENCE_BOUNCE_STOP)) break;
     }
     for (size_t o = 0; next && o < n_obj; o++) free(next[o]);
+    double t2 = sss_time_seconds(); /* the trees the pixels use count towards the last bounce */
+    for (size_t o = 0; r == SSS_OK && o < n_obj; o++)
+        if (ctx->objects[o].bs_count) r = sent_prepare(&ctx->objects[o], needed + ctx->objects[o].base, err);
     free(next);
     free(light);
     free(needed);
     if (r == SSS_OK) r = build_indirect_trees(ctx, err);
+    ctx->stats.seconds_bounce[ctx->stats.bounces - 1] += sss_time_seconds() - t2;
     return r;
 }

@@ -281,6 +281,11 @@ typedef struct ref_object {
     float (*indirect)[3];  /* T (subsurface) or E (diffuse) of bounces 2..N */
     ref_tree itree;        /* subsurface: the transport samples with their indirect T A, for the pixels */
     float iabs_tol[3];
+    uint64_t *nb_offset;   /* subsurface: transport sample i's neighbours within R0 are nb_index[nb_offset[i] ..] */
+    uint32_t *nb_index;
+    ref_tree stree;        /* subsurface: the transport samples with T A of bounces 1..N-1 (final gathers) */
+    float stol[3];
+    _Atomic unsigned char *sent_state; /* per sample: 2 once its exit_sum is computed (ref_bounce.c) */
     uint64_t base;         /* index of its first sample among all objects' */
     int gather;            /* gather rays (links) per sample */
     uint32_t *link_target; /* gather links: bs_count x gather, the hit sample (all objects') or UINT32_MAX */
@@ -294,6 +299,8 @@ typedef struct ref_bsample {
     float direct[3];   /* T (E) of bounce 1 */
     float t[3];        /* T (E) of the current bounce */
     float exit[3];     /* M (E) of the previous bounce */
+    float t_before[3]; /* T (E) of bounces 1..N-1 summed */
+    float exit_sum[3]; /* their M (E): what the pixels' final gathers see leave here */
 } ref_bsample;
 
 typedef struct ref_camera {
@@ -361,6 +368,8 @@ typedef struct ref_ctx {
     int near_probes;          /* probe rays per camera sample for the near part */
     int transport;            /* bounces > 1 (ref_bounce.c) */
     int gather_subsurface, gather_diffuse; /* gather rays per surface sample */
+    int gather_pixel;         /* final-gather rays per pixel (its base samples; as many again where refined) */
+    int gather_refine;        /* final-gather rays per subsurface transport sample after the bounces */
     /* progress: a phase maps its own fraction [0, 1] to [phase_lo, phase_hi] of the whole */
     sss_reference_progress_fn progress;
     void *user;
@@ -432,16 +441,28 @@ void ref_transport_spacing(ref_ctx *ctx);
  * diameter <= ro->tspacing (on one side of thin parts), T the area-weighted mean; ro->cluster_of
  * maps the samples to them. */
 sss_result ref_transport_cluster(ref_ctx *ctx, size_t o, sss_error *err);
+/* The transport samples within radius of each one of subsurface object ro, on its side of thin parts
+ * (normals within 60 degrees), itself included (ref_neighbours.c). */
+sss_result ref_neighbours_build(ref_object *ro, double radius, sss_error *err);
 /* Sum over the transport samples of T_ind A S_far(|x - x_o|) (zero without them). */
 void ref_indirect_sum(const ref_ctx *ctx, size_t o, const float xo[3], double out[3], uint64_t *visits);
 /* Bounces 2..N at the samples of every object (after their direct T, E and trees exist); rebuilds
  * the subsurface trees with T_1 + T_2 + ... */
 sss_result ref_bounces_run(ref_ctx *ctx, sss_error *err);
-/* The indirect T (E) of bounces 2..N at a point of triangle prim of object o (barycentrics u, v of
- * its 2nd and 3rd vertices); zero without samples, and for a diffuse object seen from the side
- * `facing` (may be NULL) opposite to its normal. */
-void ref_indirect_at(const ref_ctx *ctx, size_t o, unsigned prim, double u, double v, const double facing[3],
-                     double out[3]);
+/* The share of bounces 2..N in the light (luminance) at the point (u, v) of triangle prim of object o,
+ * from its transport sample: T_ind / (T_ind + T_direct) there, with `direct` (may be NULL) in place of
+ * the sample's direct T (E); 1 without a sample or direct light. For the final gather's budget. */
+double ref_indirect_share(const ref_ctx *ctx, size_t o, unsigned prim, double u, double v, const double direct[3]);
+/* Bounces 2..N at surface point p by a final gather (the last bounce at the point itself, so that the
+ * image does not show the transport samples' cells): stratified rays cosine-distributed about the unit
+ * shading normal ns (smooth across the facets; rays below the unit geometric normal ng, the side the
+ * light arrives on, see nothing), each adding what the surface it reaches sends back after bounces
+ * 1..N-1 (exit_sum, with the mirror chain at subsurface hits). The camera samples of a pixel, stratum
+ * of strata (a square), take interleaved subsets of one stratified set of at least pixel_rays rays
+ * (as ref_irradiance's light samples). eta > 0: a subsurface point, the light enters with 1 - F_r
+ * (T); else E. Returns the number of rays of this sample. */
+int ref_final_gather(const ref_ctx *ctx, const double p[3], const double ng[3], const double ns[3], double eta,
+                     int pixel_rays, int stratum, int strata, ref_rng *rng, double out[3]);
 
 /* Reports the current phase's fraction (stage NULL: the phase's own); thread-safe, throttled to
  * ~10 calls per second unless force. */

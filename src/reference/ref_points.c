@@ -157,7 +157,7 @@ sss_result ref_points_generate(ref_ctx *ctx, size_t object, double h, sss_error 
                                 b->ng[q] = (float)ng[q];
                                 b->t[q] = isfinite(T[q]) && T[q] > 0.0 ? (float)T[q] : 0.0f;
                                 b->direct[q] = b->t[q];
-                                b->exit[q] = 0.0f;
+                                b->exit[q] = b->t_before[q] = b->exit_sum[q] = 0.0f;
                             }
                         }
                         k++;

@@ -5,11 +5,6 @@
 
 #include "reference/ref_internal.h"
 
-typedef struct sample_info {
-    int64_t geom;  /* -1: miss */
-    double n[3];   /* geometric normal facing the camera */
-} sample_info;
-
 /* Extra per-thread counters. */
 typedef struct shade_counters {
     uint64_t visits, lookups;
@@ -37,7 +32,18 @@ typedef struct surface_hit {
     unsigned geom, prim;
     double u, v; /* barycentrics of the triangle's 2nd and 3rd vertices */
     double p[3], ng[3], ns[3];
+    int back; /* seen from behind its triangles' winding (normals flipped) */
 } surface_hit;
+
+/* One camera sample: what the refinement of its pixel needs. */
+typedef struct sample_info {
+    int64_t geom;     /* -1: miss */
+    double n[3];      /* geometric normal facing the camera */
+    /* its final gather (gather rays, 0: none): the radiance holds coef * t_ind */
+    int gather;
+    double eta, coef[3], t_ind[3];
+    surface_hit hit;
+} sample_info;
 
 /* Position and normals of a hit on object g; normals face `facing` (the side the ray came from). */
 static void decode_hit(const ref_ctx *ctx, unsigned g, const struct RTCRayHit *rh, const double facing[3],
@@ -69,7 +75,8 @@ static void decode_hit(const ref_ctx *ctx, unsigned g, const struct RTCRayHit *r
     } else {
         memcpy(hit->ns, hit->ng, sizeof hit->ns);
     }
-    if (v3_dot(hit->ng, wo) < 0.0) {
+    hit->back = v3_dot(hit->ng, wo) < 0.0;
+    if (hit->back) {
         /* Seen from behind (open meshes): shade that side. */
         for (int c = 0; c < 3; c++) hit->ng[c] = -hit->ng[c], hit->ns[c] = -hit->ns[c];
     }
@@ -114,37 +121,29 @@ static int probe_irradiance(const ref_ctx *ctx, const ref_object *obj, const sur
     decode_hit(ctx, x->geom, &rh, n, &y);
     ref_irradiance(ctx, y.p, y.ng, y.ns, obj->eta, area_n, env_n, 0, 1, rng, val);
     if (!ref_source_kept(ctx, y.p, y.ng, y.ns)) val[0] = val[1] = val[2] = 0.0;
-    if (ctx->transport) { /* bounces 2..N at the probe's point */
-        double ind[3];
-        ref_indirect_at(ctx, x->geom, y.prim, y.u, y.v, NULL, ind);
-        for (int c = 0; c < 3; c++) val[c] += ind[c];
-    }
     double jac = 1.0 / fmax(fabs(v3_dot(y.ng, n)), 0.1);
     for (int c = 0; c < 3; c++) val[c] *= jac;
     return 1;
 }
 
-/* T at x_o itself: direct, plus bounces 2..N. */
+/* The direct T at x_o itself. */
 static void irradiance_at_hit(const ref_ctx *ctx, const ref_object *obj, const surface_hit *x, ref_rng *rng,
                               double T[3])
 {
     ref_irradiance(ctx, x->p, x->ng, x->ns, obj->eta, ctx->area_samples_camera, ctx->env_samples_camera, 0, 1,
                    rng, T);
     if (!ref_source_kept(ctx, x->p, x->ng, x->ns)) T[0] = T[1] = T[2] = 0.0;
-    if (ctx->transport) {
-        double ind[3];
-        ref_indirect_at(ctx, x->geom, x->prim, x->u, x->v, NULL, ind);
-        for (int c = 0; c < 3; c++) T[c] += ind[c];
-    }
 }
 
 /* Near part below R0 (docs/physics.md §1): int over the surface within R0 of S_near(|y - x_o|) T(y) dA, by
  * ctx->near_probes probe rays as PBRT samples its BSSRDF: radii from the binned S_near (stratified),
  * angles from a randomised Kronecker sequence. Self-normalised, so that a constant T gives exactly
  * near * T; a probe that finds no surface uses T(x_o). (A probe count that adapts to the first
- * probes' agreement would be biased: a small lit part missed by them would never be looked for.) */
-static void near_part(const ref_ctx *ctx, const ref_object *obj, const surface_hit *x, ref_rng *rng,
-                      double out[3])
+ * probes' agreement would be biased: a small lit part missed by them would never be looked for.)
+ * The probes see the direct T; bounces 2..N enter as t_ind, their final gather at x_o itself (smooth
+ * on the scale of R0 but for contacts: interreflected light has no hard shadows). */
+static void near_part(const ref_ctx *ctx, const ref_object *obj, const surface_hit *x, const double t_ind[3],
+                      ref_rng *rng, double out[3])
 {
     const ref_profile *pf = &obj->prof;
     double total = pf->near_cdf[REF_NEAR_BINS];
@@ -201,6 +200,7 @@ static void near_part(const ref_ctx *ctx, const ref_object *obj, const surface_h
             }
             out[c] = pf->near[c] * Tx[c];
         }
+        if (ctx->transport) out[c] += pf->near[c] * t_ind[c];
     }
 }
 
@@ -260,15 +260,41 @@ static void add_mirror(const ref_ctx *ctx, const surface_hit *hit, const double 
     for (int c = 0; c < 3; c++) L[c] += fr * Lr[c];
 }
 
+/* The final gather's rays for a pixel whose light is `share` indirect: gather_pixel where it is all
+ * indirect, and in proportion to share^2 elsewhere (the gather's noise relative to the pixel, share /
+ * sqrt(rays), stays that of a wholly indirect pixel; lit parts need few: a lit floor is ~10% indirect),
+ * at least a sixteenth. The share comes from the transport samples, so the count does not depend on
+ * the gather itself and the estimate stays unbiased. */
+static int gather_rays(const ref_ctx *ctx, double share)
+{
+    double n = ceil(ctx->gather_pixel * share * share), lo = ctx->gather_pixel / 16;
+    return (int)fmin(ctx->gather_pixel, fmax(lo, isfinite(n) ? n : lo));
+}
+
+/* The near part's share of the profile's plane integral (luminance): what of a subsurface pixel's
+ * indirect light its final gather carries. */
+static double near_share(const ref_object *obj)
+{
+    const double *n = obj->prof.near, *t = obj->prof.total;
+    double total = 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
+    return total > 0.0 ? fmin(1.0, fmax(0.0, (0.2126 * n[0] + 0.7152 * n[1] + 0.0722 * n[2]) / total)) : 1.0;
+}
+
 /* The subsurface radiance at a hit towards -dir, docs/physics.md §1:
  * L = F_t(x_o) / (pi c) * [near part + sum_i T_i A_i S_far(|x_i - x_o|)]; returns F_r(x_o). */
-static double shade_subsurface(const ref_ctx *ctx, const surface_hit *hit, const double dir[3], ref_rng *rng,
-                               shade_counters *cnt, far_cache *fc, double L[3])
+static double shade_subsurface(const ref_ctx *ctx, const surface_hit *hit, const double dir[3], int stratum,
+                               int strata, ref_rng *rng, shade_counters *cnt, far_cache *fc, double L[3],
+                               sample_info *info)
 {
     const ref_object *obj = &ctx->objects[hit->geom];
     const double *p = hit->p;
-    double near[3], far[3] = {0, 0, 0};
-    near_part(ctx, obj, hit, rng, near);
+    double near[3], far[3] = {0, 0, 0}, t_ind[3] = {0, 0, 0};
+    if (ctx->transport) {
+        double share = near_share(obj) * ref_indirect_share(ctx, hit->geom, hit->prim, hit->u, hit->v, NULL);
+        info->gather = ref_final_gather(ctx, p, hit->ng, hit->ns, obj->eta, gather_rays(ctx, share), stratum, strata,
+                                        rng, t_ind);
+    }
+    near_part(ctx, obj, hit, t_ind, rng, near);
     if (obj->tree.point_count > 0) {
         double d[3] = {p[0] - fc->center.p[0], p[1] - fc->center.p[1], p[2] - fc->center.p[2]};
         if (fc->valid && fc->center.geom == hit->geom && v3_len(d) <= obj->prof.r0 &&
@@ -285,7 +311,13 @@ static double shade_subsurface(const ref_ctx *ctx, const surface_hit *hit, const
     double cos_o = fabs(v3_dot(hit->ns, dir));
     double fr = sss_fresnel_dielectric(cos_o, 1.0, obj->eta);
     double k = (1.0 - fr) / (REF_PI * obj->c_norm);
-    for (int c = 0; c < 3; c++) L[c] = k * (near[c] + far[c]);
+    for (int c = 0; c < 3; c++) {
+        L[c] = k * (near[c] + far[c]);
+        info->coef[c] = k * obj->prof.near[c];
+        info->t_ind[c] = t_ind[c];
+    }
+    info->eta = obj->eta;
+    info->hit = *hit;
     return fr;
 }
 
@@ -295,6 +327,7 @@ static void shade(const ref_ctx *ctx, const double org[3], const double dir[3], 
 {
     surface_hit hit;
     L[0] = L[1] = L[2] = 0.0;
+    memset(info, 0, sizeof *info);
     info->geom = -1;
     int kind = trace_camera(ctx, org, dir, &hit);
     if (kind == 0) {
@@ -313,15 +346,17 @@ static void shade(const ref_ctx *ctx, const double org[3], const double dir[3], 
         double E[3];
         ref_irradiance(ctx, hit.p, hit.ng, hit.ns, 0.0, ctx->area_samples_camera, ctx->env_samples_camera, stratum,
                        strata, rng, E);
-        if (ctx->transport) {
-            double Ei[3];
-            ref_indirect_at(ctx, hit.geom, hit.prim, hit.u, hit.v, hit.ng, Ei);
-            for (int c = 0; c < 3; c++) E[c] += Ei[c];
+        if (ctx->transport && !hit.back) { /* the transport holds the light on the normal's side only */
+            double share = ref_indirect_share(ctx, hit.geom, hit.prim, hit.u, hit.v, E);
+            info->gather = ref_final_gather(ctx, hit.p, hit.ng, hit.ns, 0.0, gather_rays(ctx, share), stratum, strata,
+                                            rng, info->t_ind);
+            for (int c = 0; c < 3; c++) E[c] += info->t_ind[c], info->coef[c] = obj->src->reflectance[c] / REF_PI;
+            info->hit = hit;
         }
         for (int c = 0; c < 3; c++) L[c] = obj->src->reflectance[c] / REF_PI * E[c];
         return;
     }
-    double fr = shade_subsurface(ctx, &hit, dir, rng, cnt, fc, L);
+    double fr = shade_subsurface(ctx, &hit, dir, stratum, strata, rng, cnt, fc, L, info);
     if (ctx->desc.specular && depth < MIRROR_DEPTH) add_mirror(ctx, &hit, dir, fr, depth, stratum, strata, rng, cnt, L);
 }
 
@@ -332,16 +367,40 @@ static int tone8(double x, double scale)
     return (int)lround(255.0 * sss_srgb_encode(v));
 }
 
-/* Whether a pixel's base samples agree (same surface, similar normals, close 8-bit values). */
-static int samples_agree(const double (*L)[3], const sample_info *info, int n, double scale)
+/* Whether a pixel's base samples agree (same surface, similar normals, 8-bit values within 2), with
+ * (gathered) or without (the edges: geometry and direct light) their final gathers' light. */
+static int samples_agree(const double (*L)[3], const sample_info *info, int n, double scale, int gathered)
 {
     for (int s = 1; s < n; s++) {
         if (info[s].geom != info[0].geom) return 0;
         if (info[0].geom >= 0 && v3_dot(info[s].n, info[0].n) < 0.9) return 0;
-        for (int c = 0; c < 3; c++)
-            if (abs(tone8(L[s][c], scale) - tone8(L[0][c], scale)) > 2) return 0;
+        for (int c = 0; c < 3; c++) {
+            double a = L[s][c], b = L[0][c];
+            if (!gathered) a -= info[s].coef[c] * info[s].t_ind[c], b -= info[0].coef[c] * info[0].t_ind[c];
+            if (abs(tone8(a, scale) - tone8(b, scale)) > 2) return 0;
+        }
     }
     return 1;
+}
+
+/* A pixel whose base samples differ only by their final gathers' noise: each sample gathers again at
+ * its own hit with REGATHER times its rays, and its gathered light becomes the mean of all its rays
+ * (where a bright surface fills a small solid angle, as the lit side of an object seen from its
+ * shadow, 256 rays a pixel leave single bright pixels; this spends more only there). */
+#define REGATHER 3
+
+static void regather(const ref_ctx *ctx, const sample_info *info, int n, ref_rng *rng, double sum[3])
+{
+    for (int s = 0; s < n; s++) {
+        const sample_info *si = &info[s];
+        if (!si->gather) continue;
+        double t[3];
+        int rays = ref_final_gather(ctx, si->hit.p, si->hit.ng, si->hit.ns, si->eta, REGATHER * si->gather * n, s, n,
+                                    rng, t);
+        for (int c = 0; c < 3; c++)
+            sum[c] += si->coef[c] * (si->t_ind[c] * si->gather + t[c] * rays) / (si->gather + rays) -
+                      si->coef[c] * si->t_ind[c];
+    }
 }
 
 #define MAX_BASE_SIDE 64
@@ -390,6 +449,8 @@ sss_result ref_render_world(const sss_reference_world *world, const sss_referenc
     ctx.transport = ctx.desc.bounces != 1;
     ctx.gather_subsurface = draft ? 4 : 16;
     ctx.gather_diffuse = draft ? 16 : 64;
+    ctx.gather_pixel = draft ? 64 : 256;
+    ctx.gather_refine = draft ? 12 : 48;
     int saved_threads = omp_get_max_threads();
     if (ctx.desc.threads > 0) omp_set_num_threads(ctx.desc.threads);
 
@@ -443,8 +504,11 @@ sss_result ref_render_world(const sss_reference_world *world, const sss_referenc
                         sum[c] += L[s][c];
                     }
                 }
-                int total = n;
-                if (!ctx.desc.no_adaptive && n > 1 && !samples_agree((const double(*)[3])L, info, n, scale)) {
+                int total = n, refine = !ctx.desc.no_adaptive && n > 1;
+                if (refine && samples_agree((const double(*)[3])L, info, n, scale, 0) &&
+                    !samples_agree((const double(*)[3])L, info, n, scale, 1)) {
+                    regather(&ctx, info, n, &rng, sum);
+                } else if (refine && !samples_agree((const double(*)[3])L, info, n, scale, 0)) {
                     adaptive++;
                     for (int s = 0; s < ka * ka; s++) {
                         double dir[3], Ls[3];

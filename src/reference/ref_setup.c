@@ -454,6 +454,10 @@ void ref_ctx_free(ref_ctx *ctx)
         ref_profile_free(&ctx->objects[o].prof);
         ref_tree_free(&ctx->objects[o].tree);
         ref_tree_free(&ctx->objects[o].itree);
+        ref_tree_free(&ctx->objects[o].stree);
+        free((void *)ctx->objects[o].sent_state);
+        free(ctx->objects[o].nb_offset);
+        free(ctx->objects[o].nb_index);
         free(ctx->objects[o].tri_offset);
         free(ctx->objects[o].cluster_of);
         free(ctx->objects[o].bs);
