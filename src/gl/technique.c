@@ -7,6 +7,36 @@
 
 void gl_draw_fullscreen(const gl_tech_ctx *c) { gl_fullscreen_triangle(c->vao_empty); }
 
+void gl_resolve_begin(const gl_tech_ctx *c, GLuint prog)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, c->frame.fbo_final);
+    glViewport(0, 0, c->width, c->height);
+    glUseProgram(prog);
+    glBindTextureUnit(0, c->frame.pos);
+    glBindTextureUnit(1, c->frame.nrm);
+    glBindTextureUnit(2, c->frame.albedo);
+    glBindTextureUnit(3, c->frame.refl);
+}
+
+void gl_uniform_i(GLuint prog, const char *name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
+
+void gl_uniform_f(GLuint prog, const char *name, double v)
+{
+    glUniform1f(glGetUniformLocation(prog, name), (float)v);
+}
+
+void gl_delete_programs(const GLuint *progs, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (progs[i]) glDeleteProgram(progs[i]);
+}
+
+void gl_delete_samplers(const GLuint *samplers, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (samplers[i]) glDeleteSamplers(1, &samplers[i]);
+}
+
 void gl_draw_objects(const gl_tech_ctx *c, GLint object_uniform, int subsurface_only)
 {
     gl_scene_draw_objects(c->gs, object_uniform, subsurface_only);

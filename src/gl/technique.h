@@ -72,6 +72,17 @@ typedef struct gl_tech_ctx {
 
 /* A full-screen triangle (the bound program's fragment stage covers every pixel). */
 void gl_draw_fullscreen(const gl_tech_ctx *c);
+/* The start of the resolve every technique ends with (common/resolve.glsl's bindings): frame.final as
+ * the target at the render size, prog in use, the G-buffer's position, normal and albedo on units 0-2
+ * and the reflected light on 3. The caller binds its own light from unit 4 on and draws; blending is
+ * left as it is. */
+void gl_resolve_begin(const gl_tech_ctx *c, GLuint prog);
+/* glUniform1i / glUniform1f of prog's uniform `name` (prog in use; an unknown name is ignored, as GL does). */
+void gl_uniform_i(GLuint prog, const char *name, int v);
+void gl_uniform_f(GLuint prog, const char *name, double v);
+/* Deletes the n programs / samplers that exist (0 entries are skipped). */
+void gl_delete_programs(const GLuint *progs, int n);
+void gl_delete_samplers(const GLuint *samplers, int n);
 /* Draws every object with the bound program (a G-buffer-style vertex stage; object index in the
  * uniform `object_uniform`); subsurface_only: skip the others. */
 void gl_draw_objects(const gl_tech_ctx *c, GLint object_uniform, int subsurface_only);

@@ -41,8 +41,7 @@ void shell_free(shell_targets *s)
 {
     free_targets(s);
     GLuint p[5] = {s->prog_recv, s->prog_recv_fine, s->prog_splat, s->prog_splat_fine, s->prog_resolve};
-    for (int i = 0; i < 5; i++)
-        if (p[i]) glDeleteProgram(p[i]);
+    gl_delete_programs(p, 5);
     s->prog_recv = s->prog_recv_fine = s->prog_splat = s->prog_splat_fine = s->prog_resolve = 0;
     if (s->query) glDeleteQueries(1, &s->query);
     s->query = 0;
@@ -177,14 +176,8 @@ void shell_splat(const gl_tech_ctx *c, shell_targets *s, GLuint splats, GLuint c
 
 void shell_resolve(const gl_tech_ctx *c, shell_targets *s)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, c->frame.fbo_final);
-    glViewport(0, 0, c->width, c->height);
     glDisable(GL_BLEND);
-    glUseProgram(s->prog_resolve);
-    glBindTextureUnit(0, c->frame.pos);
-    glBindTextureUnit(1, c->frame.nrm);
-    glBindTextureUnit(2, c->frame.albedo);
-    glBindTextureUnit(3, c->frame.refl);
+    gl_resolve_begin(c, s->prog_resolve);
     for (int l = 0; l < SHELL_MAX_LEVELS; l++) glBindTextureUnit(4 + (GLuint)l, s->accum[l < s->levels ? l : 0]);
     glBindTextureUnit(8, s->recv[0]);
     glBindTextureUnit(9, s->fine ? s->accum[SHELL_FINE] : s->accum[0]);

@@ -106,8 +106,6 @@ static sss_result burley_materials_changed(const gl_tech_ctx *c, void *state, ss
     return make_block(c, s, err);
 }
 
-static void set_i(GLuint prog, const char *name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
-static void set_f(GLuint prog, const char *name, double v) { glUniform1f(glGetUniformLocation(prog, name), (float)v); }
 
 static sss_result pass_prepare(const gl_tech_ctx *c, burley_state *s, sss_error *err)
 {
@@ -123,9 +121,9 @@ static sss_result pass_prepare(const gl_tech_ctx *c, burley_state *s, sss_error 
     glBindSampler(6, s->samp_cube);
     glBindTextureUnit(7, c->gs->shadow_2d);
     glBindSampler(7, s->samp_2d);
-    set_i(s->prog_prep, "u_mode", c->gs->light_count > 0 ? (int)p->transmission : BURLEY_TRANS_OFF);
-    set_f(s->prog_prep, "u_thickness", p->thickness);
-    set_f(s->prog_prep, "u_wrap", p->transmission_wrap);
+    gl_uniform_i(s->prog_prep, "u_mode", c->gs->light_count > 0 ? (int)p->transmission : BURLEY_TRANS_OFF);
+    gl_uniform_f(s->prog_prep, "u_thickness", p->thickness);
+    gl_uniform_f(s->prog_prep, "u_wrap", p->transmission_wrap);
     gl_draw_fullscreen(c);
     glBindSampler(6, 0);
     glBindSampler(7, 0);
@@ -140,12 +138,12 @@ static sss_result pass_scatter(const gl_tech_ctx *c, burley_state *s, sss_error 
     glUseProgram(s->prog_scatter);
     glBindTextureUnit(0, s->tex_signal);
     glBindTextureUnit(1, c->frame.pos);
-    set_i(s->prog_scatter, "u_samples", (int)p->samples);
-    set_f(s->prog_scatter, "u_pps", p->pixels_per_sample);
-    set_f(s->prog_scatter, "u_supersample", c->supersample);
-    set_i(s->prog_scatter, "u_rotate", (int)p->rotation);
-    set_i(s->prog_scatter, "u_bilateral", (int)p->bilateral);
-    set_i(s->prog_scatter, "u_center", (int)p->center);
+    gl_uniform_i(s->prog_scatter, "u_samples", (int)p->samples);
+    gl_uniform_f(s->prog_scatter, "u_pps", p->pixels_per_sample);
+    gl_uniform_f(s->prog_scatter, "u_supersample", c->supersample);
+    gl_uniform_i(s->prog_scatter, "u_rotate", (int)p->rotation);
+    gl_uniform_i(s->prog_scatter, "u_bilateral", (int)p->bilateral);
+    gl_uniform_i(s->prog_scatter, "u_center", (int)p->center);
     gl_draw_fullscreen(c);
     return gl_check(c->gl, "burley: scatter pass", err);
 }
@@ -163,12 +161,7 @@ static sss_result burley_render(const gl_tech_ctx *c, void *state, sss_error *er
     if (res == SSS_OK) res = pass_scatter(c, s, err);
     if (res != SSS_OK) return res;
     gl_timer_begin(c->timer, "combine");
-    glBindFramebuffer(GL_FRAMEBUFFER, c->frame.fbo_final);
-    glUseProgram(s->prog_resolve);
-    glBindTextureUnit(0, c->frame.pos);
-    glBindTextureUnit(1, c->frame.nrm);
-    glBindTextureUnit(2, c->frame.albedo);
-    glBindTextureUnit(3, c->frame.refl);
+    gl_resolve_begin(c, s->prog_resolve);
     glBindTextureUnit(4, s->tex_scatter);
     gl_draw_fullscreen(c);
     gl_timer_end(c->timer);
@@ -180,12 +173,10 @@ static void burley_destroy(void *state)
     burley_state *s = state;
     free_targets(s);
     GLuint p[3] = {s->prog_prep, s->prog_scatter, s->prog_resolve};
-    for (int i = 0; i < 3; i++)
-        if (p[i]) glDeleteProgram(p[i]);
+    gl_delete_programs(p, 3);
     if (s->ssbo) glDeleteBuffers(1, &s->ssbo);
     GLuint samp[2] = {s->samp_cube, s->samp_2d};
-    for (int i = 0; i < 2; i++)
-        if (samp[i]) glDeleteSamplers(1, &samp[i]);
+    gl_delete_samplers(samp, 2);
 }
 
 static const char *const targets[] = {"burley_signal", "burley_scatter", NULL};

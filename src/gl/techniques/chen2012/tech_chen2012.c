@@ -297,8 +297,7 @@ static void chen_destroy(void *state)
     free_tsm(&s->env);
     shell_free(&s->shells);
     GLuint p[3] = {s->prog_tsm, s->prog_reduce, s->prog_select};
-    for (int i = 0; i < 3; i++)
-        if (p[i]) glDeleteProgram(p[i]);
+    gl_delete_programs(p, 3);
     if (s->splats) glDeleteBuffers(1, &s->splats);
     if (s->cmd) glDeleteBuffers(1, &s->cmd);
 }

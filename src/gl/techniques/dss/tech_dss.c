@@ -74,8 +74,6 @@ static sss_result dss_resize(const gl_tech_ctx *c, void *state, sss_error *err)
     return res;
 }
 
-static void set_i(GLuint prog, const char *name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
-static void set_f(GLuint prog, const char *name, double v) { glUniform1f(glGetUniformLocation(prog, name), (float)v); }
 
 static sss_result dss_render(const gl_tech_ctx *c, void *state, sss_error *err)
 {
@@ -90,13 +88,13 @@ static sss_result dss_render(const gl_tech_ctx *c, void *state, sss_error *err)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_SPLATS, s->splats);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_SPLAT_COUNT, s->cmd);
     glUniform1ui(glGetUniformLocation(s->prog_gen, "u_capacity"), s->capacity);
-    set_f(s->prog_gen, "u_irradiance_cull", p->irradiance_cull);
-    set_f(s->prog_gen, "u_shadow_offset", p->splat_shadow_offset);
+    gl_uniform_f(s->prog_gen, "u_irradiance_cull", p->irradiance_cull);
+    gl_uniform_f(s->prog_gen, "u_shadow_offset", p->splat_shadow_offset);
     /* surfel_pixels counts output pixels: k render pixels each, so supersampling keeps the surfels
      * (docs/supersampling.md; in render pixels k = 2 made k^2 the surfels) */
-    set_f(s->prog_gen, "u_surfel_pixels", p->surfel_pixels * c->supersample);
-    set_i(s->prog_gen, "u_max_tess", (int)p->max_tessellation);
-    set_f(s->prog_gen, "u_snap", p->surface_snap);
+    gl_uniform_f(s->prog_gen, "u_surfel_pixels", p->surfel_pixels * c->supersample);
+    gl_uniform_i(s->prog_gen, "u_max_tess", (int)p->max_tessellation);
+    gl_uniform_f(s->prog_gen, "u_snap", p->surface_snap);
     glBindTextureUnit(0, c->frame.pos);
     glBindTextureUnit(1, c->frame.nrm);
     glBindTextureUnit(2, c->frame.irr);

@@ -162,8 +162,6 @@ static sss_result maisch2020_resize(const gl_tech_ctx *c, void *state, sss_error
     return make_targets(c, s, p, err);
 }
 
-static void set_i(GLuint prog, const char *name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
-static void set_f(GLuint prog, const char *name, float v) { glUniform1f(glGetUniformLocation(prog, name), v); }
 
 /* Splat generation (maisch2020_splat_generate.comp.glsl) into the buffer; returns how many splats it made,
  * which may exceed the capacity (those beyond it were not stored). */
@@ -176,14 +174,14 @@ static unsigned generate_splats(const gl_tech_ctx *c, maisch_state *s, const mai
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_SPLAT_COUNT, s->cmd);
     glBindTextureUnit(0, c->frame.pos);
     glBindTextureUnit(1, c->frame.nrm);
-    set_i(s->prog_gen, "u_cull_rule", (int)p->cull_rule);
-    set_f(s->prog_gen, "u_irradiance_cull", (float)p->irradiance_cull);
-    set_f(s->prog_gen, "u_shadow_offset", (float)p->splat_shadow_offset);
-    set_f(s->prog_gen, "u_occluded_margin", (float)p->occluded_margin);
-    set_i(s->prog_gen, "u_offscreen", (int)p->offscreen_splats);
-    set_f(s->prog_gen, "u_piece_ratio", (float)p->offscreen_pieces);
-    set_i(s->prog_gen, "u_divisor", divisor(c, p));
-    set_f(s->prog_gen, "u_grazing_sources", (float)p->grazing_sources);
+    gl_uniform_i(s->prog_gen, "u_cull_rule", (int)p->cull_rule);
+    gl_uniform_f(s->prog_gen, "u_irradiance_cull", (float)p->irradiance_cull);
+    gl_uniform_f(s->prog_gen, "u_shadow_offset", (float)p->splat_shadow_offset);
+    gl_uniform_f(s->prog_gen, "u_occluded_margin", (float)p->occluded_margin);
+    gl_uniform_i(s->prog_gen, "u_offscreen", (int)p->offscreen_splats);
+    gl_uniform_f(s->prog_gen, "u_piece_ratio", (float)p->offscreen_pieces);
+    gl_uniform_i(s->prog_gen, "u_divisor", divisor(c, p));
+    gl_uniform_f(s->prog_gen, "u_grazing_sources", (float)p->grazing_sources);
     glUniform1ui(glGetUniformLocation(s->prog_gen, "u_capacity"), s->capacity);
     gl_dispatch_splat_triangles(c, s->prog_gen);
     GLuint cmd[4] = {0, 0, 0, 0};
@@ -220,7 +218,7 @@ static sss_result pass_splats(const gl_tech_ctx *c, maisch_state *s, const maisc
     glViewport(0, 0, s->low_w, s->low_h);
     glDisable(GL_BLEND);
     glUseProgram(s->prog_recv);
-    set_i(s->prog_recv, "u_divisor", divisor(c, p));
+    gl_uniform_i(s->prog_recv, "u_divisor", divisor(c, p));
     gl_draw_fullscreen(c);
     /* additive splatting into the accumulation target (float blending, no clamping) */
     glBindFramebuffer(GL_FRAMEBUFFER, s->fbo_accum);
@@ -229,9 +227,9 @@ static sss_result pass_splats(const gl_tech_ctx *c, maisch_state *s, const maisc
     glBlendFunc(GL_ONE, GL_ONE);
     glUseProgram(s->prog_splat);
     glBindTextureUnit(0, s->tex_recv);
-    set_i(s->prog_splat, "u_preintegrated",
+    gl_uniform_i(s->prog_splat, "u_preintegrated",
           (int)p->preintegrated && (int)p->splat_preintegrated);
-    set_i(s->prog_splat, "u_disc_adjust", (int)p->disc_adjust);
+    gl_uniform_i(s->prog_splat, "u_disc_adjust", (int)p->disc_adjust);
     glBindVertexArray(c->vao_empty);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, s->cmd);
     glDrawArraysIndirect(GL_TRIANGLE_STRIP, NULL);
@@ -246,7 +244,7 @@ static sss_result pass_splats(const gl_tech_ctx *c, maisch_state *s, const maisc
     glViewport(0, 0, c->width, c->height);
     glUseProgram(s->prog_up);
     glBindTextureUnit(0, s->tex_accum);
-    set_i(s->prog_up, "u_bicubic", (int)p->bicubic);
+    gl_uniform_i(s->prog_up, "u_bicubic", (int)p->bicubic);
     glUniform2f(glGetUniformLocation(s->prog_up, "u_full_size"), (float)c->width, (float)c->height);
     gl_draw_fullscreen(c);
     return gl_check(c->gl, "maisch2020: upsampling", err);
@@ -267,7 +265,7 @@ static sss_result pass_grazing(const gl_tech_ctx *c, maisch_state *s, const mais
     glUseProgram(s->prog_grazing);
     glBindImageTexture(0, c->frame.pos, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     glBindTextureUnit(1, c->frame.nrm);
-    set_f(s->prog_grazing, "u_grazing_sources", (float)gs);
+    gl_uniform_f(s->prog_grazing, "u_grazing_sources", (float)gs);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glDispatchCompute((GLuint)(c->frame.width + 7) / 8, (GLuint)(c->frame.height + 7) / 8, 1);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -299,19 +297,19 @@ static void use_screen_program(const gl_tech_ctx *c, GLuint prog, const maisch20
     glBindTextureUnit(0, c->frame.pos);
     glBindTextureUnit(1, c->frame.irr);
     glBindTextureUnit(2, c->frame.nrm);
-    set_i(prog, "u_split", (int)p->footprint_split);
-    set_i(prog, "u_layer_split", layer_split);
-    set_i(prog, "u_n", (int)p->n);
-    set_i(prog, "u_nl", (int)p->n_l);
-    set_i(prog, "u_layers", (int)p->layers);
-    set_i(prog, "u_brightening", (int)p->brightening);
-    set_i(prog, "u_preintegrated", (int)p->preintegrated);
-    set_i(prog, "u_screen_bound", (int)p->layer_distance_bound);
-    set_i(prog, "u_support_cutoff", (int)p->support_cutoff);
-    set_i(prog, "u_layers_to_reach", (int)p->layers_to_reach);
-    set_i(prog, "u_outer_divisor", outer_block(c, p));
+    gl_uniform_i(prog, "u_split", (int)p->footprint_split);
+    gl_uniform_i(prog, "u_layer_split", layer_split);
+    gl_uniform_i(prog, "u_n", (int)p->n);
+    gl_uniform_i(prog, "u_nl", (int)p->n_l);
+    gl_uniform_i(prog, "u_layers", (int)p->layers);
+    gl_uniform_i(prog, "u_brightening", (int)p->brightening);
+    gl_uniform_i(prog, "u_preintegrated", (int)p->preintegrated);
+    gl_uniform_i(prog, "u_screen_bound", (int)p->layer_distance_bound);
+    gl_uniform_i(prog, "u_support_cutoff", (int)p->support_cutoff);
+    gl_uniform_i(prog, "u_layers_to_reach", (int)p->layers_to_reach);
+    gl_uniform_i(prog, "u_outer_divisor", outer_block(c, p));
     /* the pattern's sizes count output pixels (docs/supersampling.md) */
-    set_i(prog, "u_supersample", c->supersample);
+    gl_uniform_i(prog, "u_supersample", c->supersample);
 }
 
 /* Pass 6, the screen-space pattern; with outer_divisor > 1 first its outer layers once per block. */
@@ -367,17 +365,11 @@ static sss_result maisch2020_render(const gl_tech_ctx *c, void *state, sss_error
         if (res != SSS_OK) return res;
     }
     gl_timer_begin(c->timer, "combine");
-    glBindFramebuffer(GL_FRAMEBUFFER, c->frame.fbo_final);
-    glViewport(0, 0, c->width, c->height);
-    glUseProgram(s->prog_combine);
-    glBindTextureUnit(0, c->frame.pos);
-    glBindTextureUnit(1, c->frame.nrm);
-    glBindTextureUnit(2, c->frame.albedo);
-    glBindTextureUnit(3, c->frame.refl);
+    gl_resolve_begin(c, s->prog_combine);
     glBindTextureUnit(4, s->tex_screen);
     glBindTextureUnit(5, s->tex_trans);
-    set_i(s->prog_combine, "u_use_screen", use_screen);
-    set_i(s->prog_combine, "u_use_trans", use_trans);
+    gl_uniform_i(s->prog_combine, "u_use_screen", use_screen);
+    gl_uniform_i(s->prog_combine, "u_use_trans", use_trans);
     gl_draw_fullscreen(c);
     gl_timer_end(c->timer);
     return gl_check(c->gl, "maisch2020: combination", err);
@@ -388,8 +380,7 @@ static void maisch2020_destroy(void *state)
     maisch_state *s = state;
     free_targets(s);
     GLuint p[6] = {s->prog_gen, s->prog_recv, s->prog_splat, s->prog_up, s->prog_combine, s->prog_grazing};
-    for (int i = 0; i < 6; i++)
-        if (p[i]) glDeleteProgram(p[i]);
+    gl_delete_programs(p, 6);
     for (int f = 0; f < 3; f++)
         for (int k = 0; k < 3; k++)
             for (int o = 0; o < 3; o++)

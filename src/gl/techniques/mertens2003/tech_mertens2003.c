@@ -176,7 +176,6 @@ static sss_result mertens_resize(const gl_tech_ctx *c, void *state, sss_error *e
     return make_targets(c, state, err);
 }
 
-static void set_i(GLuint prog, const char *name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
 
 /* The interleaving block in render pixels: `pattern` counts output pixels, so with supersampling (k)
  * the block and the blur that recombines it cover the same part of the image as at k = 1 (k^2 times
@@ -221,15 +220,15 @@ static sss_result mertens_render(const gl_tech_ctx *c, void *state, sss_error *e
     glBindTextureUnit(3, s->view_pos);
     glBindTextureUnit(4, s->view_irr);
     glBindTextureUnit(5, s->view_nrm);
-    set_i(prog, "u_samples", (int)p->samples);
-    set_i(prog, "u_uniform", (int)p->uniform_samples);
+    gl_uniform_i(prog, "u_samples", (int)p->samples);
+    gl_uniform_i(prog, "u_uniform", (int)p->uniform_samples);
     glUniform1f(glGetUniformLocation(prog, "u_uniform_radius"), (float)p->uniform_radius);
-    set_i(prog, "u_pattern", pattern(c));
-    set_i(prog, "u_jacobian", (int)p->jacobian);
-    set_i(prog, "u_renormalize", (int)p->renormalize);
-    set_i(prog, "u_jitter", (int)p->jitter);
+    gl_uniform_i(prog, "u_pattern", pattern(c));
+    gl_uniform_i(prog, "u_jacobian", (int)p->jacobian);
+    gl_uniform_i(prog, "u_renormalize", (int)p->renormalize);
+    gl_uniform_i(prog, "u_jitter", (int)p->jitter);
     glUniform1ui(glGetUniformLocation(prog, "u_seed"), (GLuint)p->seed);
-    set_i(prog, "u_views", nviews);
+    gl_uniform_i(prog, "u_views", nviews);
     if (nviews > 0) {
         glUniformMatrix4fv(glGetUniformLocation(prog, "u_view_vp"), nviews, GL_FALSE, &vps[0][0]);
         glUniform1iv(glGetUniformLocation(prog, "u_view_light"), nviews, view_light);
@@ -239,17 +238,11 @@ static sss_result mertens_render(const gl_tech_ctx *c, void *state, sss_error *e
     if (res != SSS_OK) return res;
 
     gl_timer_begin(c->timer, "resolve");
-    glBindFramebuffer(GL_FRAMEBUFFER, c->frame.fbo_final);
-    glViewport(0, 0, c->width, c->height);
     prog = s->prog_resolve;
-    glUseProgram(prog);
-    glBindTextureUnit(0, c->frame.pos);
-    glBindTextureUnit(1, c->frame.nrm);
-    glBindTextureUnit(2, c->frame.albedo);
-    glBindTextureUnit(3, c->frame.refl);
+    gl_resolve_begin(c, prog);
     glBindTextureUnit(4, s->tex_est);
-    set_i(prog, "u_pattern", pattern(c));
-    set_i(prog, "u_blur", (int)p->blur);
+    gl_uniform_i(prog, "u_pattern", pattern(c));
+    gl_uniform_i(prog, "u_blur", (int)p->blur);
     glUniform1f(glGetUniformLocation(prog, "u_blur_normal"), (float)p->blur_normal);
     gl_draw_fullscreen(c);
     gl_timer_end(c->timer);
@@ -261,8 +254,7 @@ static void mertens_destroy(void *state)
     mertens_state *s = state;
     free_views(s);
     GLuint p[3] = {s->prog_est, s->prog_resolve, s->prog_tsm};
-    for (int i = 0; i < 3; i++)
-        if (p[i]) glDeleteProgram(p[i]);
+    gl_delete_programs(p, 3);
     if (s->tables) glDeleteBuffers(1, &s->tables);
     if (s->tex_est) glDeleteTextures(1, &s->tex_est);
     if (s->fbo_est) glDeleteFramebuffers(1, &s->fbo_est);

@@ -441,14 +441,8 @@ static sss_result sam_render(const gl_tech_ctx *c, void *state, sss_error *err)
         glDisable(GL_BLEND);
     } else {
         gl_timer_begin(c->timer, "sam_combine");
-        glBindFramebuffer(GL_FRAMEBUFFER, c->frame.fbo_final);
-        glViewport(0, 0, c->width, c->height);
         glDisable(GL_BLEND);
-        glUseProgram(s->prog_combine);
-        glBindTextureUnit(0, c->frame.pos);
-        glBindTextureUnit(1, c->frame.nrm);
-        glBindTextureUnit(2, c->frame.albedo);
-        glBindTextureUnit(3, c->frame.refl);
+        gl_resolve_begin(c, s->prog_combine);
         glBindTextureUnit(4, s->tex_trans);
         glBindTextureUnit(5, s->tex_trans);
         glUniform1i(glGetUniformLocation(s->prog_combine, "u_use_screen"), 0);

@@ -200,7 +200,6 @@ static sss_result ssss_materials_changed(const gl_tech_ctx *c, void *state, sss_
     return make_kernel(c, s, err);
 }
 
-static void set_i(GLuint prog, const char *name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
 
 /* One timer name per pass (at most 8 terms: svd rank <= 8, gauss6 6): tools that merge timings by name
  * over frames expect each name once per frame. */
@@ -233,7 +232,7 @@ static sss_result ssss_render(const gl_tech_ctx *c, void *state, sss_error *err)
     glBindSampler(6, s->samp_cube);
     glBindTextureUnit(7, c->gs->shadow_2d);
     glBindSampler(7, s->samp_2d);
-    set_i(s->prog_prep, "u_transmittance", set.transmittance && c->gs->light_count > 0);
+    gl_uniform_i(s->prog_prep, "u_transmittance", set.transmittance && c->gs->light_count > 0);
     gl_draw_fullscreen(c);
     glBindSampler(6, 0);
     glBindSampler(7, 0);
@@ -244,7 +243,7 @@ static sss_result ssss_render(const gl_tech_ctx *c, void *state, sss_error *err)
     glClearNamedFramebufferfv(s->fbo_sum, GL_COLOR, 0, zero);
     glUseProgram(s->prog_blur);
     glBindTextureUnit(1, c->frame.pos);
-    set_i(s->prog_blur, "u_follow", set.follow_surface);
+    gl_uniform_i(s->prog_blur, "u_follow", set.follow_surface);
     glUniform1f(glGetUniformLocation(s->prog_blur, "u_rotate"), (float)set.rotation);
     GLint u_vertical = glGetUniformLocation(s->prog_blur, "u_vertical");
     GLint u_term = glGetUniformLocation(s->prog_blur, "u_term");
@@ -271,12 +270,7 @@ static sss_result ssss_render(const gl_tech_ctx *c, void *state, sss_error *err)
     }
 
     gl_timer_begin(c->timer, "combine");
-    glBindFramebuffer(GL_FRAMEBUFFER, c->frame.fbo_final);
-    glUseProgram(s->prog_combine);
-    glBindTextureUnit(0, c->frame.pos);
-    glBindTextureUnit(1, c->frame.nrm);
-    glBindTextureUnit(2, c->frame.albedo);
-    glBindTextureUnit(3, c->frame.refl);
+    gl_resolve_begin(c, s->prog_combine);
     glBindTextureUnit(4, s->tex_sum);
     glBindTextureUnit(5, s->tex_prep);
     gl_draw_fullscreen(c);
@@ -289,13 +283,11 @@ static void ssss_destroy(void *state)
     ssss_state *s = state;
     free_targets(s);
     GLuint p[3] = {s->prog_prep, s->prog_blur, s->prog_combine};
-    for (int i = 0; i < 3; i++)
-        if (p[i]) glDeleteProgram(p[i]);
+    gl_delete_programs(p, 3);
     if (s->ssbo) glDeleteBuffers(1, &s->ssbo);
     if (s->trans_tex) glDeleteTextures(1, &s->trans_tex);
     GLuint samp[2] = {s->samp_cube, s->samp_2d};
-    for (int i = 0; i < 2; i++)
-        if (samp[i]) glDeleteSamplers(1, &samp[i]);
+    gl_delete_samplers(samp, 2);
 }
 
 static const char *const targets[] = {"ssss_signal", "ssss_horizontal", "ssss_sum", NULL};
