@@ -16,10 +16,7 @@ if ! command -v blender >/dev/null 2>&1; then
     exit 0
 fi
 . "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
-PY=""
-for p in /usr/bin/python3 python3; do
-    if command -v "$p" >/dev/null 2>&1 && "$p" -c 'import json' 2>/dev/null; then PY=$p; break; fi
-done
+find_python "json"
 SCRIPT=$ROOT/tools/blender/render_scene.py
 blend() { # SCENE OUT ENGINE: the script, headless
     blender -b --factory-startup --python-exit-code 1 --python "$SCRIPT" -- "$1" --engine "$3" -o "$2" \

@@ -13,10 +13,7 @@ set -u
 SSS=$1
 ROOT=$2
 . "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
-PY=""
-for p in /usr/bin/python3 python3; do
-    if command -v "$p" >/dev/null 2>&1 && "$p" -c 'import json, csv' 2>/dev/null; then PY=$p; break; fi
-done
+find_python "json, csv"
 
 mkdir -p "$T/scenes" "$T/ext"
 cat >"$T/scenes/ball.json" <<'EOF'
