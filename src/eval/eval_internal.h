@@ -29,6 +29,9 @@ char *eval_escaped(const char *text);
 
 /* Appends a zeroed entry (growing the array); NULL when out of memory. */
 sss_eval_entry *eval_add_entry(sss_eval_results *res);
+/* " (N frame[s][, no warm-up])" into out when --frame-budget cut e's frames (fewer timed or warm-up frames
+ * than the run asked), "" otherwise; returns whether it did. */
+int eval_frames_note(const sss_eval_results *res, const sss_eval_entry *e, char *out, size_t cap);
 
 /* Where --cached-reference looks for the scene's reference at w x h: "<scene folder>/references/
  * <file_stem>_<w>x<h>[_t<T>].exr" (committed next to the scene), or with desc->reference_dir,

@@ -145,9 +145,9 @@ static void entry_row(sbuf *b, const sss_eval_results *res, const sss_eval_entry
     else fmt_num(p, sizeof p, e->metrics.psnr, "%.2f", e->has_metrics);
     fmt_num(r, sizeof r, e->metrics.rmse, "%.3f", e->has_metrics);
     fmt_num(ms, sizeof ms, e->total_ms, "%.1f", e->ok && !e->external);
-    if (e->ok && (e->frames < res->frames || e->warmup_frames < res->warmup_frames)) /* cut by --frame-budget */
-        snprintf(ms + strlen(ms), sizeof ms - strlen(ms), " <span class=\"small\">(%d frame%s%s)</span>", e->frames,
-                 e->frames == 1 ? "" : "s", e->warmup_frames ? "" : ", no warm-up");
+    char note[64];
+    if (eval_frames_note(res, e, note, sizeof note))
+        snprintf(ms + strlen(ms), sizeof ms - strlen(ms), " <span class=\"small\">%s</span>", note + 1);
     fmt_num(pre, sizeof pre, e->precompute_ms, "%.0f", e->precompute_ms > 0);
     fmt_num(mem, sizeof mem, e->has_stats ? (e->stats.texture_bytes + e->stats.buffer_bytes) / 1048576.0 : 0, "%.1f",
             e->has_stats);

@@ -83,7 +83,8 @@ static void crop_pair(cairo_t *cr, cairo_surface_t *ref, cairo_surface_t *img, e
     eval_text(cr, x + box + GAP + box / 2, y + box + 28, 11, 0, 0.5, "technique");
 }
 
-static void caption(cairo_t *cr, const sss_eval_entry *e, const char *label, double x, double y, double width)
+static void caption(cairo_t *cr, const sss_eval_results *res, const sss_eval_entry *e, const char *label, double x,
+                    double y, double width)
 {
     char buf[600], fit[600];
     cairo_set_source_rgb(cr, 0, 0, 0);
@@ -96,9 +97,10 @@ static void caption(cairo_t *cr, const sss_eval_entry *e, const char *label, dou
         char psnr[32];
         if (isfinite(e->metrics.psnr)) snprintf(psnr, sizeof psnr, "%.1f dB", e->metrics.psnr);
         else snprintf(psnr, sizeof psnr, "inf");
-        char ms[32];
+        char ms[96], note[64];
+        eval_frames_note(res, e, note, sizeof note);
         if (e->external) snprintf(ms, sizeof ms, "external");
-        else snprintf(ms, sizeof ms, "%.1f ms", e->total_ms);
+        else snprintf(ms, sizeof ms, "%.1f ms%s", e->total_ms, note);
         snprintf(buf, sizeof buf, "DSSIM %.4f   FLIP %.4f   PSNR %s   %s", e->metrics.dssim, e->metrics.flip, psnr, ms);
     } else {
         snprintf(buf, sizeof buf, "no reference   %.1f ms", e->total_ms);
@@ -164,8 +166,10 @@ sss_result sss_eval_write_sheet(const sss_eval_results *res, int scene, const ch
     snprintf(buf, sizeof buf, "Windows are %dx%d pixels (an eighth of the shorter side)%s.", crop, crop,
              sil.valid ? "" : "; no silhouette window: no G-buffer object ids or no subsurface edges");
     eval_text(cr, lx, ly + 22 + 16 * 7, 11.5, 0, 0, buf);
-    snprintf(buf, sizeof buf, "ms: median total frame time of %d frame%s after %d warm-up; %s", res->frames,
-             res->frames == 1 ? "" : "s", res->warmup_frames, res->timing_method[0] ? res->timing_method : "");
+    snprintf(buf, sizeof buf, "ms: median total frame time of %d frame%s after %d warm-up%s; %s", res->frames,
+             res->frames == 1 ? "" : "s", res->warmup_frames,
+             res->frame_budget_s > 0 ? " (fewer where marked: --frame-budget)" : "",
+             res->timing_method[0] ? res->timing_method : "");
     eval_text(cr, lx, ly + 22 + 16 * 8, 11.5, 0, 0, buf);
 
     /* one row per technique */
@@ -185,7 +189,7 @@ sss_result sss_eval_write_sheet(const sss_eval_results *res, int scene, const ch
         eval_draw_surface(cr, fs, x + 2 * (tw + GAP), y, tw, th);
         if (ms) eval_draw_colour_bar(cr, x + tw + GAP, y + th + 3, tw, 8, 0, 1.0 / MAP_GAIN, "DSSIM");
         if (fs) eval_draw_colour_bar(cr, x + 2 * (tw + GAP), y + th + 3, tw, 8, 1, 1.0, "FLIP");
-        caption(cr, e, res->labels[k], x, y + th + BAR, 3 * tw + 2 * GAP);
+        caption(cr, res, e, res->labels[k], x, y + th + BAR, 3 * tw + 2 * GAP);
         if (is && e->has_metrics) {
             double cx = x + 3 * tw + 2 * GAP + 24;
             crop_pair(cr, rs, is, worst, cx, y, box, "worst FLIP", WORST_RGB);

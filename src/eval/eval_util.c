@@ -121,6 +121,14 @@ sss_result sss_eval_parse_sizes(const char *text, sss_eval_size **out, int *coun
     return SSS_OK;
 }
 
+int eval_frames_note(const sss_eval_results *res, const sss_eval_entry *e, char *out, size_t cap)
+{
+    int cut = e->ok && !e->external && (e->frames < res->frames || e->warmup_frames < res->warmup_frames);
+    if (cut) snprintf(out, cap, " (%d frame%s%s)", e->frames, e->frames == 1 ? "" : "s", e->warmup_frames ? "" : ", no warm-up");
+    else if (cap) out[0] = '\0';
+    return cut;
+}
+
 int sss_eval_reference_path(const char *dir, const char *stem, int width, int height, int has_time, double time,
                             char *out, size_t cap)
 {

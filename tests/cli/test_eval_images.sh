@@ -56,6 +56,7 @@ for f in results.json results.csv report.html sheet_ball.png sheet_knot.png plot
 done
 grep -Eq "other-png +ok .* external" "$T/stdout" || fail "the summary does not mark the external image: $(cat "$T/stdout")"
 grep -q "external image: " "$OUT/report.html" || fail "the report does not mark the external images"
+grep -q "0 frames" "$OUT/report.html" && fail "the report gives an external image a frame count (it has no timings)"
 
 if [ -n "$PY" ]; then
     "$PY" - "$OUT" "$T/ext" <<'EOF' || fail "results.json / results.csv checks failed"
