@@ -88,6 +88,8 @@ static sss_result apply_preset(const gl_technique *tech, double *params, double 
     const sss_gl_param_info *sp = sss_gl_shared_params(&n);
     for (int i = 0; i < n; i++) shared[i] = sp[i].default_value;
     shared[GL_P_PRESET] = preset;
+    /* the papers and HDRP model light from the lights only */
+    if (preset != SSS_GL_PRESET_MEASURED) shared[GL_P_INTERREFLECTION] = 0;
     sss_result res = SSS_OK;
     for (int i = 0; preset != SSS_GL_PRESET_MEASURED && i < tech->paper_count && res == SSS_OK; i++)
         res = gl_params_set_value(tech, params, shared, tech->paper[i].name, tech->paper[i].value, NULL, err);
@@ -112,7 +114,8 @@ sss_result gl_params_set_value(const gl_technique *tech, double *params, double 
     if (i < 0) return unknown_param(tech, name, err);
     sss_result res = check_value(&sp[i], value, err);
     if (res != SSS_OK) return res;
-    if (scene_level) *scene_level = i != GL_P_SHADOW_BIAS;
+    /* read per frame: no new GPU scene */
+    if (scene_level) *scene_level = i != GL_P_SHADOW_BIAS && i != GL_P_INTERREFLECTION && i != GL_P_INTERREFLECTION_STRIDE;
     if (i == GL_P_PRESET) return apply_preset(tech, params, shared, value, err);
     shared[i] = value;
     return SSS_OK;

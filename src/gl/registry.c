@@ -75,6 +75,13 @@ static const sss_gl_param_info shared_params[GL_P_SHARED_COUNT] = {
                            "splats reach the radius holding this fraction of R_d's integral (<= r_max)"},
     [GL_P_SPLAT_TRIANGLES] = {"splat_triangles", SSS_GL_PARAM_INT, 4096, 4, 16777216,
                               "triangle budget of simplified splat meshes (objects without splat_mesh)"},
+    [GL_P_INTERREFLECTION] = {"interreflection", SSS_GL_PARAM_BOOL, 1, 0, 1,
+                              "1: light between surfaces, one bounce from virtual point lights on every surface "
+                              "(docs/interreflection.md); 0: light from the lights only, as the papers (preset=paper)"},
+    [GL_P_INTERREFLECTION_SOURCES] = {"interreflection_sources", SSS_GL_PARAM_INT, 512, 8, 65536,
+                                      "virtual point lights of the interreflection stage, shared out over the objects"},
+    [GL_P_INTERREFLECTION_STRIDE] = {"interreflection_stride", SSS_GL_PARAM_INT, 4, 1, 64,
+                                     "the stage gathers at every n-th pixel in x and y and upsamples (geometry-aware)"},
     [GL_P_PRESET] = {"preset", SSS_GL_PARAM_INT, SSS_GL_PRESET_MEASURED, 0, 2,
                      "sets every parameter: 0 (measured) the defaults, best on the eval scenes; 1 (paper) the "
                      "published configuration (`--param preset=paper`); 2 (hdrp) Unity HDRP's defaults, burley "

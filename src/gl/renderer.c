@@ -98,7 +98,8 @@ int sss_gl_renderer_get_supersample(const sss_gl_renderer *r) { return r ? r->rt
 
 /* ---- Frames --------------------------------------------------------------------------------- */
 
-/* The frame: the renderer's G-buffer, the shadow maps, its illumination, the mip chains (each when the
+/* The frame: the renderer's G-buffer, the shadow maps, its illumination with the light between surfaces
+ * (interreflection.c), the mip chains (each when the
  * technique reads what it makes), then the technique. */
 static sss_result render_frame(sss_gl_renderer *r, double time, sss_error *err)
 {
@@ -115,6 +116,7 @@ static sss_result render_frame(sss_gl_renderer *r, double time, sss_error *err)
         res = gl_own_gbuffer(core, &r->own, err);
     if (res == SSS_OK && (reads & (GL_READ_ILLUMINATION | GL_READ_LIGHTS))) res = gl_core_shadows(core, err);
     if (res == SSS_OK && (reads & GL_READ_ILLUMINATION)) res = gl_own_illumination(core, &r->own, err);
+    if (res == SSS_OK && gl_bounce_enabled(core)) res = gl_bounce_frame(core, err);
     if (res == SSS_OK && (reads & GL_READ_MIPS)) res = gl_core_mipmaps(core, err);
     return gl_runtime_frame_finish(rt, res, err);
 }

@@ -83,6 +83,7 @@ sss_result gl_core_rebuild_scene(gl_core *core, const sss_scene *scene, sss_erro
 void gl_core_free(gl_core *core)
 {
     gl_ssaa_free(core);
+    gl_bounce_free(&core->bounce);
     gl_frame_free(&core->frame);
     gl_scene_free(&core->gs);
     GLuint progs[2] = {core->prog_shadow, core->prog_reduce};

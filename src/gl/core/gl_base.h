@@ -119,7 +119,11 @@ enum {
     GL_SSBO_MESH_POS = 6,
     GL_SSBO_MESH_IDX = 7,
     GL_SSBO_MESH_UV = 8,
-    GL_SSBO_LUT_SCALES = 9
+    GL_SSBO_LUT_SCALES = 9,
+    GL_SSBO_BOUNCE_TRIANGLES = 10, /* interreflection.c */
+    GL_SSBO_BOUNCE_SOURCES = 11,
+    GL_SSBO_BOUNCE_VPLS = 12,
+    GL_SSBO_BOUNCE_TRANSMIT = 13
 };
 enum {
     GL_UNIT_LUT = 8,          /* sampler2DArray of the materials' LUTs */
@@ -229,6 +233,8 @@ typedef struct gl_scene {
     size_t texture_bytes, buffer_bytes;
     unsigned splat_total;
     int splats_ready;
+    GLuint bounce_tris, bounce_sources, bounce_vpls; /* interreflection.c: triangles, lit, emitting */
+    int bounce_count, bounce_ready;
 } gl_scene;
 
 /* ---- Screen-sized shared targets (frame.c) ---------------------------------------------------- */

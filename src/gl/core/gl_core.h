@@ -37,11 +37,25 @@ enum {
     GL_P_SPLAT_TRIANGLES,
     GL_P_LUT_LEVELS,
     GL_P_SPLAT_ENERGY,
+    GL_P_INTERREFLECTION,
+    GL_P_INTERREFLECTION_SOURCES,
+    GL_P_INTERREFLECTION_STRIDE,
     GL_P_PRESET, /* not stored as a setting: applying it sets the others (runtime.c) */
     GL_P_SHARED_COUNT
 };
 
 /* ---- The core ------------------------------------------------------------------------------------ */
+
+/* The interreflection stage's programs and its reduced-resolution target (interreflection.c); the
+ * sources it lights live in the GPU scene (gl_scene.bounce_*). */
+typedef struct gl_bounce {
+    GLuint prog_sources, prog_exitance, prog_gather, prog_apply;
+    GLuint tex, fbo;          /* RGBA32F, ceil(width / stride) x ceil(height / stride): gathered irradiance */
+    int width, height, stride;
+    GLuint ssbo_transmit;     /* per GPU material: diffuse-incidence transmittance 1 - 2 FM1(eta) */
+    int transmit_count;
+    size_t bytes;
+} gl_bounce;
 
 typedef struct gl_core {
     sss_gl_context *ctx;
@@ -62,6 +76,7 @@ typedef struct gl_core {
     GLuint prog_ssaa, ssaa_tex, ssaa_fbo; /* the k x k box filter into the output image (ssaa.c) */
     size_t ssaa_bytes;
     long long frame_gpu_bytes;         /* GPU bytes of the frame targets and the SSAA output */
+    gl_bounce bounce;                  /* the interreflection stage (built on first use) */
 } gl_core;
 
 /* core.c: sets the sizes, parameters and timer of a core (no GL; k >= 1 checked by the caller). */
@@ -87,6 +102,21 @@ sss_result gl_core_shadows(gl_core *core, sss_error *err);
 sss_result gl_core_mipmaps(gl_core *core, sss_error *err);
 /* The output-size linear image: the resolved one, or frame.final when k = 1. */
 GLuint gl_core_output(const gl_core *core);
+
+/* ---- Light between surfaces (interreflection.c) --------------------------------------------------- */
+
+/* 1 when the renderer's frame adds the interreflection stage (the parameter is on and the technique
+ * reads the illumination pass, which the stage adds to). */
+int gl_bounce_enabled(const gl_core *core);
+/* After the illumination pass: lights the scene's bounce sources (shadow maps included), scatters the
+ * subsurface ones' light to their exitance, gathers the one-bounce irradiance at every `stride`-th
+ * pixel and adds it, upsampled, to frame.irr (subsurface receivers) and frame.refl (diffuse ones).
+ * Timed as "bounce_sources", "bounce_gather" and "bounce_apply". Builds what it needs on first use. */
+sss_result gl_bounce_frame(gl_core *core, sss_error *err);
+void gl_bounce_free(gl_bounce *b);
+/* The sources of the GPU scene (gl_scene.bounce_*) for the budget `count`: triangles of each object's
+ * surface (CPU; scene_gpu.c frees them with the scene). */
+sss_result gl_scene_prepare_bounce(gl_core *core, sss_error *err);
 
 /* ---- Frame targets and passes (frame.c) ---------------------------------------------------------- */
 

@@ -475,6 +475,9 @@ void gl_scene_free(gl_scene *gs)
         delete_buffer(&o->splat_uv);
     }
     free(gs->objects);
+    delete_buffer(&gs->bounce_tris);
+    delete_buffer(&gs->bounce_sources);
+    delete_buffer(&gs->bounce_vpls);
     materials_free(&gs->mat);
     free(gs->lights);
     free(gs->light_kinds);
