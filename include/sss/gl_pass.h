@@ -8,8 +8,10 @@
  * their own light-space shadow maps of those meshes); allocates nothing per frame; sets the GL state
  * its draws depend on and restores the caller's (the list below); resize, parameter, material and
  * light updates.
- * Does not: render the caller's G-buffer, lighting or shadow maps, read the caller's shadow maps, tone
- * map, print, or create a context (the caller's context must be current, OpenGL 4.5 core:
+ * Does not: render the caller's G-buffer, lighting or shadow maps, read the caller's shadow maps, add
+ * the light between surfaces (the renderer's interreflection stage, docs/interreflection.md: the
+ * caller's irradiance carries whatever indirect light its engine computes), tone map, print, or create
+ * a context (the caller's context must be current, OpenGL 4.5 core:
  * sss_gl_context_adopt_current wraps it).
  *
  * The sss_gl_renderer of sss/gl.h runs techniques the same way: it renders its own G-buffer and

@@ -115,7 +115,9 @@ sss_result gl_params_set_value(const gl_technique *tech, double *params, double 
     sss_result res = check_value(&sp[i], value, err);
     if (res != SSS_OK) return res;
     /* read per frame: no new GPU scene */
-    if (scene_level) *scene_level = i != GL_P_SHADOW_BIAS && i != GL_P_INTERREFLECTION && i != GL_P_INTERREFLECTION_STRIDE;
+    if (scene_level)
+        *scene_level = i != GL_P_SHADOW_BIAS && i != GL_P_INTERREFLECTION && i != GL_P_INTERREFLECTION_STRIDE &&
+                       i != GL_P_INTERREFLECTION_BOUNCES;
     if (i == GL_P_PRESET) return apply_preset(tech, params, shared, value, err);
     shared[i] = value;
     return SSS_OK;

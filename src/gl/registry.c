@@ -80,8 +80,10 @@ static const sss_gl_param_info shared_params[GL_P_SHARED_COUNT] = {
                               "(docs/interreflection.md); 0: light from the lights only, as the papers (preset=paper)"},
     [GL_P_INTERREFLECTION_SOURCES] = {"interreflection_sources", SSS_GL_PARAM_INT, 512, 8, 65536,
                                       "virtual point lights of the interreflection stage, shared out over the objects"},
-    [GL_P_INTERREFLECTION_STRIDE] = {"interreflection_stride", SSS_GL_PARAM_INT, 4, 1, 64,
+    [GL_P_INTERREFLECTION_STRIDE] = {"interreflection_stride", SSS_GL_PARAM_INT, 8, 1, 64,
                                      "the stage gathers at every n-th pixel in x and y and upsamples (geometry-aware)"},
+    [GL_P_INTERREFLECTION_BOUNCES] = {"interreflection_bounces", SSS_GL_PARAM_INT, 1, 1, 8,
+                                      "bounces between surfaces: the sources lit again by the virtual lights before"},
     [GL_P_PRESET] = {"preset", SSS_GL_PARAM_INT, SSS_GL_PRESET_MEASURED, 0, 2,
                      "sets every parameter: 0 (measured) the defaults, best on the eval scenes; 1 (paper) the "
                      "published configuration (`--param preset=paper`); 2 (hdrp) Unity HDRP's defaults, burley "
@@ -104,7 +106,7 @@ double sss_gl_paper_value(const char *technique, const char *param)
         if (strcmp(t->info.params[i].name, param) == 0) return t->info.params[i].default_value;
     for (int i = 0; i < GL_P_SHARED_COUNT; i++)
         if (strcmp(shared_params[i].name, param) == 0)
-            return i == GL_P_PRESET ? SSS_GL_PRESET_PAPER : shared_params[i].default_value;
+            return i == GL_P_PRESET ? SSS_GL_PRESET_PAPER : i == GL_P_INTERREFLECTION ? 0.0 : shared_params[i].default_value;
     return NAN;
 }
 

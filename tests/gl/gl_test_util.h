@@ -39,15 +39,29 @@ static inline int gt_load(const char *name, sss_scene *scene)
     return 1;
 }
 
-/* A renderer description: technique (NULL: the scene's), parameters, supersampling factor k (0: off). */
+/* A renderer description: technique (NULL: the scene's), parameters, supersampling factor k (0: off).
+ * The cached references of these tests are the single-event integral (tests/data/gl/README.md), what
+ * the techniques model: the description adds interreflection=0 (the light between surfaces,
+ * docs/interreflection.md) unless the parameters name it. The parameters live in a static copy until
+ * the next call (the renderer reads them when it is created). */
 static inline sss_gl_renderer_desc gt_desc(const char *technique, const sss_gl_param_value *params, int nparams, int k)
 {
+    static sss_gl_param_value with_off[64];
     sss_gl_renderer_desc d;
     memset(&d, 0, sizeof d);
     d.technique = technique;
     d.params = params;
     d.param_count = nparams;
     d.supersample = k;
+    int named = 0;
+    for (int i = 0; i < nparams; i++) named |= strcmp(params[i].name, "interreflection") == 0;
+    if (!named && nparams < 63) {
+        for (int i = 0; i < nparams; i++) with_off[i] = params[i];
+        with_off[nparams].name = "interreflection";
+        with_off[nparams].value = 0.0;
+        d.params = with_off;
+        d.param_count = nparams + 1;
+    }
     return d;
 }
 

@@ -37,11 +37,7 @@
 static int render_with(const sss_scene *scene, const char *data, const sss_gl_param_value *params, int nparams,
                        const double *times, int ntimes, sss_image *out, sss_error *err)
 {
-    sss_gl_renderer_desc d;
-    memset(&d, 0, sizeof d);
-    d.technique = "sam";
-    d.params = params;
-    d.param_count = nparams;
+    sss_gl_renderer_desc d = gt_desc("sam", params, nparams, 0); /* single-event, as the references */
     d.data_file = data;
     sss_gl_renderer *r = NULL;
     memset(out, 0, sizeof *out);

@@ -40,6 +40,7 @@ enum {
     GL_P_INTERREFLECTION,
     GL_P_INTERREFLECTION_SOURCES,
     GL_P_INTERREFLECTION_STRIDE,
+    GL_P_INTERREFLECTION_BOUNCES,
     GL_P_PRESET, /* not stored as a setting: applying it sets the others (runtime.c) */
     GL_P_SHARED_COUNT
 };
@@ -49,7 +50,7 @@ enum {
 /* The interreflection stage's programs and its reduced-resolution target (interreflection.c); the
  * sources it lights live in the GPU scene (gl_scene.bounce_*). */
 typedef struct gl_bounce {
-    GLuint prog_sources, prog_exitance, prog_gather, prog_apply;
+    GLuint prog_sources, prog_exitance, prog_relight, prog_gather, prog_apply;
     GLuint tex, fbo;          /* RGBA32F, ceil(width / stride) x ceil(height / stride): gathered irradiance */
     int width, height, stride;
     GLuint ssbo_transmit;     /* per GPU material: diffuse-incidence transmittance 1 - 2 FM1(eta) */

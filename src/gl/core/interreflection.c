@@ -228,7 +228,7 @@ sss_result gl_scene_prepare_bounce(gl_core *core, sss_error *err)
     free(boxes.hi);
     if (res == SSS_OK && l.count > 0) {
         gs->bounce_tris = bounce_buffer(l.items, l.count * sizeof *l.items, &gs->buffer_bytes);
-        gs->bounce_sources = bounce_buffer(NULL, l.count * 12 * sizeof(float), &gs->buffer_bytes);
+        gs->bounce_sources = bounce_buffer(NULL, l.count * 16 * sizeof(float), &gs->buffer_bytes);
         gs->bounce_vpls = bounce_buffer(NULL, l.count * 12 * sizeof(float), &gs->buffer_bytes);
     }
     gs->bounce_count = (int)l.count;
@@ -248,8 +248,8 @@ int gl_bounce_enabled(const gl_core *core)
 
 void gl_bounce_free(gl_bounce *b)
 {
-    GLuint progs[4] = {b->prog_sources, b->prog_exitance, b->prog_gather, b->prog_apply};
-    for (int i = 0; i < 4; i++)
+    GLuint progs[5] = {b->prog_sources, b->prog_exitance, b->prog_relight, b->prog_gather, b->prog_apply};
+    for (int i = 0; i < 5; i++)
         if (progs[i]) glDeleteProgram(progs[i]);
     if (b->tex) gl_mem_delete_textures(1, &b->tex);
     if (b->fbo) glDeleteFramebuffers(1, &b->fbo);
@@ -262,6 +262,7 @@ static sss_result bounce_programs(gl_bounce *b, sss_error *err)
     if (b->prog_apply) return SSS_OK;
     sss_result res = gl_program_compute("bounce_sources.comp.glsl", NULL, &b->prog_sources, err);
     if (res == SSS_OK) res = gl_program_compute("bounce_exitance.comp.glsl", NULL, &b->prog_exitance, err);
+    if (res == SSS_OK) res = gl_program_compute("bounce_relight.comp.glsl", NULL, &b->prog_relight, err);
     if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "bounce_gather.frag.glsl", NULL, &b->prog_gather, err);
     if (res == SSS_OK) res = gl_program_vf("fullscreen.vert.glsl", "bounce_apply.frag.glsl", NULL, &b->prog_apply, err);
     return res;
@@ -323,10 +324,20 @@ static void bounce_lights(gl_core *core)
     uniform_u(b->prog_sources, "u_count", n);
     glDispatchCompute(groups, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glUseProgram(b->prog_exitance);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_BOUNCE_TRANSMIT, b->ssbo_transmit);
     uniform_u(b->prog_exitance, "u_count", n);
-    glDispatchCompute(groups, 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    uniform_u(b->prog_relight, "u_count", n);
+    int bounces = (int)core->shared[GL_P_INTERREFLECTION_BOUNCES];
+    for (int k = 0; k < bounces; k++) {
+        if (k > 0) { /* the sources lit again by the virtual lights of bounce k */
+            glUseProgram(b->prog_relight);
+            glDispatchCompute(groups, 1, 1);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        }
+        glUseProgram(b->prog_exitance);
+        glDispatchCompute(groups, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
 }
 
 static void bounce_gather(gl_core *core)

@@ -8,11 +8,12 @@ struct BounceTriangle {
 };
 
 // A lit source: centroid and world area, normal, and (rgb) the diffuse exitance albedo E, or the
-// subsurface entering irradiance F_t E.
+// subsurface entering irradiance F_t E: from the lights (direct) and with the bounces so far (value).
 struct BounceSource {
     vec4 pos;    // xyz; w: area
     vec4 nrm;    // xyz; w: 1 subsurface, 0 diffuse
     vec4 value;  // rgb
+    vec4 direct; // rgb
 };
 
 // A virtual point light: its disc (centre, area, normal) and flux M A (rgb).

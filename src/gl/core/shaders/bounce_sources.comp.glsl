@@ -33,5 +33,5 @@ void main()
     }
     if (diffuse) value *= m.albedo.rgb;
     if (m.albedo.w > 1.5 || !(area > 0.0) || isinf(area)) value = vec3(0.0); // emitters, degenerate
-    bounce_sources[j] = BounceSource(vec4(x, area), vec4(n, diffuse ? 0.0 : 1.0), vec4(value, 0.0));
+    bounce_sources[j] = BounceSource(vec4(x, area), vec4(n, diffuse ? 0.0 : 1.0), vec4(value, 0.0), vec4(value, 0.0));
 }
