@@ -116,7 +116,7 @@ sss_result gl_params_set_value(const gl_technique *tech, double *params, double 
     if (res != SSS_OK) return res;
     /* read per frame: no new GPU scene */
     if (scene_level)
-        *scene_level = i != GL_P_SHADOW_BIAS && i != GL_P_INTERREFLECTION && i != GL_P_INTERREFLECTION_STRIDE &&
+        *scene_level = i != GL_P_SHADOW_BIAS && i != GL_P_INTERREFLECTION && i != GL_P_INTERREFLECTION_ROWS &&
                        i != GL_P_INTERREFLECTION_BOUNCES;
     if (i == GL_P_PRESET) return apply_preset(tech, params, shared, value, err);
     shared[i] = value;

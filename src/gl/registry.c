@@ -80,9 +80,10 @@ static const sss_gl_param_info shared_params[GL_P_SHARED_COUNT] = {
                               "(docs/interreflection.md); 0: light from the lights only, as the papers (preset=paper)"},
     [GL_P_INTERREFLECTION_SOURCES] = {"interreflection_sources", SSS_GL_PARAM_INT, 512, 8, 65536,
                                       "virtual point lights of the interreflection stage, shared out over the objects"},
-    [GL_P_INTERREFLECTION_STRIDE] = {"interreflection_stride", SSS_GL_PARAM_INT, 8, 1, 64,
-                                     "the stage gathers at every n-th pixel in x and y and upsamples (geometry-aware)"},
-    [GL_P_INTERREFLECTION_BOUNCES] = {"interreflection_bounces", SSS_GL_PARAM_INT, 1, 1, 8,
+    [GL_P_INTERREFLECTION_ROWS] = {"interreflection_rows", SSS_GL_PARAM_INT, 68, 1, 16384,
+                                   "the stage gathers at every (height / rows)-th pixel in x and y (at least every "
+                                   "pixel) and upsamples geometry-aware: every 8th at 540 rows"},
+    [GL_P_INTERREFLECTION_BOUNCES] = {"interreflection_bounces", SSS_GL_PARAM_INT, 2, 1, 8,
                                       "bounces between surfaces: the sources lit again by the virtual lights before"},
     [GL_P_PRESET] = {"preset", SSS_GL_PARAM_INT, SSS_GL_PRESET_MEASURED, 0, 2,
                      "sets every parameter: 0 (measured) the defaults, best on the eval scenes; 1 (paper) the "

@@ -105,6 +105,9 @@ static void wall_ratio(const sss_image *img, const sss_image *pos, double rho_w,
     *mean = *count ? sum / *count : 0.0;
 }
 
+/* The form factor gives the first bounce (a second would return the wall's light via the floor). */
+static const sss_gl_param_value one_bounce[1] = {{"interreflection_bounces", 1}};
+
 static void test_diffuse_plates(void)
 {
     sss_scene s;
@@ -113,7 +116,7 @@ static void test_diffuse_plates(void)
         return;
     }
     sss_image img, pos;
-    if (render(&s, "screen", NULL, 0, &img, &pos)) {
+    if (render(&s, "screen", one_bounce, 1, &img, &pos)) {
         double M[3] = {0.5 * 0.8, 0.5 * 0.8, 0.5 * 0.8}, mean, worst;
         int n;
         wall_ratio(&img, &pos, 0.8, M, 1, &mean, &worst, &n);
@@ -145,7 +148,7 @@ static void test_subsurface_floor(void)
         M[c] = ft * 0.8 * sss_pbd_rho_eff(fm->table, ss / (sa + ss));
     }
     sss_image img, pos;
-    if (render(&s, "screen", NULL, 0, &img, &pos)) {
+    if (render(&s, "screen", one_bounce, 1, &img, &pos)) {
         for (int c = 0; c < 3; c++) {
             double mean, worst;
             int n;

@@ -39,7 +39,7 @@ enum {
     GL_P_SPLAT_ENERGY,
     GL_P_INTERREFLECTION,
     GL_P_INTERREFLECTION_SOURCES,
-    GL_P_INTERREFLECTION_STRIDE,
+    GL_P_INTERREFLECTION_ROWS,
     GL_P_INTERREFLECTION_BOUNCES,
     GL_P_PRESET, /* not stored as a setting: applying it sets the others (runtime.c) */
     GL_P_SHARED_COUNT

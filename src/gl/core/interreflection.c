@@ -384,7 +384,9 @@ sss_result gl_bounce_frame(gl_core *core, sss_error *err)
 {
     sss_result res = gl_scene_prepare_bounce(core, err);
     if (res == SSS_OK) res = bounce_programs(&core->bounce, err);
-    if (res == SSS_OK) res = bounce_target(core, (int)core->shared[GL_P_INTERREFLECTION_STRIDE], err);
+    /* a stride in proportion to the image: the same gathered points per object at every size */
+    int stride = (int)floor(core->height / core->shared[GL_P_INTERREFLECTION_ROWS] + 0.5);
+    if (res == SSS_OK) res = bounce_target(core, stride < 1 ? 1 : stride, err);
     if (res != SSS_OK || core->gs.bounce_count == 0) return res;
     bounce_transmittance(core);
     gl_scene_bind(core);
