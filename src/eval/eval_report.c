@@ -140,7 +140,7 @@ static void fmt_ratio(char *out, size_t cap, const double ratio[3], int ok)
 {
     char c[3][24];
     for (int i = 0; i < 3; i++) fmt_num(c[i], sizeof c[i], ratio[i], "%.2f", ok);
-    if (ok) snprintf(out, cap, "%s&nbsp;/ %s&nbsp;/ %s", c[0], c[1], c[2]);
+    if (ok) snprintf(out, cap, "%s / %s / %s", c[0], c[1], c[2]);
     else snprintf(out, cap, "&ndash;");
 }
 
@@ -151,7 +151,7 @@ static void single_event_cells(sbuf *b, const sss_eval_entry *e)
     fmt_num(d, sizeof d, e->single_event.dssim, "%.4f", e->has_single_event);
     fmt_num(fl, sizeof fl, e->single_event.flip, "%.4f", e->has_single_event);
     fmt_ratio(ratio, sizeof ratio, e->single_event_ratio, e->has_single_event);
-    sb_printf(b, "<td class=\"se\">%s</td><td class=\"se\">%s</td><td class=\"se\">%s</td>", d, fl, ratio);
+    sb_printf(b, "<td class=\"se\">%s</td><td class=\"se\">%s</td><td class=\"se nw\">%s</td>", d, fl, ratio);
 }
 
 /* best: bit 0 the scene's lowest DSSIM, bit 1 its lowest FLIP; two: the single-event columns too. */
@@ -179,7 +179,7 @@ static void entry_row(sbuf *b, const sss_eval_results *res, const sss_eval_entry
     else {
         sb_put(b, "<td class=\"fail\">failed</td>", 28);
     }
-    sb_printf(b, "<td%s>%s</td><td class=\"flip%s\">%s</td><td>%s</td><td>%s</td><td>%s</td>",
+    sb_printf(b, "<td%s>%s</td><td class=\"flip%s\">%s</td><td>%s</td><td>%s</td><td class=\"nw\">%s</td>",
               best & 1 ? " class=\"best\"" : "", d, best & 2 ? " best" : "", fl, p, r, ratio);
     if (two) single_event_cells(b, e);
     sb_printf(b, "<td>%s</td><td>%s</td><td>%s</td><td class=\"l small\">", ms, pre, mem);
@@ -216,7 +216,8 @@ static void table_head(sbuf *b, const sss_eval_results *res, int two)
     char name[32];
     truth_name(res, name, sizeof name);
     sb_printf(b, "<table class=\"two-truths\"><tr><th class=\"l\" rowspan=\"2\">technique</th><th rowspan=\"2\">size</th>"
-                 "<th rowspan=\"2\">status</th><th colspan=\"5\">vs %s</th><th colspan=\"3\">vs single event</th>"
+                 "<th rowspan=\"2\">status</th><th class=\"grp\" colspan=\"5\">vs %s</th><th class=\"grp se\" colspan=\"3\">"
+                 "vs single event</th>"
                  "<th rowspan=\"2\">ms/frame</th><th rowspan=\"2\">set-up ms</th><th rowspan=\"2\">GPU MB</th>"
                  "<th class=\"l\" rowspan=\"2\">passes (ms) or error</th></tr>\n<tr>%s<th class=\"se\">DSSIM</th>"
                  "<th class=\"se\">FLIP</th><th class=\"se\">mean R/G/B</th></tr>\n",
@@ -231,7 +232,7 @@ static const char *CSS =
     "th{background:#f0f0f0}.l{text-align:left}.small{font-size:11px;max-width:560px}"
     ".ok{color:#176e1a}.fail{color:#b00000;font-weight:bold}.best{font-weight:bold;background:#e6f4e6}"
     "img{max-width:100%;height:auto;border:1px solid #ddd;margin:6px 0}"
-    ".se{background:#f4f7fb}.meta td{text-align:left}.note{color:#555;font-size:13px}.warn{color:#8a5300;font-size:13px}";
+    ".se{background:#f4f7fb}.grp{text-align:center}.nw{white-space:nowrap}.meta td{text-align:left}.note{color:#555;font-size:13px}.warn{color:#8a5300;font-size:13px}";
 
 static double metric(const sss_eval_entry *e, int flip) { return flip ? e->metrics.flip : e->metrics.dssim; }
 
