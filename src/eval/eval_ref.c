@@ -143,9 +143,9 @@ sss_eval_scene eval_variant_scene(const sss_eval_scene *es, const sss_eval_desc 
         snprintf(shown + m, sizeof shown - (size_t)m, " (bounces %d)", bounces);
     }
     if (!suffix[0]) return named;
-    snprintf(named.stem, sizeof named.stem, "%.90s%s", es->stem, suffix);
-    snprintf(named.file_stem, sizeof named.file_stem, "%.90s%s", es->file_stem, suffix);
-    snprintf(named.name, sizeof named.name, "%.90s%s", es->name, shown);
+    snprintf(named.stem, sizeof named.stem, "%.90s%.37s", es->stem, suffix);
+    snprintf(named.file_stem, sizeof named.file_stem, "%.90s%.37s", es->file_stem, suffix);
+    snprintf(named.name, sizeof named.name, "%.90s%.37s", es->name, shown);
     return named;
 }
 
