@@ -285,11 +285,16 @@ static void noise_note(sbuf *b, const sss_eval_results *res)
 }
 
 /* DSSIM or FLIP per scene and technique at the scene's first size, the best of each scene highlighted
- * when it leads by more than the noise (best_beyond_noise). */
-static void summary_table(sbuf *b, const sss_eval_results *res, int flip)
+ * when it leads by more than the noise (best_beyond_noise); single: against the single-event truth
+ * instead (sss_eval_desc.both_truths; no best: the noise is the main truth's). */
+static void summary_table(sbuf *b, const sss_eval_results *res, int flip, int single)
 {
-    sb_printf(b, "<h2>Summary: %s (lower is better)</h2>\n<table class=\"summary-%s\"><tr><th class=\"l\">scene</th>",
-              flip ? "FLIP" : "DSSIM", flip ? "flip" : "dssim");
+    char truth[64] = "", name[32];
+    truth_name(res, name, sizeof name);
+    if (single || res->both_truths) /* which truth, when there are two */
+        snprintf(truth, sizeof truth, " against the %s", single ? "single event" : name);
+    sb_printf(b, "<h2>Summary: %s%s (lower is better)</h2>\n<table class=\"summary-%s%s\"><tr><th class=\"l\">scene</th>",
+              flip ? "FLIP" : "DSSIM", truth, flip ? "flip" : "dssim", single ? "-se" : "");
     for (int k = 0; k < res->label_count; k++) {
         sb_puts(b, "<th>");
         sb_esc(b, res->labels[k]);
@@ -299,7 +304,7 @@ static void summary_table(sbuf *b, const sss_eval_results *res, int flip)
     for (int s = 0; s < res->scene_count; s++) {
         int w, h;
         eval_primary_size(res, s, &w, &h);
-        const sss_eval_entry *best = best_beyond_noise(res, s, flip);
+        const sss_eval_entry *best = single ? NULL : best_beyond_noise(res, s, flip);
         sb_puts(b, "<tr><td class=\"l\">");
         sb_esc(b, res->scenes[s].name);
         sb_puts(b, "</td>");
@@ -309,7 +314,8 @@ static void summary_table(sbuf *b, const sss_eval_results *res, int flip)
                 sb_puts(b, "<td class=\"fail\" title=\"");
                 sb_esc(b, e ? e->error : "not run");
                 sb_puts(b, "\">failed</td>");
-            } else if (!e->has_metrics) sb_puts(b, "<td>&ndash;</td>");
+            } else if (single ? !e->has_single_event : !e->has_metrics) sb_puts(b, "<td>&ndash;</td>");
+            else if (single) sb_printf(b, "<td>%.4f</td>", flip ? e->single_event.flip : e->single_event.dssim);
             else sb_printf(b, "<td%s>%.4f</td>", e == best ? " class=\"best\"" : "", metric(e, flip));
         }
         sb_puts(b, "</tr>\n");
@@ -458,8 +464,10 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
     sb_puts(b, "</p>\n");
     between_surfaces_note(b, res);
 
-    summary_table(b, res, 0);
-    summary_table(b, res, 1);
+    for (int single = 0; single <= res->both_truths; single++) {
+        summary_table(b, res, 0, single);
+        summary_table(b, res, 1, single);
+    }
     noise_note(b, res);
 
     sb_puts(b, "<h2>Plots</h2>\n");

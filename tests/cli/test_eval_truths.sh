@@ -46,7 +46,8 @@ grep -q '"bounces": 1,' "$R/ball_bounces1_64x64.json" || fail "the single-event 
 grep -q '"bounces": 0,' "$R/ball_64x64.json" || fail "the full-transport sidecar lacks bounces 0"
 grep -q "vs full transport" "$T/stdout1" && grep -q "vs single event" "$T/stdout1" ||
     fail "the summary does not name both truths: $(cat "$T/stdout1")"
-for s in "vs full transport" "vs single event" "Two truths" "light between surfaces" "single-event truth 64x64"; do
+for s in "vs full transport" "vs single event" "Two truths" "light between surfaces" "single-event truth 64x64" \
+    "Summary: DSSIM against the single event"; do
     grep -q "$s" "$T/o1/report.html" || fail "report.html lacks '$s'"
 done
 

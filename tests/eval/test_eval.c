@@ -439,7 +439,8 @@ static void test_outputs(void)
         CHECK_MSG(images == 5 && found == 5, "%d images, %d match files", images, found);
         /* both truths side by side in each scene's table, explained once */
         CHECK_MSG(occurrences(text, ">vs single event</th>") == 2 && occurrences(text, ">vs full transport</th>") == 2 &&
-                      occurrences(text, "<b>Two truths.</b>") == 1,
+                      occurrences(text, "<b>Two truths.</b>") == 1 &&
+                      occurrences(text, "<h2>Summary: DSSIM against the single event") == 1,
                   "two truths' columns: %d", occurrences(text, ">vs single event</th>"));
         /* notes once each: SAM's, how to read, light between surfaces, the frame time's definition, the
          * truncated kernel (scene 0, alpha), why there is no resolution plot */
