@@ -6,7 +6,9 @@
 # truth on the default scene set: scenes/default.json (a Marble bunny lit from the side and behind)
 # and scenes/eval_backlit.json (the dragon lit from behind, Maisch & Ropinski 2020, Fig. 6a). References are the
 # committed ones in scenes/references/ (rendered only if missing or stale), with a second one at seed 1 that
-# measures the scenes' noise (--reference-noise: the report marks a best technique only beyond it). Writes out/demo/:
+# measures the scenes' noise (--reference-noise: the report marks a best technique only beyond it), and the
+# single-event truth beside the full transport (--both-truths: light from the lights only; the difference of
+# a technique's two scores is the light between surfaces, docs/eval.md "Two truths"). Writes out/demo/:
 # report.html (self-contained: comparison sheets with DSSIM maps, plots, tables), results.json,
 # results.csv, sheets and plots; prints a summary table.
 # Usage: scripts/demo.sh [BUILD_DIR]   (DEMO_FRAMES=N timed frames per technique, DEMO_WARMUP=W untimed
@@ -39,6 +41,6 @@ echo "   techniques: $techs (+ the CPU reference, cached in scenes/references/),
 echo "   (software OpenGL renders in seconds per frame what a GPU does in milliseconds)"
 echo
 start=$(date +%s)
-"$SSS" eval "${SCENES[@]}" --techniques "$techs" --frames "$FRAMES" --warmup "$WARMUP" --frame-budget "$BUDGET" --cached-reference --reference-noise --out "$OUT"
+"$SSS" eval "${SCENES[@]}" --techniques "$techs" --frames "$FRAMES" --warmup "$WARMUP" --frame-budget "$BUDGET" --cached-reference --reference-noise --both-truths --out "$OUT"
 echo
 echo "demo: $(($(date +%s) - start)) s; open $(pwd)/$OUT/report.html"

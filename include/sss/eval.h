@@ -81,6 +81,12 @@ typedef struct sss_eval_desc {
                                        <scene>_seed1_<w>x<h>[_t<T>].exr): every technique is compared with
                                        both, and the largest change of a metric between them is the scene's
                                        noise (sss_eval_scene.noise_*), which the report's "best" must beat */
+    int both_truths;                /* 1: also score every entry at the first quality size against the
+                                       single-event truth (sss_reference_desc.bounces 1, the same quality
+                                       and time; cached as <scene>_bounces1_<w>x<h>[_t<T>].exr), beside the
+                                       main truth (reference_bounces, which must not be 1): the difference
+                                       is the light between surfaces no real-time technique models
+                                       (sss_eval_entry.single_event) */
     const sss_eval_image_source *images; /* images from other programs (above); NULL or 0 count: none */
     int image_count;
     double frame_budget_s;          /* 0: none. Else a technique's timed frames stop once they have taken
@@ -142,6 +148,12 @@ typedef struct sss_eval_entry {
     sss_image image;                  /* QUALITY at the first resolution only (empty otherwise) */
     sss_image dssim_map;              /* per-pixel, per-channel DSSIM of image (same rule) */
     sss_image flip_map;               /* per-pixel FLIP of image, in all three channels (same rule) */
+    double mean_ratio[3];             /* has_metrics: the image's mean linear R, G, B over the reference's
+                                         (1: as much light; NaN where the reference's mean is 0) */
+    int has_single_event;             /* also compared with the single-event truth (sss_eval_desc.both_truths;
+                                         QUALITY entries at the first size) */
+    sss_image_metrics single_event;   /* its metrics against that truth */
+    double single_event_ratio[3];     /* and its mean_ratio against it */
     int external;                     /* an image from another program (sss_eval_desc.images): label its
                                          name, technique "external", no frames, timings or stats */
     char file[1024];                  /* external: the file read */
@@ -183,6 +195,8 @@ typedef struct sss_eval_scene {
                                          objects and background) from the first technique that rendered
                                          at that size, at its supersampled size (a whole multiple of it);
                                          empty when none did. For the silhouette crops */
+    sss_eval_reference single_event_reference; /* sss_eval_results.both_truths: the single-event truth at the
+                                         first quality size (bounces 1) */
     int has_noise;                    /* desc.reference_noise and both references were available */
     double noise_dssim, noise_flip;   /* the largest |metric against seed 0 - metric against seed 1| of any
                                          technique at the first quality size */
@@ -205,6 +219,7 @@ typedef struct sss_eval_results {
     sss_reference_quality reference_quality;
     int cached_reference;
     int reference_bounces;            /* sss_eval_desc.reference_bounces */
+    int both_truths;                  /* sss_eval_desc.both_truths */
     int gl_ok;                        /* a GL context could be created */
     char gl_error[SSS_ERROR_MESSAGE_SIZE];
     char gl_platform[64], gl_renderer[160], gl_version[160], timing_method[64];

@@ -19,7 +19,7 @@
 
 enum {
     OPT_OUT, OPT_TECHNIQUES, OPT_RESOLUTIONS, OPT_TIMING_RESOLUTIONS, OPT_WIDTH, OPT_HEIGHT, OPT_FRAMES, OPT_WARMUP, OPT_FRAME_BUDGET,
-    OPT_SUPERSAMPLE, OPT_CACHED_REFERENCE, OPT_REFERENCE_DIR, OPT_REFERENCE_QUALITY, OPT_REFERENCE_BOUNCES, OPT_REFERENCE_NOISE, OPT_THREADS,
+    OPT_SUPERSAMPLE, OPT_CACHED_REFERENCE, OPT_REFERENCE_DIR, OPT_REFERENCE_QUALITY, OPT_REFERENCE_BOUNCES, OPT_REFERENCE_NOISE, OPT_BOTH_TRUTHS, OPT_THREADS,
     OPT_SAM_SWEEP, OPT_NO_SAM_SWEEP, OPT_SAM_COUNTS, OPT_IMAGES
 };
 static const cli_option options[] = {
@@ -67,6 +67,13 @@ static const cli_option options[] = {
      "technique's DSSIM or FLIP between the two is the scene's noise, and the\n"
      "report marks a best technique only when it leads by more (cached as\n"
      "<scene>_seed1_<W>x<H>[_t<T>].exr)",
+     NULL, NULL},
+    {OPT_BOTH_TRUTHS, "--both-truths", NULL, CLI_ARG_NONE, NULL,
+     "score every technique against two truths side by side: the full transport\n"
+     "(the default) and the single-event integral (bounces 1: light from the\n"
+     "lights only), rendered at the same quality and cached as\n"
+     "<scene>_bounces1_<W>x<H>[_t<T>].exr; the difference is the light between\n"
+     "surfaces, which no technique models unless its interreflection is on",
      NULL, NULL},
     {OPT_THREADS, "--threads", NULL, CLI_ARG_NUMBER, "N", "threads of the reference renderer", NULL, "all cores"},
     /* the old spelling, still accepted */
@@ -203,8 +210,12 @@ static const char *esc(const char *s, char buf[ESC_CAP])
 static void print_summary(const sss_eval_results *res, const char *out_dir)
 {
     char b1[ESC_CAP], b2[ESC_CAP], b3[ESC_CAP];
-    printf("%-22s %-26s %-7s %9s %8s %8s %8s %11s\n", "scene", "technique", "status", "DSSIM", "FLIP", "PSNR", "RMSE",
-           "ms/frame");
+    int two = res->both_truths;
+    if (two) /* which truth each group of columns scores against */
+        printf("%-57s %-35s %s\n", "", res->reference_bounces ? "---- vs the main truth ----" : "----- vs full transport -----",
+               "-- vs single event --");
+    printf("%-22s %-26s %-7s %9s %8s %8s %8s%s %11s\n", "scene", "technique", "status", "DSSIM", "FLIP", "PSNR", "RMSE",
+           two ? "    DSSIM     FLIP" : "", "ms/frame");
     int cut = 0; /* entries timed on fewer frames than asked (--frame-budget) */
     for (int i = 0; i < res->entry_count; i++) {
         const sss_eval_entry *e = &res->entries[i];
@@ -225,8 +236,12 @@ static void print_summary(const sss_eval_results *res, const char *out_dir)
             snprintf(ms, sizeof ms, "%.1f%s", e->total_ms, fewer ? "*" : "");
             cut += fewer;
         }
-        printf("%-22.22s %-26.26s %-7s %9s %8s %8s %8s %11s\n", esc(res->scenes[e->scene].name, b1),
-               esc(e->label, b2), e->ok ? "ok" : "FAILED", d, fl, p, r, ms);
+        char single[32] = "";
+        if (two && e->has_single_event)
+            snprintf(single, sizeof single, " %8.4f %8.4f", e->single_event.dssim, e->single_event.flip);
+        else if (two) snprintf(single, sizeof single, " %8s %8s", "-", "-");
+        printf("%-22.22s %-26.26s %-7s %9s %8s %8s %8s%s %11s\n", esc(res->scenes[e->scene].name, b1),
+               esc(e->label, b2), e->ok ? "ok" : "FAILED", d, fl, p, r, single, ms);
     }
     if (cut)
         printf("* fewer frames than asked (--frame-budget %g s); without warm-up where the first frame took longer:\n"
@@ -354,6 +369,7 @@ static int set_reference_option(eval_options *o, int id, const char *a, const ch
     switch (id) {
     case OPT_CACHED_REFERENCE: d->cached_reference = 1; break;
     case OPT_REFERENCE_NOISE: d->reference_noise = 1; break;
+    case OPT_BOTH_TRUTHS: d->both_truths = 1; break;
     case OPT_REFERENCE_DIR: d->reference_dir = v; break;
     case OPT_REFERENCE_QUALITY:
         if (strcmp(v, "final") == 0) d->reference_quality = SSS_REFERENCE_FINAL;
@@ -433,6 +449,9 @@ static int eval_parse(int argc, char **argv, eval_options *o)
         warn_unknown_technique(o->techs[k]);
     if ((status = check_sizes(o)) != CLI_EXIT_OK) return status;
     if (o->nscenes == 0) return cli_usage_error(CMD, "expects at least one scene file");
+    if (o->desc.both_truths && o->desc.reference_bounces == 1)
+        return cli_usage_error(CMD, "--both-truths adds the single-event truth to the full transport; with "
+                                    "--reference-bounces 1 both would be the single-event truth");
     o->desc.resolutions = o->sizes;
     o->desc.timing_resolutions = o->tsizes;
     snprintf(o->save_dir, sizeof o->save_dir, "%s/references", o->out_dir);

@@ -49,11 +49,16 @@ uint64_t eval_file_hash(const char *path);
 typedef struct eval_progress eval_progress;
 sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const sss_eval_desc *desc,
                           eval_progress *prog, sss_eval_reference *ref, sss_image *img, sss_error *err);
-/* The same at another seed of the reference renderer (seed > 0: cached and saved as <stem>_seed<S>_...,
- * sss_eval_desc.reference_noise). */
-sss_result eval_reference_seed(const sss_scene *view, const sss_eval_scene *es, const sss_eval_desc *desc,
-                               uint64_t seed, eval_progress *prog, sss_eval_reference *ref, sss_image *img,
-                               sss_error *err);
+/* The same at another seed of the reference renderer and/or another truth: seed > 0 is cached and saved
+ * as <stem>_seed<S>_... (sss_eval_desc.reference_noise); bounces other than desc->reference_bounces as
+ * <stem>_bounces<B>_... (sss_eval_desc.both_truths). */
+sss_result eval_reference_variant(const sss_scene *view, const sss_eval_scene *es, const sss_eval_desc *desc,
+                                  uint64_t seed, int bounces, eval_progress *prog, sss_eval_reference *ref,
+                                  sss_image *img, sss_error *err);
+/* The scene as such a variant's files are named (stem, file_stem and name with the suffixes above). */
+sss_eval_scene eval_variant_scene(const sss_eval_scene *es, const sss_eval_desc *desc, uint64_t seed, int bounces);
+/* The image's mean linear R, G, B over the reference's (NaN for a channel whose reference mean is 0). */
+void eval_mean_ratio(const sss_image *img, const sss_image *ref, double out[3]);
 
 /* Progress bookkeeping (eval_run.c): units done and planned, the callbacks. */
 struct eval_progress {

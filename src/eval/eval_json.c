@@ -31,6 +31,21 @@ static const char *ref_source(sss_eval_ref_source s)
     return s == SSS_EVAL_REF_CACHED ? "cached" : s == SSS_EVAL_REF_RENDERED ? "rendered" : "unavailable";
 }
 
+/* metrics: dssim, flip, psnr, psnr_infinite, rmse, max_abs and mean_ratio [R, G, B] (null where unknown) */
+static void add_metrics(cJSON *o, const sss_image_metrics *m, const double ratio[3], int has)
+{
+    const char *keys[] = {"dssim", "flip", "psnr", "rmse", "max_abs"};
+    double v[] = {m->dssim, m->flip, m->psnr, m->rmse, m->max_abs};
+    for (int i = 0; i < 5; i++) {
+        if (has) add_num(o, keys[i], v[i]);
+        else cJSON_AddNullToObject(o, keys[i]);
+    }
+    cJSON_AddBoolToObject(o, "psnr_infinite", has && isinf(m->psnr));
+    cJSON *r = has ? cJSON_AddArrayToObject(o, "mean_ratio") : cJSON_AddNullToObject(o, "mean_ratio");
+    for (int c = 0; has && r && c < 3; c++)
+        cJSON_AddItemToArray(r, isfinite(ratio[c]) ? cJSON_CreateNumber(ratio[c]) : cJSON_CreateNull());
+}
+
 static cJSON *entry_json(const sss_eval_results *res, const sss_eval_entry *e)
 {
     cJSON *o = cJSON_CreateObject();
@@ -53,18 +68,10 @@ static cJSON *entry_json(const sss_eval_results *res, const sss_eval_entry *e)
     else add_text(o, "error", e->error);
     if (e->warning[0]) add_text(o, "warning", e->warning);
     else cJSON_AddNullToObject(o, "warning");
-    if (e->has_metrics) {
-        add_num(o, "dssim", e->metrics.dssim);
-        add_num(o, "flip", e->metrics.flip);
-        add_num(o, "psnr", e->metrics.psnr);
-        cJSON_AddBoolToObject(o, "psnr_infinite", isinf(e->metrics.psnr) != 0);
-        add_num(o, "rmse", e->metrics.rmse);
-        add_num(o, "max_abs", e->metrics.max_abs);
-    } else {
-        const char *keys[] = {"dssim", "flip", "psnr", "rmse", "max_abs"};
-        for (int i = 0; i < 5; i++) cJSON_AddNullToObject(o, keys[i]);
-        cJSON_AddBoolToObject(o, "psnr_infinite", 0);
-    }
+    add_metrics(o, &e->metrics, e->mean_ratio, e->has_metrics);
+    cJSON *single = e->has_single_event ? cJSON_AddObjectToObject(o, "single_event")
+                                        : cJSON_AddNullToObject(o, "single_event");
+    if (e->has_single_event && single) add_metrics(single, &e->single_event, e->single_event_ratio, 1);
     cJSON_AddNumberToObject(o, "frames", e->frames);
     cJSON_AddNumberToObject(o, "warmup_frames", e->warmup_frames);
     cJSON_AddNumberToObject(o, "supersample", e->supersample > 0 ? e->supersample : 1);
@@ -101,6 +108,23 @@ static cJSON *entry_json(const sss_eval_results *res, const sss_eval_entry *e)
     return o;
 }
 
+static cJSON *reference_json(const sss_eval_reference *r)
+{
+    cJSON *ro = cJSON_CreateObject();
+    if (!ro) return NULL;
+    cJSON_AddNumberToObject(ro, "width", r->width);
+    cJSON_AddNumberToObject(ro, "height", r->height);
+    cJSON_AddStringToObject(ro, "source", ref_source(r->source));
+    cJSON_AddStringToObject(ro, "quality", r->quality[0] ? r->quality : "unknown");
+    cJSON_AddNumberToObject(ro, "bounces", r->bounces);
+    if (r->path[0]) add_text(ro, "path", r->path);
+    else cJSON_AddNullToObject(ro, "path");
+    add_num(ro, "seconds", r->seconds);
+    if (r->source == SSS_EVAL_REF_NONE) add_text(ro, "error", r->error);
+    else cJSON_AddNullToObject(ro, "error");
+    return ro;
+}
+
 static cJSON *results_json(const sss_eval_results *res)
 {
     cJSON *root = cJSON_CreateObject();
@@ -130,6 +154,7 @@ static cJSON *results_json(const sss_eval_results *res)
         cJSON_AddStringToObject(set, "reference_quality", res->reference_quality == SSS_REFERENCE_DRAFT ? "draft" : "final");
         cJSON_AddBoolToObject(set, "cached_reference", res->cached_reference);
         cJSON_AddNumberToObject(set, "reference_bounces", res->reference_bounces);
+        cJSON_AddBoolToObject(set, "both_truths", res->both_truths);
         int nt = res->label_count - res->external_count;
         cJSON *t = cJSON_AddArrayToObject(set, "techniques");
         for (int i = 0; t && i < nt; i++) cJSON_AddItemToArray(t, cJSON_CreateString(res->labels[i]));
@@ -161,21 +186,11 @@ static cJSON *results_json(const sss_eval_results *res)
         }
         cJSON *refs = cJSON_AddArrayToObject(o, "references");
         for (int k = 0; refs && k < s->reference_count; k++) {
-            const sss_eval_reference *r = &s->references[k];
-            cJSON *ro = cJSON_CreateObject();
-            if (!ro) continue;
-            cJSON_AddNumberToObject(ro, "width", r->width);
-            cJSON_AddNumberToObject(ro, "height", r->height);
-            cJSON_AddStringToObject(ro, "source", ref_source(r->source));
-            cJSON_AddStringToObject(ro, "quality", r->quality[0] ? r->quality : "unknown");
-            cJSON_AddNumberToObject(ro, "bounces", r->bounces);
-            if (r->path[0]) add_text(ro, "path", r->path);
-            else cJSON_AddNullToObject(ro, "path");
-            add_num(ro, "seconds", r->seconds);
-            if (r->source == SSS_EVAL_REF_NONE) add_text(ro, "error", r->error);
-            else cJSON_AddNullToObject(ro, "error");
-            cJSON_AddItemToArray(refs, ro);
+            cJSON *ro = reference_json(&s->references[k]);
+            if (ro) cJSON_AddItemToArray(refs, ro);
         }
+        if (res->both_truths) cJSON_AddItemToObject(o, "single_event_reference", reference_json(&s->single_event_reference));
+        else cJSON_AddNullToObject(o, "single_event_reference");
         cJSON_AddItemToArray(scenes, o);
     }
     cJSON *results = cJSON_AddArrayToObject(root, "results");
@@ -244,13 +259,25 @@ static void csv_num(FILE *f, double v, int ok)
     else fputc(',', f);
 }
 
+/* dssim, flip, psnr (empty when infinite: identical images, rmse 0), rmse, max_abs */
+static void csv_metrics(FILE *f, const sss_image_metrics *m, int ok)
+{
+    csv_num(f, m->dssim, ok);
+    csv_num(f, m->flip, ok);
+    csv_num(f, m->psnr, ok);
+    csv_num(f, m->rmse, ok);
+    csv_num(f, m->max_abs, ok);
+}
+
 sss_result sss_eval_write_csv(const sss_eval_results *res, const char *path, sss_error *err)
 {
     char tmp[4096];
     FILE *f = sss_atomic_open(path, tmp, sizeof tmp, err);
     if (!f) return err ? err->code : SSS_ERROR_IO;
     fputs("scene,time,kind,technique,label,width,height,sam_n,status,dssim,flip,psnr,rmse,max_abs,frames,ms_total,"
-          "precompute_ms,gpu_bytes,passes,error,external,file,warmup_frames\n", f);
+          "precompute_ms,gpu_bytes,passes,error,external,file,warmup_frames,mean_ratio_r,mean_ratio_g,mean_ratio_b,"
+          "single_event_dssim,single_event_flip,single_event_psnr,single_event_rmse,single_event_max_abs,"
+          "single_event_ratio_r,single_event_ratio_g,single_event_ratio_b\n", f);
     for (int i = 0; i < res->entry_count; i++) {
         const sss_eval_entry *e = &res->entries[i];
         const sss_eval_scene *s = &res->scenes[e->scene];
@@ -262,11 +289,7 @@ sss_result sss_eval_write_csv(const sss_eval_results *res, const char *path, sss
         fprintf(f, ",%d,%d,", e->width, e->height);
         if (e->kind == SSS_EVAL_SAM_SWEEP) fprintf(f, "%d", e->sam_n);
         fprintf(f, ",%s", e->ok ? "ok" : "failed");
-        csv_num(f, e->metrics.dssim, e->has_metrics);
-        csv_num(f, e->metrics.flip, e->has_metrics);
-        csv_num(f, e->metrics.psnr, e->has_metrics); /* empty when infinite (identical images: rmse 0) */
-        csv_num(f, e->metrics.rmse, e->has_metrics);
-        csv_num(f, e->metrics.max_abs, e->has_metrics);
+        csv_metrics(f, &e->metrics, e->has_metrics);
         fprintf(f, ",%d", e->frames);
         csv_num(f, e->total_ms, e->ok && !e->external);
         csv_num(f, e->precompute_ms, e->precompute_ms > 0);
@@ -282,7 +305,11 @@ sss_result sss_eval_write_csv(const sss_eval_results *res, const char *path, sss
         csv_field(f, e->ok ? "" : e->error);
         fprintf(f, ",%d,", e->external);
         csv_field(f, e->external ? e->file : "");
-        fprintf(f, ",%d\n", e->warmup_frames);
+        fprintf(f, ",%d", e->warmup_frames);
+        for (int c = 0; c < 3; c++) csv_num(f, e->mean_ratio[c], e->has_metrics);
+        csv_metrics(f, &e->single_event, e->has_single_event);
+        for (int c = 0; c < 3; c++) csv_num(f, e->single_event_ratio[c], e->has_single_event);
+        fputc('\n', f);
     }
     return sss_atomic_close(f, tmp, path, err);
 }

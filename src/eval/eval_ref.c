@@ -124,43 +124,59 @@ static void ref_progress(void *user, double fraction, const char *stage)
 sss_result eval_reference(const sss_scene *view, const sss_eval_scene *es, const sss_eval_desc *desc,
                           eval_progress *prog, sss_eval_reference *ref, sss_image *img, sss_error *err)
 {
-    return eval_reference_seed(view, es, desc, 0, prog, ref, img, err);
+    return eval_reference_variant(view, es, desc, 0, desc->reference_bounces, prog, ref, img, err);
 }
 
-sss_result eval_reference_seed(const sss_scene *view, const sss_eval_scene *es_given, const sss_eval_desc *desc,
-                               uint64_t seed, eval_progress *prog, sss_eval_reference *ref, sss_image *img,
-                               sss_error *err)
+sss_eval_scene eval_variant_scene(const sss_eval_scene *es, const sss_eval_desc *desc, uint64_t seed, int bounces)
 {
-    /* another seed is another file: the scene's outputs' name with "_seed<S>" */
-    sss_eval_scene named = *es_given;
+    /* another seed or another truth is another file: the scene's outputs' name with "_seed<S>" and/or
+     * "_bounces<B>" */
+    sss_eval_scene named = *es;
+    char suffix[64] = "", shown[64] = "";
+    int n = 0, m = 0;
     if (seed) {
-        snprintf(named.stem, sizeof named.stem, "%.90s_seed%" PRIu64, es_given->stem, seed);
-        snprintf(named.file_stem, sizeof named.file_stem, "%.90s_seed%" PRIu64, es_given->file_stem, seed);
-        snprintf(named.name, sizeof named.name, "%.90s (seed %" PRIu64 ")", es_given->name, seed);
+        n += snprintf(suffix + n, sizeof suffix - (size_t)n, "_seed%" PRIu64, seed);
+        m += snprintf(shown + m, sizeof shown - (size_t)m, " (seed %" PRIu64 ")", seed);
     }
+    if (bounces != desc->reference_bounces) {
+        snprintf(suffix + n, sizeof suffix - (size_t)n, "_bounces%d", bounces);
+        snprintf(shown + m, sizeof shown - (size_t)m, " (bounces %d)", bounces);
+    }
+    if (!suffix[0]) return named;
+    snprintf(named.stem, sizeof named.stem, "%.90s%.37s", es->stem, suffix);
+    snprintf(named.file_stem, sizeof named.file_stem, "%.90s%.37s", es->file_stem, suffix);
+    snprintf(named.name, sizeof named.name, "%.90s%.37s", es->name, shown);
+    return named;
+}
+
+sss_result eval_reference_variant(const sss_scene *view, const sss_eval_scene *es_given, const sss_eval_desc *desc,
+                                  uint64_t seed, int bounces, eval_progress *prog, sss_eval_reference *ref,
+                                  sss_image *img, sss_error *err)
+{
+    sss_eval_scene named = eval_variant_scene(es_given, desc, seed, bounces);
     const sss_eval_scene *es = &named;
     int w = view->camera.width, h = view->camera.height;
     memset(img, 0, sizeof *img);
     ref->width = w;
     ref->height = h;
     ref->source = SSS_EVAL_REF_NONE;
-    ref->bounces = desc->reference_bounces;
+    ref->bounces = bounces;
     char cached[1024];
     int have_name = eval_cached_reference_path(desc, es, w, h, cached, sizeof cached);
     if (desc->cached_reference && have_name) {
         if (access(cached, R_OK) == 0) {
             uint64_t hash = 0;
             char quality[8];
-            int bounces, transport;
-            int side = read_sidecar(cached, &hash, quality, &bounces, &transport);
+            int cached_bounces, transport;
+            int side = read_sidecar(cached, &hash, quality, &cached_bounces, &transport);
             uint64_t now = eval_file_hash(es->path);
             if (side && hash && hash != now) {
                 eval_note(prog, "%s: cached reference %s is stale (the scene file changed since it was rendered); "
                                 "rendering it", es->name, cached);
-            } else if (side && bounces != desc->reference_bounces) {
+            } else if (side && cached_bounces != bounces) {
                 eval_note(prog, "%s: cached reference %s has bounces %d (0: full transport), not %d; rendering it",
-                          es->name, cached, bounces, desc->reference_bounces);
-            } else if (side && bounces != 1 && transport != SSS_REFERENCE_TRANSPORT_VERSION) {
+                          es->name, cached, cached_bounces, bounces);
+            } else if (side && cached_bounces != 1 && transport != SSS_REFERENCE_TRANSPORT_VERSION) {
                 eval_note(prog, "%s: cached reference %s is stale (rendered by interreflection version %d, now %d); "
                                 "rendering it", es->name, cached, transport, SSS_REFERENCE_TRANSPORT_VERSION);
             } else {
@@ -196,7 +212,7 @@ sss_result eval_reference_seed(const sss_scene *view, const sss_eval_scene *es_g
     rd.quality = desc->reference_quality;
     rd.threads = desc->reference_threads;
     rd.time = es->time;
-    rd.bounces = desc->reference_bounces;
+    rd.bounces = bounces;
     rd.seed = seed;
     ref_fwd fwd;
     fwd.prog = prog;

@@ -135,8 +135,27 @@ static void fmt_num(char *out, size_t cap, double v, const char *fmt, int ok)
 
 static void sb_puts(sbuf *b, const char *s) { sb_put(b, s, strlen(s)); }
 
-/* best: bit 0 the scene's lowest DSSIM, bit 1 its lowest FLIP. */
-static void entry_row(sbuf *b, const sss_eval_results *res, const sss_eval_entry *e, int best)
+/* The mean linear R/G/B ratios as "r / g / b" ("&ndash;" when unknown). */
+static void fmt_ratio(char *out, size_t cap, const double ratio[3], int ok)
+{
+    char c[3][24];
+    for (int i = 0; i < 3; i++) fmt_num(c[i], sizeof c[i], ratio[i], "%.2f", ok);
+    if (ok) snprintf(out, cap, "%s / %s / %s", c[0], c[1], c[2]);
+    else snprintf(out, cap, "&ndash;");
+}
+
+/* The cells of the scores against the single-event truth (sss_eval_desc.both_truths): DSSIM, FLIP, mean R/G/B. */
+static void single_event_cells(sbuf *b, const sss_eval_entry *e)
+{
+    char d[32], fl[32], ratio[96];
+    fmt_num(d, sizeof d, e->single_event.dssim, "%.4f", e->has_single_event);
+    fmt_num(fl, sizeof fl, e->single_event.flip, "%.4f", e->has_single_event);
+    fmt_ratio(ratio, sizeof ratio, e->single_event_ratio, e->has_single_event);
+    sb_printf(b, "<td class=\"se\">%s</td><td class=\"se\">%s</td><td class=\"se nw\">%s</td>", d, fl, ratio);
+}
+
+/* best: bit 0 the scene's lowest DSSIM, bit 1 its lowest FLIP; two: the single-event columns too. */
+static void entry_row(sbuf *b, const sss_eval_results *res, const sss_eval_entry *e, int best, int two)
 {
     char d[32], fl[32], p[32], r[32], ms[96], pre[32], mem[32];
     fmt_num(d, sizeof d, e->metrics.dssim, "%.4f", e->has_metrics);
@@ -144,6 +163,8 @@ static void entry_row(sbuf *b, const sss_eval_results *res, const sss_eval_entry
     if (e->has_metrics && isinf(e->metrics.psnr)) snprintf(p, sizeof p, "&infin;");
     else fmt_num(p, sizeof p, e->metrics.psnr, "%.2f", e->has_metrics);
     fmt_num(r, sizeof r, e->metrics.rmse, "%.3f", e->has_metrics);
+    char ratio[96];
+    fmt_ratio(ratio, sizeof ratio, e->mean_ratio, e->has_metrics);
     fmt_num(ms, sizeof ms, e->total_ms, "%.1f", e->ok && !e->external);
     char note[64];
     if (eval_frames_note(res, e, note, sizeof note))
@@ -158,9 +179,10 @@ static void entry_row(sbuf *b, const sss_eval_results *res, const sss_eval_entry
     else {
         sb_put(b, "<td class=\"fail\">failed</td>", 28);
     }
-    sb_printf(b, "<td%s>%s</td><td class=\"flip%s\">%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td>"
-                 "<td class=\"l small\">",
-              best & 1 ? " class=\"best\"" : "", d, best & 2 ? " best" : "", fl, p, r, ms, pre, mem);
+    sb_printf(b, "<td%s>%s</td><td class=\"flip%s\">%s</td><td>%s</td><td>%s</td><td class=\"nw\">%s</td>",
+              best & 1 ? " class=\"best\"" : "", d, best & 2 ? " best" : "", fl, p, r, ratio);
+    if (two) single_event_cells(b, e);
+    sb_printf(b, "<td>%s</td><td>%s</td><td>%s</td><td class=\"l small\">", ms, pre, mem);
     if (e->external) {
         sb_puts(b, "external image: ");
         sb_esc(b, e->file);
@@ -173,11 +195,33 @@ static void entry_row(sbuf *b, const sss_eval_results *res, const sss_eval_entry
 }
 
 
-static void table_head(sbuf *b)
+/* The main truth's name in column groups: "full transport", "N bounces". */
+static void truth_name(const sss_eval_results *res, char *out, size_t cap)
 {
-    sb_puts(b,
-            "<table><tr><th class=\"l\">technique</th><th>size</th><th>status</th><th>DSSIM</th><th class=\"flip\">FLIP</th><th>PSNR dB</th>"
-           "<th>RMSE</th><th>ms/frame</th><th>set-up ms</th><th>GPU MB</th><th class=\"l\">passes (ms) or error</th></tr>\n");
+    if (res->reference_bounces == 0) snprintf(out, cap, "full transport");
+    else snprintf(out, cap, "%d bounce%s", res->reference_bounces, res->reference_bounces == 1 ? "" : "s");
+}
+
+/* two: the scores against both truths side by side, under a row naming each truth. */
+static void table_head(sbuf *b, const sss_eval_results *res, int two)
+{
+    static const char *main_cols = "<th>DSSIM</th><th class=\"flip\">FLIP</th><th>PSNR dB</th><th>RMSE</th>"
+                                   "<th title=\"mean linear R, G, B over the truth's\">mean R/G/B</th>";
+    static const char *tail = "<th class=\"l\">passes (ms) or error</th></tr>\n";
+    if (!two) {
+        sb_printf(b, "<table><tr><th class=\"l\">technique</th><th>size</th><th>status</th>%s<th>ms/frame</th>"
+                     "<th>set-up ms</th><th>GPU MB</th>%s", main_cols, tail);
+        return;
+    }
+    char name[32];
+    truth_name(res, name, sizeof name);
+    sb_printf(b, "<table class=\"two-truths\"><tr><th class=\"l\" rowspan=\"2\">technique</th><th rowspan=\"2\">size</th>"
+                 "<th rowspan=\"2\">status</th><th class=\"grp\" colspan=\"5\">vs %s</th><th class=\"grp se\" colspan=\"3\">"
+                 "vs single event</th>"
+                 "<th rowspan=\"2\">ms/frame</th><th rowspan=\"2\">set-up ms</th><th rowspan=\"2\">GPU MB</th>"
+                 "<th class=\"l\" rowspan=\"2\">passes (ms) or error</th></tr>\n<tr>%s<th class=\"se\">DSSIM</th>"
+                 "<th class=\"se\">FLIP</th><th class=\"se\">mean R/G/B</th></tr>\n",
+              name, main_cols);
 }
 
 static const char *CSS =
@@ -188,7 +232,7 @@ static const char *CSS =
     "th{background:#f0f0f0}.l{text-align:left}.small{font-size:11px;max-width:560px}"
     ".ok{color:#176e1a}.fail{color:#b00000;font-weight:bold}.best{font-weight:bold;background:#e6f4e6}"
     "img{max-width:100%;height:auto;border:1px solid #ddd;margin:6px 0}"
-    ".meta td{text-align:left}.note{color:#555;font-size:13px}.warn{color:#8a5300;font-size:13px}";
+    ".se{background:#f4f7fb}.grp{text-align:center}.nw{white-space:nowrap}.meta td{text-align:left}.note{color:#555;font-size:13px}.warn{color:#8a5300;font-size:13px}";
 
 static double metric(const sss_eval_entry *e, int flip) { return flip ? e->metrics.flip : e->metrics.dssim; }
 
@@ -241,11 +285,16 @@ static void noise_note(sbuf *b, const sss_eval_results *res)
 }
 
 /* DSSIM or FLIP per scene and technique at the scene's first size, the best of each scene highlighted
- * when it leads by more than the noise (best_beyond_noise). */
-static void summary_table(sbuf *b, const sss_eval_results *res, int flip)
+ * when it leads by more than the noise (best_beyond_noise); single: against the single-event truth
+ * instead (sss_eval_desc.both_truths; no best: the noise is the main truth's). */
+static void summary_table(sbuf *b, const sss_eval_results *res, int flip, int single)
 {
-    sb_printf(b, "<h2>Summary: %s (lower is better)</h2>\n<table class=\"summary-%s\"><tr><th class=\"l\">scene</th>",
-              flip ? "FLIP" : "DSSIM", flip ? "flip" : "dssim");
+    char truth[64] = "", name[32];
+    truth_name(res, name, sizeof name);
+    if (single || res->both_truths) /* which truth, when there are two */
+        snprintf(truth, sizeof truth, " against the %s", single ? "single event" : name);
+    sb_printf(b, "<h2>Summary: %s%s (lower is better)</h2>\n<table class=\"summary-%s%s\"><tr><th class=\"l\">scene</th>",
+              flip ? "FLIP" : "DSSIM", truth, flip ? "flip" : "dssim", single ? "-se" : "");
     for (int k = 0; k < res->label_count; k++) {
         sb_puts(b, "<th>");
         sb_esc(b, res->labels[k]);
@@ -255,7 +304,7 @@ static void summary_table(sbuf *b, const sss_eval_results *res, int flip)
     for (int s = 0; s < res->scene_count; s++) {
         int w, h;
         eval_primary_size(res, s, &w, &h);
-        const sss_eval_entry *best = best_beyond_noise(res, s, flip);
+        const sss_eval_entry *best = single ? NULL : best_beyond_noise(res, s, flip);
         sb_puts(b, "<tr><td class=\"l\">");
         sb_esc(b, res->scenes[s].name);
         sb_puts(b, "</td>");
@@ -265,7 +314,8 @@ static void summary_table(sbuf *b, const sss_eval_results *res, int flip)
                 sb_puts(b, "<td class=\"fail\" title=\"");
                 sb_esc(b, e ? e->error : "not run");
                 sb_puts(b, "\">failed</td>");
-            } else if (!e->has_metrics) sb_puts(b, "<td>&ndash;</td>");
+            } else if (single ? !e->has_single_event : !e->has_metrics) sb_puts(b, "<td>&ndash;</td>");
+            else if (single) sb_printf(b, "<td>%.4f</td>", flip ? e->single_event.flip : e->single_event.dssim);
             else sb_printf(b, "<td%s>%.4f</td>", e == best ? " class=\"best\"" : "", metric(e, flip));
         }
         sb_puts(b, "</tr>\n");
@@ -291,7 +341,10 @@ static void between_surfaces_note(sbuf *b, const sss_eval_results *res)
                "real-time techniques compute light from the lights only, so this error is the same for all of them "
                "and sits in the same places (on <code>default</code> the floor's shadow is every technique's worst "
                "window). Score against both truths to tell it apart from a technique's own error: ");
-    if (res->reference_bounces == 1)
+    if (res->both_truths)
+        sb_puts(b, "this report does: each scene's table gives the scores against the single-event truth (light "
+                   "from the lights only, what the techniques model) beside the main ones.</p>\n");
+    else if (res->reference_bounces == 1)
         sb_puts(b, "this report uses the single-event truth (<code>--reference-bounces 1</code>, light from the "
                    "lights only, what the techniques model); run without it for the full transport, what a viewer "
                    "sees.</p>\n");
@@ -325,6 +378,25 @@ static void kernel_cut_note(sbuf *b, const sss_eval_results *res, int s)
         }
     }
     if (any) sb_puts(b, "</p>\n");
+}
+
+/* "<br>LABEL WxH: cached|rendered, quality, bounces, seconds (path)" or why it is unavailable. */
+static void reference_line(sbuf *b, const char *label, const sss_eval_reference *r)
+{
+    sb_printf(b, "<br>%s %dx%d: ", label, r->width, r->height);
+    if (r->source == SSS_EVAL_REF_NONE) {
+        sb_puts(b, "<span class=\"fail\">unavailable: ");
+        sb_esc(b, r->error);
+        sb_puts(b, "</span>");
+        return;
+    }
+    sb_printf(b, "%s, %s quality, bounces %d%s, %.1f s", r->source == SSS_EVAL_REF_CACHED ? "cached" : "rendered",
+              r->quality, r->bounces, r->bounces == 0 ? " (full transport)" : "", r->seconds);
+    if (r->path[0]) {
+        sb_puts(b, " (");
+        sb_esc(b, r->path);
+        sb_puts(b, ")");
+    }
 }
 
 static sss_result build_report(const sss_eval_results *res, const char *dir, sbuf *b)
@@ -363,6 +435,7 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
     if (res->reference_bounces == 0) sb_puts(b, "full transport (bounces until converged)");
     else if (res->reference_bounces == 1) sb_puts(b, "single-event integral (bounces 1)");
     else sb_printf(b, "%d bounces", res->reference_bounces);
+    if (res->both_truths) sb_puts(b, "; and beside it the single-event integral (bounces 1), the second truth");
     sb_printf(b, "%s</td></tr>", res->cached_reference ? ", cached images used where present" : "");
     sb_puts(b, "<tr><th class=\"l\">metrics</th><td>DSSIM = (1 &minus; SSIM)/2 (11&times;11 Gaussian window, "
                "&sigma; 1.5), FLIP (mean LDR-FLIP, Andersson et al. 2020, at 67 pixels per degree), PSNR and RMSE "
@@ -376,11 +449,25 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
                "<span style=\"color:#d97000\">worst window</span> of a technique is the square (an eighth of the "
                "shorter side) with the largest mean FLIP; the <span style=\"color:#0090c0\">silhouette window</span> "
                "of a scene is the square holding the most pixels where the G-buffer object id of a subsurface "
-               "object changes (its outline against the background, the ground or another object).</p>\n");
+               "object changes (its outline against the background, the ground or another object).");
+    if (res->both_truths) {
+        char name[32];
+        truth_name(res, name, sizeof name);
+        sb_printf(b, " <b>Two truths.</b> Each scene's table scores every entry against both, side by side: "
+                     "&ldquo;vs %s&rdquo; and &ldquo;vs single event&rdquo; (light from the lights only; mean R/G/B: "
+                     "the entry's mean linear red, green, blue over the truth's, 1 = as much light). The difference "
+                     "between the two scores is the part of the entry's error that is light between surfaces (below): "
+                     "the floor lit by the object's glow, a shadow filled by the surrounding surfaces, which no "
+                     "real-time technique models unless its <code>interreflection</code> stage is on. What remains "
+                     "against the single event is the technique's own error.", name);
+    }
+    sb_puts(b, "</p>\n");
     between_surfaces_note(b, res);
 
-    summary_table(b, res, 0);
-    summary_table(b, res, 1);
+    for (int single = 0; single <= res->both_truths; single++) {
+        summary_table(b, res, 0, single);
+        summary_table(b, res, 1, single);
+    }
     noise_note(b, res);
 
     sb_puts(b, "<h2>Plots</h2>\n");
@@ -413,44 +500,29 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
         sb_esc(b, es->path);
         sb_printf(b, ": camera %dx%d, %llu triangles", es->width, es->height, es->triangles);
         if (es->has_time) sb_printf(b, ", time %g s", es->time);
-        for (int k = 0; k < es->reference_count; k++) {
-            const sss_eval_reference *r = &es->references[k];
-            sb_printf(b, "<br>reference %dx%d: ", r->width, r->height);
-            if (r->source == SSS_EVAL_REF_NONE) {
-                sb_puts(b, "<span class=\"fail\">unavailable: ");
-                sb_esc(b, r->error);
-                sb_puts(b, "</span>");
-            } else {
-                sb_printf(b, "%s, %s quality, bounces %d%s, %.1f s", r->source == SSS_EVAL_REF_CACHED ? "cached" : "rendered",
-                          r->quality, r->bounces, r->bounces == 0 ? " (full transport)" : "", r->seconds);
-                if (r->path[0]) {
-                    sb_puts(b, " (");
-                    sb_esc(b, r->path);
-                    sb_puts(b, ")");
-                }
-            }
-        }
+        for (int k = 0; k < es->reference_count; k++) reference_line(b, "reference", &es->references[k]);
+        if (res->both_truths) reference_line(b, "single-event truth", &es->single_event_reference);
         sb_puts(b, "</p>\n");
         char file[300];
         eval_sheet_file(es, file, sizeof file);
         sb_image(b, dir, file, es->name);
         kernel_cut_note(b, res, s);
-        table_head(b);
+        table_head(b, res, res->both_truths);
         const sss_eval_entry *best[2] = {best_beyond_noise(res, s, 0), best_beyond_noise(res, s, 1)};
         for (int i = 0; i < res->entry_count; i++) {
             const sss_eval_entry *e = &res->entries[i];
             if (e->scene == s && e->kind != SSS_EVAL_SAM_SWEEP)
-                entry_row(b, res, e, (e == best[0]) | (e == best[1]) << 1);
+                entry_row(b, res, e, (e == best[0]) | (e == best[1]) << 1, res->both_truths);
         }
         sb_puts(b, "</table>\n");
     }
 
     if (res->sam_swept) { /* otherwise the Plots section said why there is no sweep */
         sb_puts(b, "<h2>SAM: RMSE against back-side samples (Maisch & Ropinski 2017, Fig. 10)</h2>\n");
-        table_head(b);
+        table_head(b, res, 0);
         for (int i = 0; i < res->entry_count; i++)
             if (res->entries[i].kind == SSS_EVAL_SAM_SWEEP) {
-                entry_row(b, res, &res->entries[i], 0);
+                entry_row(b, res, &res->entries[i], 0, 0);
             }
         sb_puts(b, "</table>\n");
     }

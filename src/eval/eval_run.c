@@ -240,20 +240,13 @@ static void keep_subsurface_ids(const sss_scene *scene, sss_image *ids)
     }
 }
 
-/* The reference's seed-to-seed noise as this technique sees it: how much its metrics move when the
- * reference is rendered with another seed (the scene's noise is the largest over the techniques). */
-static void add_noise(sss_eval_scene *es, const sss_image *ref1, const sss_eval_entry *e)
-{
-    sss_image_metrics m1;
-    if (sss_image_compare_maps(ref1, &e->image, es->exposure, &m1, NULL, NULL, NULL) != SSS_OK) {
-        es->has_noise = 0; /* unknown for this one: no claim for the scene */
-        return;
-    }
-    es->noise_dssim = fmax(es->noise_dssim, fabs(m1.dssim - e->metrics.dssim));
-    es->noise_flip = fmax(es->noise_flip, fabs(m1.flip - e->metrics.flip));
-}
+/* The first quality size's other references: seed 1 (sss_eval_desc.reference_noise) and the single-event
+ * truth (sss_eval_desc.both_truths); images empty when not asked or unavailable. */
+typedef struct extra_refs {
+    sss_image seed1, single_event;
+} extra_refs;
 
-/* Compares an entry's image with the reference: metrics, and the maps at the first size (k = 0). */
+/* Compares an entry's image with the reference: metrics, mean ratios, and the maps at the first size (k = 0). */
 static void score_entry(const sss_eval_scene *es, const sss_image *ref, int k, sss_eval_entry *e)
 {
     if (!e->ok || !ref->pixels) return;
@@ -264,13 +257,36 @@ static void score_entry(const sss_eval_scene *es, const sss_image *ref, int k, s
         e->has_metrics = 1;
         e->dssim_map = map;
         e->flip_map = flip_map;
+        eval_mean_ratio(&e->image, ref, e->mean_ratio);
     } else {
         eval_fail_entry(e, cerr.message);
     }
 }
 
+/* The entry (scored against the main truth) against the other references: the seed-to-seed noise as
+ * this technique sees it (how much its metrics move when the reference is rendered with another seed;
+ * the scene's noise is the largest over the techniques), and its scores against the single-event truth. */
+static void score_extra(sss_eval_scene *es, const extra_refs *x, sss_eval_entry *e)
+{
+    if (!e->has_metrics) return;
+    sss_image_metrics m1;
+    if (x->seed1.pixels) {
+        if (sss_image_compare_maps(&x->seed1, &e->image, es->exposure, &m1, NULL, NULL, NULL) != SSS_OK) {
+            es->has_noise = 0; /* unknown for this one: no claim for the scene */
+        } else {
+            es->noise_dssim = fmax(es->noise_dssim, fabs(m1.dssim - e->metrics.dssim));
+            es->noise_flip = fmax(es->noise_flip, fabs(m1.flip - e->metrics.flip));
+        }
+    }
+    if (x->single_event.pixels &&
+        sss_image_compare_maps(&x->single_event, &e->image, es->exposure, &e->single_event, NULL, NULL, NULL) == SSS_OK) {
+        e->has_single_event = 1;
+        eval_mean_ratio(&e->image, &x->single_event, e->single_event_ratio);
+    }
+}
+
 /* The external images of scene si (at its first quality size) as entries. */
-static sss_result add_external_entries(run_state *st, int si, const sss_image *ref, const sss_image *ref1)
+static sss_result add_external_entries(run_state *st, int si, const sss_image *ref, const extra_refs *x)
 {
     sss_eval_results *res = st->res;
     for (int j = 0; j < res->external_count; j++) {
@@ -278,7 +294,7 @@ static sss_result add_external_entries(run_state *st, int si, const sss_image *r
         size_t at = (size_t)si * (size_t)res->external_count + (size_t)j;
         eval_external_entry(si, res->labels[st->nt + j], st->ext_paths[at], &st->ext_images[at], &e);
         score_entry(&res->scenes[si], ref, 0, &e);
-        if (e.has_metrics && ref1->pixels) add_noise(&res->scenes[si], ref1, &e);
+        score_extra(&res->scenes[si], x, &e);
         if (!e.ok) sss_image_free(&e.image);
         if (add_result(st, &e) != SSS_OK) {
             sss_image_free(&e.image);
@@ -288,6 +304,59 @@ static sss_result add_external_entries(run_state *st, int si, const sss_image *r
         }
     }
     return SSS_OK;
+}
+
+/* Work units of a reference: almost none when a cached file will be read (es named as the file). */
+static double reference_units(const run_state *st, const sss_eval_scene *es, int w, int h)
+{
+    const sss_eval_desc *d = st->desc;
+    double px = (double)w * h;
+    if (d->cached_reference) {
+        char path[1024];
+        if (eval_cached_reference_path(d, es, w, h, path, sizeof path) && access(path, R_OK) == 0)
+            return 0.01 * px;
+    }
+    return px * (d->reference_quality == SSS_REFERENCE_DRAFT ? REF_DRAFT_UNITS : REF_FINAL_UNITS);
+}
+
+/* The units of the first size's other references (extra_refs). */
+static double extra_units(const run_state *st, const sss_eval_scene *es, int w, int h)
+{
+    const sss_eval_desc *d = st->desc;
+    sss_eval_scene v[2] = {eval_variant_scene(es, d, 1, d->reference_bounces), eval_variant_scene(es, d, 0, 1)};
+    return (d->reference_noise ? reference_units(st, &v[0], w, h) : 0.0) +
+           (d->both_truths ? reference_units(st, &v[1], w, h) : 0.0);
+}
+
+/* Renders (or reads) the first size's other references into x; errors are the run's (saving, memory). */
+static sss_result extra_references(run_state *st, const sss_scene *view, sss_eval_scene *es, extra_refs *x,
+                                   sss_error *err)
+{
+    const sss_eval_desc *d = st->desc;
+    memset(x, 0, sizeof *x);
+    sss_result r = SSS_OK;
+    if (d->reference_noise) {
+        sss_eval_reference rf1;
+        memset(&rf1, 0, sizeof rf1);
+        sss_eval_scene v = eval_variant_scene(es, d, 1, d->reference_bounces);
+        st->prog.step = reference_units(st, &v, view->camera.width, view->camera.height);
+        r = eval_reference_variant(view, es, d, 1, d->reference_bounces, &st->prog, &rf1, &x->seed1, err);
+        eval_progress_finish_step(&st->prog);
+        es->has_noise = r == SSS_OK && x->seed1.pixels;
+    }
+    if (r == SSS_OK && d->both_truths) {
+        sss_eval_scene v = eval_variant_scene(es, d, 0, 1);
+        st->prog.step = reference_units(st, &v, view->camera.width, view->camera.height);
+        r = eval_reference_variant(view, es, d, 0, 1, &st->prog, &es->single_event_reference, &x->single_event, err);
+        eval_progress_finish_step(&st->prog);
+    }
+    return r;
+}
+
+static void free_extra(extra_refs *x)
+{
+    sss_image_free(&x->seed1);
+    sss_image_free(&x->single_event);
 }
 
 static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size size, sss_error *err)
@@ -304,17 +373,14 @@ static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size s
     es->reference_count = k + 1;
     eval_progress_finish_step(&st->prog);
     if (r != SSS_OK) return r;
-    sss_image ref1 = {0};
-    if (k == 0 && st->desc->reference_noise) {
-        sss_eval_reference rf1;
-        memset(&rf1, 0, sizeof rf1);
-        r = eval_reference_seed(&view, es, st->desc, 1, &st->prog, &rf1, &ref1, err);
-        if (r != SSS_OK) {
-            sss_image_free(&ref);
-            return r;
-        }
-        es->has_noise = ref.pixels && ref1.pixels;
+    extra_refs x;
+    memset(&x, 0, sizeof x);
+    if (k == 0 && (r = extra_references(st, &view, es, &x, err)) != SSS_OK) {
+        free_extra(&x);
+        sss_image_free(&ref);
+        return r;
     }
+    if (k == 0) es->has_noise = es->has_noise && ref.pixels;
     sss_eval_entry e;
     for (int i = 0; i < st->nt; i++) {
         st->rc.object_ids = k == 0 ? &es->object_ids : NULL;
@@ -322,7 +388,7 @@ static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size s
         st->rc.object_ids = NULL;
         if (k == 0) keep_subsurface_ids(&st->scenes[si], &es->object_ids);
         if (r == SSS_OK) score_entry(es, &ref, k, &e);
-        if (e.has_metrics && ref1.pixels) add_noise(es, &ref1, &e);
+        score_extra(es, &x, &e);
         if (k != 0 || !e.ok) sss_image_free(&e.image);
         if (r == SSS_OK) r = add_result(st, &e);
         if (r != SSS_OK) {
@@ -330,16 +396,16 @@ static sss_result run_quality_size(run_state *st, int si, int k, sss_eval_size s
             sss_image_free(&e.dssim_map);
             sss_image_free(&e.flip_map);
             sss_image_free(&ref);
-            sss_image_free(&ref1);
+            free_extra(&x);
             return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
         }
     }
-    if (k == 0 && add_external_entries(st, si, &ref, &ref1) != SSS_OK) {
+    if (k == 0 && add_external_entries(st, si, &ref, &x) != SSS_OK) {
         sss_image_free(&ref);
-        sss_image_free(&ref1);
+        free_extra(&x);
         return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory");
     }
-    sss_image_free(&ref1);
+    free_extra(&x);
     /* the SAM sweep at the first quality size (Maisch & Ropinski 2017, Fig. 10: RMSE against back-side samples) */
     if (k == 0 && res->sam_swept) {
         eval_spec spec;
@@ -407,19 +473,6 @@ static sss_result run_timing_size(run_state *st, int si, sss_eval_size size, sss
     return SSS_OK;
 }
 
-/* Work units of a reference: almost none when a cached file will be read. */
-static double reference_units(const run_state *st, const sss_eval_scene *es, int w, int h)
-{
-    const sss_eval_desc *d = st->desc;
-    double px = (double)w * h;
-    if (d->cached_reference) {
-        char path[1024];
-        if (eval_cached_reference_path(d, es, w, h, path, sizeof path) && access(path, R_OK) == 0)
-            return 0.01 * px;
-    }
-    return px * (d->reference_quality == SSS_REFERENCE_DRAFT ? REF_DRAFT_UNITS : REF_FINAL_UNITS);
-}
-
 /* Plans the work units (for the progress fraction). */
 static double plan_units(run_state *st)
 {
@@ -434,6 +487,7 @@ static double plan_units(run_state *st)
             double px = (double)w * h;
             units += reference_units(st, es, w, h);
             units += st->nt * (st->rc.frames + st->rc.warmup_frames + 1.0) * px;
+            if (k == 0) units += extra_units(st, es, w, h);
             if (k == 0 && st->res->sam_swept) units += st->sam_count_n * 2.0 * px;
         }
         for (int k = 0; k < d->timing_resolution_count; k++)
@@ -466,6 +520,10 @@ sss_result sss_eval_run(const char *const *scene_args, int scene_count, const ss
     if (desc.reference_bounces < 0 || desc.reference_bounces > SSS_REFERENCE_MAX_BOUNCES)
         return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT, "sss_eval_run: reference_bounces must be in 0..%d, got %d",
                              SSS_REFERENCE_MAX_BOUNCES, desc.reference_bounces);
+    if (desc.both_truths && desc.reference_bounces == 1)
+        return sss_error_set(err, SSS_ERROR_INVALID_ARGUMENT,
+                             "sss_eval_run: both_truths adds the single-event truth (bounces 1) to the main one, "
+                             "which is already bounces 1");
     double t_start = sss_time_seconds();
     run_state st;
     memset(&st, 0, sizeof st);
@@ -484,6 +542,7 @@ sss_result sss_eval_run(const char *const *scene_args, int scene_count, const ss
     out->reference_quality = desc.reference_quality;
     out->cached_reference = desc.cached_reference;
     out->reference_bounces = desc.reference_bounces;
+    out->both_truths = desc.both_truths;
     utc_now(out->created);
 
     /* techniques: the given specs, or every registered one */

@@ -267,3 +267,15 @@ sss_result eval_make_dirs(const char *dir, sss_error *err)
     }
     return SSS_OK;
 }
+
+void eval_mean_ratio(const sss_image *img, const sss_image *ref, double out[3])
+{
+    double sum[2][3] = {{0}};
+    const sss_image *im[2] = {img, ref};
+    for (int k = 0; k < 2; k++) {
+        size_t n = (size_t)im[k]->width * (size_t)im[k]->height;
+        for (size_t i = 0; im[k]->pixels && i < n; i++)
+            for (int c = 0; c < 3; c++) sum[k][c] += im[k]->pixels[3 * i + c];
+    }
+    for (int c = 0; c < 3; c++) out[c] = sum[1][c] != 0.0 ? sum[0][c] / sum[1][c] : NAN;
+}

@@ -71,7 +71,7 @@ out = sys.argv[2]
 doc = json.load(open(out + "/results.json"))
 
 # A JSON Schema (draft 2020-12) subset: type, const, enum, required, properties, additionalProperties,
-# items, minItems, minimum, maximum, $ref to #/$defs/...; keywords apply to the types they constrain.
+# items, minItems, minimum, maximum, $ref to #/$defs/..., anyOf; keywords apply to the types they constrain.
 def is_type(v, t):
     if t == "null": return v is None
     if t == "boolean": return isinstance(v, bool)
@@ -87,6 +87,13 @@ def check(v, s, path):
     if "$ref" in s:
         name = s["$ref"].split("/")[-1]
         return check(v, schema["$defs"][name], path)
+    if "anyOf" in s:  # valid when one alternative leaves no errors
+        before = len(errors)
+        for alt in s["anyOf"]:
+            del errors[before:]
+            check(v, alt, path)
+            if len(errors) == before: return
+        return
     if "type" in s:
         ts = s["type"] if isinstance(s["type"], list) else [s["type"]]
         if not any(is_type(v, t) for t in ts):

@@ -158,6 +158,17 @@ static void make_results(sss_eval_results *res)
             e->has_metrics = 1;
             e->metrics.dssim = s == 0 ? (k == 0 ? 0.1 : 0.2) : (k == 0 ? 0.05 : 0.06);
             if (s == 1 && k == 0) e->metrics.psnr = INFINITY;
+            /* over a black truth there is no ratio (NaN, which must reach no file); the entry's own image as
+             * the single-event truth: identical, ratio 1, PSNR infinite */
+            sss_image black;
+            sss_image_create(&black, 40, 30, NULL); /* zero-filled */
+            eval_mean_ratio(&e->image, &black, e->mean_ratio);
+            sss_image_free(&black);
+            if (s == 1 && k == 0) {
+                e->has_single_event = 1;
+                sss_image_compare(&e->image, &e->image, 0, &e->single_event, NULL, NULL);
+                eval_mean_ratio(&e->image, &e->image, e->single_event_ratio);
+            }
             e->pass_count = 2;
             snprintf(e->passes[0].name, 32, "gbuffer");
             snprintf(e->passes[1].name, 32, k ? "blur" : "combine");
@@ -174,6 +185,7 @@ static void make_results(sss_eval_results *res)
     }
     /* the reference's seed-to-seed noise: scene 0's DSSIM lead (0.1) is beyond twice 0.02, scene 1's
      * (0.01) is not beyond twice 0.006; no FLIP lead is beyond 1 */
+    res->both_truths = 1;
     res->scenes[0].has_noise = res->scenes[1].has_noise = 1;
     res->scenes[0].noise_dssim = 0.02;
     res->scenes[1].noise_dssim = 0.006;
@@ -299,7 +311,7 @@ static void test_outputs(void)
     if (root) {
         const cJSON *results = cJSON_GetObjectItem(root, "results");
         CHECK(cJSON_GetArraySize(results) == 6);
-        int failed = 0, inf_flag = 0;
+        int failed = 0, inf_flag = 0, singles = 0;
         const cJSON *e;
         cJSON_ArrayForEach(e, results)
         {
@@ -313,16 +325,29 @@ static void test_outputs(void)
                 inf_flag++;
                 CHECK(cJSON_IsNull(cJSON_GetObjectItem(e, "psnr")));
             }
+            const cJSON *ratio = cJSON_GetObjectItem(e, "mean_ratio"), *single = cJSON_GetObjectItem(e, "single_event");
+            if (strcmp(status, "ok") == 0) /* over a black truth: no ratio */
+                CHECK(cJSON_GetArraySize(ratio) == 3 && cJSON_IsNull(cJSON_GetArrayItem(ratio, 1)));
+            if (cJSON_IsObject(single)) {
+                singles++;
+                const cJSON *r1 = cJSON_GetObjectItem(single, "mean_ratio");
+                CHECK(cJSON_GetArrayItem(r1, 0)->valuedouble == 1.0 && cJSON_GetArrayItem(r1, 2)->valuedouble == 1.0);
+                CHECK(cJSON_IsNull(cJSON_GetObjectItem(single, "psnr")) &&
+                      cJSON_IsTrue(cJSON_GetObjectItem(single, "psnr_infinite")) &&
+                      cJSON_GetObjectItem(single, "dssim")->valuedouble == 0.0);
+            } else {
+                CHECK(cJSON_IsNull(single));
+            }
             if (strcmp(cJSON_GetObjectItem(e, "label")->valuestring, "beta:layers=4") == 0)
                 CHECK(cJSON_GetObjectItem(cJSON_GetObjectItem(e, "params"), "layers")->valuedouble == 4.0);
         }
-        CHECK(failed == 2 && inf_flag == 1);
+        CHECK(failed == 2 && inf_flag == 1 && singles == 1);
         CHECK(strstr(text, "nan") == NULL && strstr(text, "NaN") == NULL && strstr(text, "Infinity") == NULL);
         cJSON_Delete(root);
     }
     free(text);
 
-    /* CSV: header + 6 rows of 23 fields; the error field quoted with doubled quotes */
+    /* CSV: header + 6 rows of 34 fields; the error field quoted with doubled quotes */
     snprintf(path, sizeof path, "%s/results.csv", dir);
     CHECK(sss_read_file(path, 1 << 24, &text, &size, NULL) == SSS_OK);
     if (text) {
@@ -331,7 +356,7 @@ static void test_outputs(void)
             if (*c == '"') in_quotes = !in_quotes;
             else if (!in_quotes && *c == ',') fields++;
             else if (!in_quotes && *c == '\n') {
-                bad_rows += fields != 23;
+                bad_rows += fields != 34;
                 rows++;
                 fields = 1;
             }
@@ -412,6 +437,11 @@ static void test_outputs(void)
             free(bytes);
         }
         CHECK_MSG(images == 5 && found == 5, "%d images, %d match files", images, found);
+        /* both truths side by side in each scene's table, explained once */
+        CHECK_MSG(occurrences(text, ">vs single event</th>") == 2 && occurrences(text, ">vs full transport</th>") == 2 &&
+                      occurrences(text, "<b>Two truths.</b>") == 1 &&
+                      occurrences(text, "<h2>Summary: DSSIM against the single event") == 1,
+                  "two truths' columns: %d", occurrences(text, ">vs single event</th>"));
         /* notes once each: SAM's, how to read, light between surfaces, the frame time's definition, the
          * truncated kernel (scene 0, alpha), why there is no resolution plot */
         CHECK_MSG(occurrences(text, "no technique 'sam' in this build") == 1, "SAM note %d times",
