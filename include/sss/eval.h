@@ -84,9 +84,9 @@ typedef struct sss_eval_desc {
     int both_truths;                /* 1: also score every entry at the first quality size against the
                                        single-event truth (sss_reference_desc.bounces 1, the same quality
                                        and time; cached as <scene>_bounces1_<w>x<h>[_t<T>].exr), beside the
-                                       main truth (reference_bounces, which must not be 1): the difference
-                                       is the light between surfaces no real-time technique models
-                                       (sss_eval_entry.single_event) */
+                                       main truth (reference_bounces, which must not be 1): for an entry
+                                       without the interreflection stage the difference is the light
+                                       between surfaces (sss_eval_entry.single_event) */
     const sss_eval_image_source *images; /* images from other programs (above); NULL or 0 count: none */
     int image_count;
     double frame_budget_s;          /* 0: none. Else a technique's timed frames stop once they have taken

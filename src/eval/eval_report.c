@@ -331,16 +331,19 @@ static int sam_plotted(const sss_eval_results *res)
     return 0;
 }
 
-/* Light between surfaces: the full-transport reference carries it, no technique here does, so part of
- * every technique's error is the same (docs/eval.md, 'Two truths'). */
+/* Light between surfaces: the full-transport reference carries it, the techniques' own models do not;
+ * the shared interreflection stage adds an estimate (docs/eval.md, 'Two truths'; docs/interreflection.md). */
 static void between_surfaces_note(sbuf *b, const sss_eval_results *res)
 {
     sb_puts(b, "<p class=\"note\" id=\"between-surfaces\"><b>Light between surfaces.</b> Part of every "
                "technique's error is light that travels from one surface to another: the floor lit by the object's "
                "glow, the object lit by the floor, a shadow filled by light from the surfaces around it. The "
-               "real-time techniques compute light from the lights only, so this error is the same for all of them "
-               "and sits in the same places (on <code>default</code> the floor's shadow is every technique's worst "
-               "window). Score against both truths to tell it apart from a technique's own error: ");
+               "techniques' own models compute light from the lights only; the renderer's shared "
+               "<code>interreflection</code> stage (on by default, off with <code>interreflection=0</code> and "
+               "<code>preset=paper</code>) adds an estimate of this light to every technique's irradiance "
+               "(docs/interreflection.md). Without it this error is the same for all techniques and sits in the "
+               "same places (on <code>default</code> the floor's shadow was every technique's worst window). "
+               "Score against both truths to tell it apart from a technique's own error: ");
     if (res->both_truths)
         sb_puts(b, "this report does: each scene's table gives the scores against the single-event truth (light "
                    "from the lights only, what the techniques model) beside the main ones.</p>\n");
@@ -455,11 +458,14 @@ static sss_result build_report(const sss_eval_results *res, const char *dir, sbu
         truth_name(res, name, sizeof name);
         sb_printf(b, " <b>Two truths.</b> Each scene's table scores every entry against both, side by side: "
                      "&ldquo;vs %s&rdquo; and &ldquo;vs single event&rdquo; (light from the lights only; mean R/G/B: "
-                     "the entry's mean linear red, green, blue over the truth's, 1 = as much light). The difference "
-                     "between the two scores is the part of the entry's error that is light between surfaces (below): "
-                     "the floor lit by the object's glow, a shadow filled by the surrounding surfaces, which no "
-                     "real-time technique models unless its <code>interreflection</code> stage is on. What remains "
-                     "against the single event is the technique's own error.", name);
+                     "the entry's mean linear red, green, blue over the truth's, 1 = as much light). For an entry "
+                     "without the <code>interreflection</code> stage (<code>interreflection=0</code>, "
+                     "<code>preset=paper</code>) the difference between the two scores is the part of its error "
+                     "that is light between surfaces (below): the floor lit by the object's glow, a shadow filled by "
+                     "the surrounding surfaces; what remains against the single event is the technique's own "
+                     "error. With the stage (the default) the entry carries an estimate of that light: its score "
+                     "against the full transport says how well the two together do, and the same technique with "
+                     "<code>:interreflection=0</code> beside it scores its own model against the single event.", name);
     }
     sb_puts(b, "</p>\n");
     between_surfaces_note(b, res);
