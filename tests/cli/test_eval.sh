@@ -13,18 +13,7 @@ ROOT=$2
 find_python "json, csv"
 
 mkdir -p "$T/scenes"
-cat >"$T/scenes/ball.json" <<'EOF'
-{
-  "camera": {"position": [0, 1.2, 4], "look_at": [0, 0.4, 0], "fov": 35, "width": 64, "height": 64},
-  "objects": [
-    {"procedural": {"shape": "sphere", "radius": 0.6, "subdivisions": 3},
-     "transform": {"translate": [0, 0.6, 0]},
-     "material": {"type": "subsurface", "medium": "Marble", "scale": 20.0}},
-    {"procedural": {"shape": "plane", "size": 8}, "material": {"type": "diffuse", "reflectance": [0.5, 0.5, 0.5]}}
-  ],
-  "lights": [{"type": "point", "position": [1.5, 3, -1.5], "intensity": [6, 6, 6]}]
-}
-EOF
+write_ball_scene "$T/scenes/ball.json" 0.5
 cat >"$T/scenes/knot.json" <<'EOF'
 {
   "camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "fov": 40, "width": 64, "height": 48},

@@ -22,19 +22,7 @@ ROOT=$2
 find_python "json, csv"
 
 mkdir -p "$T/scenes"
-cat >"$T/scenes/ball.json" <<'EOF'
-{
-  "camera": {"position": [0, 1.2, 4], "look_at": [0, 0.4, 0], "fov": 35, "width": 64, "height": 64},
-  "objects": [
-    {"procedural": {"shape": "sphere", "radius": 0.6, "subdivisions": 3},
-     "transform": {"translate": [0, 0.6, 0]},
-     "material": {"type": "subsurface", "medium": "Marble", "scale": 20.0}},
-    {"procedural": {"shape": "plane", "size": 8}, "material": {"type": "diffuse", "reflectance": [0.8, 0.8, 0.8]}}
-  ],
-  "lights": [{"type": "point", "position": [1.5, 3, -1.5], "intensity": [6, 6, 6]}],
-  "render": {"exposure": 0.5}
-}
-EOF
+write_ball_scene "$T/scenes/ball.json" 0.8 '{"exposure": 0.5}'
 RUN=(--techniques local --frames 1 --warmup 0 --reference-quality draft --both-truths)
 
 # 1. both truths rendered, scored and written
