@@ -78,8 +78,9 @@ static const sss_gl_param_info shared_params[GL_P_SHARED_COUNT] = {
     [GL_P_INTERREFLECTION] = {"interreflection", SSS_GL_PARAM_BOOL, 1, 0, 1,
                               "1: light between surfaces, one bounce from virtual point lights on every surface "
                               "(docs/interreflection.md); 0: light from the lights only, as the papers (preset=paper)"},
-    [GL_P_INTERREFLECTION_SOURCES] = {"interreflection_sources", SSS_GL_PARAM_INT, 512, 8, 65536,
-                                      "virtual point lights of the interreflection stage, shared out over the objects"},
+    [GL_P_INTERREFLECTION_SOURCES] = {"interreflection_sources", SSS_GL_PARAM_INT, 512, 8, 16384,
+                                      "virtual point lights of the interreflection stage, shared out equally over the "
+                                      "objects (by area when that gives an object fewer than 8)"},
     [GL_P_INTERREFLECTION_ROWS] = {"interreflection_rows", SSS_GL_PARAM_INT, 68, 1, 16384,
                                    "the stage gathers at every (height / rows)-th pixel in x and y (at least every "
                                    "pixel) and upsamples geometry-aware: every 8th at 540 rows"},

@@ -269,8 +269,52 @@ static void test_paper_preset(void)
     sss_scene_free(&s);
 }
 
+/* Many objects: the sources stay within the budget (shared by area once an equal share would fall below
+ * 8 triangles) and the frame renders; an equal share for a few. */
+static void test_budget(void)
+{
+    char json[32768];
+    int n = snprintf(json, sizeof json,
+                     "{\"camera\": {\"position\": [0, 6, 12], \"look_at\": [0, 0, 0], \"fov\": 40, \"width\": 32,"
+                     " \"height\": 32}, \"objects\": [{\"procedural\": {\"shape\": \"plane\", \"size\": 20.0},"
+                     " \"material\": {\"type\": \"diffuse\", \"reflectance\": [0.5, 0.5, 0.5]}}");
+    for (int i = 0; i < 150; i++)
+        n += snprintf(json + n, sizeof json - (size_t)n,
+                      ", {\"procedural\": {\"shape\": \"sphere\", \"radius\": 0.2, \"subdivisions\": 2},"
+                      " \"transform\": {\"translate\": [%d, 0.2, %d]},"
+                      " \"material\": {\"type\": \"subsurface\", \"medium\": \"Marble\", \"scale\": 20.0}}",
+                      i % 15 - 7, i / 15 - 5);
+    snprintf(json + n, sizeof json - (size_t)n,
+             "], \"lights\": [{\"type\": \"point\", \"position\": [2, 6, 2], \"intensity\": [50, 50, 50]}]}");
+    sss_scene s;
+    if (!parse(json, &s)) {
+        CHECK(0);
+        return;
+    }
+    for (int k = 0; k < 2; k++) {
+        sss_gl_param_value p = {"interreflection_sources", k ? 4096 : 512};
+        sss_gl_renderer_desc d;
+        memset(&d, 0, sizeof d);
+        d.technique = "screen";
+        d.params = &p;
+        d.param_count = 1;
+        sss_gl_renderer *r = NULL;
+        sss_error err = {0};
+        int ok = sss_gl_renderer_create(gt_ctx(), &s, &d, &r, &err) == SSS_OK && sss_gl_renderer_render(r, 0.0, &err) == SSS_OK;
+        CHECK_MSG(ok, "%s", err.message);
+        if (ok) {
+            int count = gl_test_renderer_core(r)->gs.bounce_count;
+            printf("151 objects, budget %g: %d sources\n", p.value, count);
+            CHECK(count > 0 && count <= (int)p.value);
+        }
+        sss_gl_renderer_destroy(r);
+    }
+    sss_scene_free(&s);
+}
+
 int main(void)
 {
+    test_budget();
     test_diffuse_plates();
     test_subsurface_floor();
     test_energy();

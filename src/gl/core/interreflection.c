@@ -150,6 +150,7 @@ static sss_result object_triangles(const sss_scene_object *so, int index, int su
     memset(&simplified, 0, sizeof simplified);
     if (m->triangle_count > budget) {
         sss_result res = sss_mesh_simplify(m, (uint32_t)budget, &simplified, err);
+        if (res == SSS_ERROR_NUMERIC) return SSS_OK; /* no mesh within a tiny share: the object sends no light */
         if (res != SSS_OK) {
             sss_error_prefix(err, "interreflection sources (simplification)");
             return res;
@@ -199,6 +200,48 @@ static sss_result subsurface_boxes(const sss_scene *s, const gl_scene *gs, box_s
     return SSS_OK;
 }
 
+static double world_area(const sss_scene_object *so)
+{
+    const sss_mesh *m = &so->mesh;
+    double area = 0.0;
+    for (uint32_t t = 0; t < m->triangle_count; t++) {
+        double w[3][3];
+        for (int k = 0; k < 3; k++) {
+            const float *v = m->positions + 3 * (size_t)m->indices[3 * (size_t)t + (size_t)k];
+            double p[3] = {v[0], v[1], v[2]};
+            sss_transform_point(so->transform.matrix, p, w[k]);
+        }
+        double e1[3], e2[3];
+        for (int k = 0; k < 3; k++) e1[k] = w[1][k] - w[0][k], e2[k] = w[2][k] - w[0][k];
+        double c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        area += 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    }
+    return area;
+}
+
+/* Each object's share of the budget: equal while every object gets at least 8 triangles (a small
+ * object near a large one matters as much as it), else by world area, rounded down (among many small
+ * objects the large ones carry the bounce, and the total stays within the budget). */
+static sss_result object_shares(const sss_scene *s, size_t total, size_t *share, sss_error *err)
+{
+    size_t objects = 0;
+    for (size_t i = 0; i < s->object_count; i++) objects += s->objects[i].mesh.triangle_count > 0;
+    if (objects == 0) return SSS_OK;
+    if (objects * 8 <= total) {
+        for (size_t i = 0; i < s->object_count; i++) share[i] = s->objects[i].mesh.triangle_count > 0 ? total / objects : 0;
+        return SSS_OK;
+    }
+    double *area = calloc(s->object_count, sizeof *area), sum = 0.0;
+    if (!area) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (interreflection)");
+    for (size_t i = 0; i < s->object_count; i++) sum += area[i] = world_area(&s->objects[i]);
+    for (size_t i = 0; i < s->object_count; i++) {
+        double n = sum > 0.0 ? floor((double)total * area[i] / sum) : 0.0;
+        share[i] = n >= 2.0 ? (size_t)n : 0;
+    }
+    free(area);
+    return SSS_OK;
+}
+
 static GLuint bounce_buffer(const void *data, size_t bytes, size_t *counter)
 {
     GLuint b = 0;
@@ -213,17 +256,16 @@ sss_result gl_scene_prepare_bounce(gl_core *core, sss_error *err)
     gl_scene *gs = &core->gs;
     if (gs->bounce_ready) return SSS_OK;
     const sss_scene *s = core->scene;
-    size_t objects = 0;
-    for (size_t i = 0; i < s->object_count; i++) objects += s->objects[i].mesh.triangle_count > 0;
-    size_t total = (size_t)core->shared[GL_P_INTERREFLECTION_SOURCES];
-    size_t budget = objects ? total / objects : 0;
-    if (budget < 2) budget = 2;
+    size_t *share = calloc(s->object_count ? s->object_count : 1, sizeof *share);
+    if (!share) return sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (interreflection)");
     box_set boxes = {0};
     tri_list l = {0};
-    sss_result res = subsurface_boxes(s, gs, &boxes, err);
+    sss_result res = object_shares(s, (size_t)core->shared[GL_P_INTERREFLECTION_SOURCES], share, err);
+    if (res == SSS_OK) res = subsurface_boxes(s, gs, &boxes, err);
     for (size_t i = 0; i < s->object_count && res == SSS_OK; i++)
-        if (s->objects[i].mesh.triangle_count > 0)
-            res = object_triangles(&s->objects[i], (int)i, gs->objects[i].subsurface, budget, &boxes, &l, err);
+        if (share[i] > 0)
+            res = object_triangles(&s->objects[i], (int)i, gs->objects[i].subsurface, share[i], &boxes, &l, err);
+    free(share);
     free(boxes.lo);
     free(boxes.hi);
     if (res == SSS_OK && l.count > 0) {
