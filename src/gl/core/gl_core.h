@@ -51,7 +51,8 @@ enum {
  * sources it lights live in the GPU scene (gl_scene.bounce_*). */
 typedef struct gl_bounce {
     GLuint prog_sources, prog_exitance, prog_relight, prog_gather, prog_apply;
-    GLuint tex, fbo;          /* RGBA32F, ceil(width / stride) x ceil(height / stride): gathered irradiance */
+    GLuint tex, tex_plane, fbo; /* RGBA32F, ceil(width / stride) x ceil(height / stride): gathered irradiance,
+                                   and the gathered points' tangent planes for the upsampling */
     int width, height, stride;
     GLuint ssbo_transmit;     /* per GPU material: diffuse-incidence transmittance 1 - 2 FM1(eta) */
     int transmit_count;

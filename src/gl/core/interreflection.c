@@ -294,6 +294,7 @@ void gl_bounce_free(gl_bounce *b)
     for (int i = 0; i < 5; i++)
         if (progs[i]) glDeleteProgram(progs[i]);
     if (b->tex) gl_mem_delete_textures(1, &b->tex);
+    if (b->tex_plane) gl_mem_delete_textures(1, &b->tex_plane);
     if (b->fbo) glDeleteFramebuffers(1, &b->fbo);
     if (b->ssbo_transmit) gl_mem_delete_buffers(1, &b->ssbo_transmit);
     memset(b, 0, sizeof *b);
@@ -317,10 +318,13 @@ static sss_result bounce_target(gl_core *core, int stride, sss_error *err)
     int w = (core->width + stride - 1) / stride, h = (core->height + stride - 1) / stride;
     if (b->tex && b->width == w && b->height == h && b->stride == stride) return SSS_OK;
     if (b->tex) gl_mem_delete_textures(1, &b->tex);
+    if (b->tex_plane) gl_mem_delete_textures(1, &b->tex_plane);
     if (b->fbo) glDeleteFramebuffers(1, &b->fbo);
     b->bytes = 0;
     b->tex = gl_texture_2d(GL_RGBA32F, w, h, 1, &b->bytes);
-    b->fbo = gl_framebuffer(&b->tex, 1, 0);
+    b->tex_plane = gl_texture_2d(GL_RGBA32F, w, h, 1, &b->bytes);
+    GLuint targets[2] = {b->tex, b->tex_plane};
+    b->fbo = gl_framebuffer(targets, 2, 0);
     b->width = w, b->height = h, b->stride = stride;
     return gl_check(core->ctx, "the interreflection target", err);
 }
@@ -415,6 +419,7 @@ static void bounce_apply(gl_core *core)
     glBindTextureUnit(1, f->nrm);
     glBindTextureUnit(2, f->albedo);
     glBindTextureUnit(3, b->tex);
+    glBindTextureUnit(4, b->tex_plane);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_BOUNCE_TRANSMIT, b->ssbo_transmit);
     uniform_u(b->prog_apply, "u_count", (unsigned)core->gs.bounce_count);
     uniform_i(b->prog_apply, "u_stride", b->stride);

@@ -1,7 +1,7 @@
 #version 450 core
 // Interreflection stage, step 4 (interreflection.c): the gathered irradiance at each pixel from the
-// four nearest gathered block centres, weighted by distance from the pixel's tangent plane and by
-// normal (a joint bilateral upsampling); where none of them lies on the pixel's surface (silhouettes,
+// four nearest gathered block centres, weighted by the pixel's distance from their tangent planes and
+// by normal (a joint bilateral upsampling); where none of them lies on the pixel's surface (silhouettes,
 // thin parts) the pixel gathers its own. Added (blending) to the illumination pass's targets: a
 // subsurface receiver's irradiance enters like the lights' (transmittance 1 - 2 FM1(eta) of a diffuse
 // field, sqrt(albedo) at entry), a diffuse one reflects albedo / pi of it.
@@ -12,6 +12,7 @@ layout(binding = 0) uniform sampler2D g_pos;
 layout(binding = 1) uniform sampler2D g_nrm;
 layout(binding = 2) uniform sampler2D g_albedo;
 layout(binding = 3) uniform sampler2D t_bounce;
+layout(binding = 4) uniform sampler2D t_plane; // the gathered points' tangent planes (bounce_gather)
 layout(std430, binding = 13) readonly buffer BounceTransmit { float bounce_transmit[]; };
 uniform int u_stride;
 
@@ -31,11 +32,9 @@ vec3 upsampled(ivec2 px, vec3 x, vec3 n)
     for (int k = 0; k < 4; k++) {
         ivec2 o = ivec2(k & 1, k >> 1);
         ivec2 lp = clamp(base + o, ivec2(0), size - 1);
-        ivec2 q = min(lp * u_stride + u_stride / 2, ivec2(u_viewport.xy) - 1);
-        vec4 B = texelFetch(t_bounce, lp, 0);
-        vec4 Nq = texelFetch(g_nrm, q, 0);
-        float plane = abs(dot(n, texelFetch(g_pos, q, 0).xyz - x));
-        float cn = dot(n, normalize(Nq.xyz + 1e-30));
+        vec4 B = texelFetch(t_bounce, lp, 0), P = texelFetch(t_plane, lp, 0);
+        float plane = abs(dot(P.xyz, x) - P.w); // the pixel's distance from the gathered point's plane
+        float cn = dot(n, P.xyz);
         float bil = (o.x == 1 ? t.x : 1.0 - t.x) * (o.y == 1 ? t.y : 1.0 - t.y) + 1e-3;
         float w = B.w > 0.5 && cn > 0.8 && plane < tol ? bil * (cn - 0.8) * (1.0 - plane / tol) : 0.0;
         sum += w * B.rgb;

@@ -9,14 +9,16 @@ layout(binding = 1) uniform sampler2D g_nrm;
 uniform int u_stride;
 
 layout(location = 0) out vec4 o_bounce; // rgb E; w: 1 where a surface was gathered
+layout(location = 1) out vec4 o_plane;  // the gathered point's tangent plane: normal, dot(normal, point)
 
 void main()
 {
     ivec2 px = min(ivec2(gl_FragCoord.xy) * u_stride + u_stride / 2, ivec2(u_viewport.xy) - 1);
     vec4 N = texelFetch(g_nrm, px, 0);
-    if (N.w < 0.5) {
-        o_bounce = vec4(0.0);
-        return;
-    }
-    o_bounce = vec4(bounce_irradiance(texelFetch(g_pos, px, 0).xyz, normalize(N.xyz)), 1.0);
+    o_bounce = vec4(0.0);
+    o_plane = vec4(0.0);
+    if (N.w < 0.5) return;
+    vec3 x = texelFetch(g_pos, px, 0).xyz, n = normalize(N.xyz);
+    o_bounce = vec4(bounce_irradiance(x, n), 1.0);
+    o_plane = vec4(n, dot(n, x));
 }
