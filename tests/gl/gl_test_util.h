@@ -42,11 +42,14 @@ static inline int gt_load(const char *name, sss_scene *scene)
 /* A renderer description: technique (NULL: the scene's), parameters, supersampling factor k (0: off).
  * The cached references of these tests are the single-event integral (tests/data/gl/README.md), what
  * the techniques model: the description adds interreflection=0 (the light between surfaces,
- * docs/interreflection.md) unless the parameters name it. The parameters live in a static copy until
- * the next call (the renderer reads them when it is created). */
+ * docs/interreflection.md) unless the parameters name it. The parameters live in one of 16 static
+ * copies, used in turn: a description stays valid for the next 15 calls (tests hold two or three). */
 static inline sss_gl_renderer_desc gt_desc(const char *technique, const sss_gl_param_value *params, int nparams, int k)
 {
-    static sss_gl_param_value with_off[64];
+    static sss_gl_param_value copies[16][64];
+    static int next;
+    sss_gl_param_value *with_off = copies[next];
+    next = (next + 1) % 16;
     sss_gl_renderer_desc d;
     memset(&d, 0, sizeof d);
     d.technique = technique;
