@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # make demo: evaluates the main technique (maisch2020, Maisch & Ropinski 2020) and its strongest competitors in
 # Maisch & Ropinski 2020, section 8 (chen2012, dss), what engines ship (burley: Burley's normalized diffusion in screen
-# space, Golubev 2018), the fast screen-space baseline (screen), and maisch2020 without its brightening term, against
-# the CPU ground
+# space, Golubev 2018), the fast screen-space baseline (screen), and maisch2020 without the interreflection stage
+# and as published, against the CPU ground
 # truth on the default scene set: scenes/default.json (a Marble bunny lit from the side and behind)
 # and scenes/eval_backlit.json (the dragon lit from behind, Maisch & Ropinski 2020, Fig. 6a). References are the
 # committed ones in scenes/references/ (rendered only if missing or stale), with a second one at seed 1 that
@@ -32,9 +32,10 @@ for t in maisch2020 chen2012 dss burley screen; do
     case "$available" in *" $t "*) techs="${techs:+$techs,}$t" ;; esac
 done
 [ -n "$techs" ] || { echo "demo: none of maisch2020, chen2012, dss, burley, screen is built" >&2; exit 1; }
-# maisch2020 also as published (preset=paper: the sqrt(i) brightening of section 6.1 and the other
-# departures of docs/maisch2020.md undone), next to the best-measured defaults
-case "$techs" in *maisch2020*) techs="$techs,maisch2020:preset=paper" ;; esac
+# maisch2020 also without the renderer's interreflection stage (the light between surfaces,
+# docs/interreflection.md) and as published (preset=paper: no stage, the sqrt(i) brightening of section 6.1
+# and the other departures of docs/maisch2020.md undone), next to the best-measured defaults
+case "$techs" in *maisch2020*) techs="$techs,maisch2020:interreflection=0,maisch2020:preset=paper" ;; esac
 
 echo "== sss demo: ${SCENES[*]}"
 echo "   techniques: $techs (+ the CPU reference, cached in scenes/references/), median of up to $FRAMES frame(s) after $WARMUP warm-up, $BUDGET s of timed frames at most"

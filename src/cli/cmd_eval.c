@@ -212,9 +212,9 @@ static void print_summary(const sss_eval_results *res, const char *out_dir)
     char b1[ESC_CAP], b2[ESC_CAP], b3[ESC_CAP];
     int two = res->both_truths;
     if (two) /* which truth each group of columns scores against */
-        printf("%-57s %-35s %s\n", "", res->reference_bounces ? "---- vs the main truth ----" : "----- vs full transport -----",
+        printf("%-61s %-35s %s\n", "", res->reference_bounces ? "---- vs the main truth ----" : "----- vs full transport -----",
                "-- vs single event --");
-    printf("%-22s %-26s %-7s %9s %8s %8s %8s%s %11s\n", "scene", "technique", "status", "DSSIM", "FLIP", "PSNR", "RMSE",
+    printf("%-22s %-30s %-7s %9s %8s %8s %8s%s %11s\n", "scene", "technique", "status", "DSSIM", "FLIP", "PSNR", "RMSE",
            two ? "    DSSIM     FLIP" : "", "ms/frame");
     int cut = 0; /* entries timed on fewer frames than asked (--frame-budget) */
     for (int i = 0; i < res->entry_count; i++) {
@@ -240,7 +240,7 @@ static void print_summary(const sss_eval_results *res, const char *out_dir)
         if (two && e->has_single_event)
             snprintf(single, sizeof single, " %8.4f %8.4f", e->single_event.dssim, e->single_event.flip);
         else if (two) snprintf(single, sizeof single, " %8s %8s", "-", "-");
-        printf("%-22.22s %-26.26s %-7s %9s %8s %8s %8s%s %11s\n", esc(res->scenes[e->scene].name, b1),
+        printf("%-22.22s %-30.30s %-7s %9s %8s %8s %8s%s %11s\n", esc(res->scenes[e->scene].name, b1),
                esc(e->label, b2), e->ok ? "ok" : "FAILED", d, fl, p, r, single, ms);
     }
     if (cut)
