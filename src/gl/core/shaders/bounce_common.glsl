@@ -34,7 +34,9 @@ uniform uint u_count;
 
 // Irradiance at x (normal n) from every virtual light: the radiance M / pi of a Lambertian disc of area
 // A, cos_i cos_j A / (d^2 + A / pi) — the on-axis irradiance of that disc, exact where the receiver
-// touches the source and 1/d^2 far from it. No visibility (docs/interreflection.md).
+// touches the source and 1/d^2 far from it. No visibility (docs/interreflection.md). Pairs whose
+// cosines multiply to 1e-6 or less exchange nothing: on a convex object that is rounding at the edges
+// between facets, and so one convex surface stays exactly as without the stage.
 #ifndef BOUNCE_WRITES_LIGHTS
 vec3 bounce_irradiance(vec3 x, vec3 n)
 {
@@ -44,7 +46,8 @@ vec3 bounce_irradiance(vec3 x, vec3 n)
         vec3 d = L.pos.xyz - x;
         float d2 = dot(d, d);
         float ci = dot(n, d), cj = -dot(L.nrm.xyz, d); // cosines times d
-        if (ci > 0.0 && cj > 0.0) E += L.flux.rgb * (ci * cj / d2) / (d2 + L.pos.w / PI);
+        float cc = ci * cj / d2; // cos_i cos_j
+        if (ci > 0.0 && cj > 0.0 && cc > 1e-6) E += L.flux.rgb * cc / (d2 + L.pos.w / PI);
     }
     return E / PI;
 }
