@@ -1,7 +1,7 @@
 /* gl/core/interreflection.c — light between surfaces after the first subsurface event, for every
  * technique that reads the illumination pass (docs/interreflection.md).
  *
- * Instant radiosity (Keller 1997) with one bounce: each object's surface is cut into triangles (the
+ * Instant radiosity (Keller 1997): each object's surface is cut into triangles (the
  * budget interreflection_sources shared out over the objects); each triangle is a virtual point light
  * whose flux comes from the scene's lights through the shadow maps, like a reflective shadow map's
  * texel (Dachsbacher & Stamminger 2005) but including the surfaces the lights do not see directly:
@@ -11,7 +11,8 @@
  * triangle and leaves at another, the glow of a back-lit ear included). Every visible pixel then
  * receives E = sum_j M_j A_j / pi cos_i cos_j / (d^2 + A_j / pi), the irradiance of a disc of area A_j
  * on its axis (bounded where a receiver touches a source), at every stride-th pixel, upsampled by
- * position and normal. No visibility between source and receiver: the cosines remove the pairs that face
+ * position and normal. With interreflection_bounces > 1 the sources are first lit again by the virtual
+ * lights of the bounce before (bounce_relight.comp.glsl). No visibility between source and receiver: the cosines remove the pairs that face
  * away, the rest may leak (documented). Diffuse surfaces are cut finer near the subsurface objects,
  * whose light they receive and return.
  */
