@@ -20,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/vecmath.h"
 #include "gl/core/gl_core.h"
 
 /* ---- The sources: triangles of every surface (CPU, once per GPU scene) ------------------------ */
@@ -52,25 +53,30 @@ typedef struct box_set {
     int count;
 } box_set;
 
-/* Splitting priority: the world area, over (d^2 + s^2) on diffuse surfaces, d the distance to the
- * nearest subsurface object's box and s its half diagonal (about the solid angle the triangle fills
- * seen from that object, which is what it exchanges light with). */
-static double tri_priority(const sss_scene_object *so, const bounce_tri *t, const box_set *boxes, int subsurface)
+/* The world area of the object-space triangle v under the object's transform; its centroid into c. */
+static double world_triangle(const sss_scene_object *so, const float *const v[3], double c[3])
 {
-    double w[3][3];
-    const float *v[3] = {t->a, t->b, t->c};
+    double w[3][3], e1[3], e2[3], cr[3];
     for (int k = 0; k < 3; k++) {
         double p[3] = {v[k][0], v[k][1], v[k][2]};
         sss_transform_point(so->transform.matrix, p, w[k]);
     }
-    double e1[3], e2[3], c[3];
     for (int k = 0; k < 3; k++) {
         e1[k] = w[1][k] - w[0][k];
         e2[k] = w[2][k] - w[0][k];
         c[k] = (w[0][k] + w[1][k] + w[2][k]) / 3.0;
     }
-    double cr[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-    double area = 0.5 * sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
+    v3_cross(e1, e2, cr);
+    return 0.5 * v3_len(cr);
+}
+
+/* Splitting priority: the world area, over (d^2 + s^2) on diffuse surfaces, d the distance to the
+ * nearest subsurface object's box and s its half diagonal (about the solid angle the triangle fills
+ * seen from that object, which is what it exchanges light with). */
+static double tri_priority(const sss_scene_object *so, const bounce_tri *t, const box_set *boxes, int subsurface)
+{
+    const float *v[3] = {t->a, t->b, t->c};
+    double c[3], area = world_triangle(so, v, c);
     if (subsurface || boxes->count == 0) return area;
     double best = 0.0;
     for (int i = 0; i < boxes->count; i++) {
@@ -204,18 +210,11 @@ static sss_result subsurface_boxes(const sss_scene *s, const gl_scene *gs, box_s
 static double world_area(const sss_scene_object *so)
 {
     const sss_mesh *m = &so->mesh;
-    double area = 0.0;
+    double area = 0.0, c[3];
     for (uint32_t t = 0; t < m->triangle_count; t++) {
-        double w[3][3];
-        for (int k = 0; k < 3; k++) {
-            const float *v = m->positions + 3 * (size_t)m->indices[3 * (size_t)t + (size_t)k];
-            double p[3] = {v[0], v[1], v[2]};
-            sss_transform_point(so->transform.matrix, p, w[k]);
-        }
-        double e1[3], e2[3];
-        for (int k = 0; k < 3; k++) e1[k] = w[1][k] - w[0][k], e2[k] = w[2][k] - w[0][k];
-        double c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-        area += 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        const float *v[3];
+        for (int k = 0; k < 3; k++) v[k] = m->positions + 3 * (size_t)m->indices[3 * (size_t)t + (size_t)k];
+        area += world_triangle(so, v, c);
     }
     return area;
 }
