@@ -203,6 +203,8 @@ typedef struct gl_scene_materials {
     gl_material *items;
     int *of_object;               /* per object (emitters included): its material */
     GLuint ssbo_objects, ssbo_materials, ssbo_lut_scales;
+    GLuint ssbo_transmit;         /* per material: 1 - 2 FM1(eta), the transmittance of a subsurface
+                                     surface for a diffuse incident field (interreflection.c); 0 on others */
     GLuint lut_array;             /* 2D array, RGBA32F, R'_d / lut_scales[layer]; `levels` layers per
                                      subsurface material (the cascade, scene_gpu.c) */
     int lut_size, lut_layers;

@@ -54,8 +54,6 @@ typedef struct gl_bounce {
     GLuint tex, tex_plane, fbo; /* RGBA32F, ceil(width / stride) x ceil(height / stride): gathered irradiance,
                                    and the gathered points' tangent planes for the upsampling */
     int width, height, stride;
-    GLuint ssbo_transmit;     /* per GPU material: diffuse-incidence transmittance 1 - 2 FM1(eta) */
-    int transmit_count;
     size_t bytes;
 } gl_bounce;
 

@@ -296,7 +296,6 @@ void gl_bounce_free(gl_bounce *b)
     if (b->tex) gl_mem_delete_textures(1, &b->tex);
     if (b->tex_plane) gl_mem_delete_textures(1, &b->tex_plane);
     if (b->fbo) glDeleteFramebuffers(1, &b->fbo);
-    if (b->ssbo_transmit) gl_mem_delete_buffers(1, &b->ssbo_transmit);
     memset(b, 0, sizeof *b);
 }
 
@@ -329,29 +328,6 @@ static sss_result bounce_target(gl_core *core, int stride, sss_error *err)
     return gl_check(core->ctx, "the interreflection target", err);
 }
 
-/* Light that enters a subsurface receiver from a diffuse (uniform) incident field: 1 - 2 FM1(eta), per
- * GPU material (written each frame: a few floats, and material updates may change eta). */
-static void bounce_transmittance(gl_core *core)
-{
-    gl_bounce *b = &core->bounce;
-    int n = core->gs.mat.count;
-    if (n < 1) n = 1;
-    float *t = calloc((size_t)n, sizeof *t);
-    if (!t) return;
-    for (size_t i = 0; i < core->scene->object_count; i++) {
-        int m = core->gs.mat.of_object[i];
-        if (m >= 0 && m < n) t[m] = (float)(1.0 - 2.0 * sss_fresnel_moment1(core->scene->objects[i].material.optical.eta));
-    }
-    if (b->ssbo_transmit && b->transmit_count != n) gl_mem_delete_buffers(1, &b->ssbo_transmit), b->ssbo_transmit = 0;
-    if (!b->ssbo_transmit) {
-        glCreateBuffers(1, &b->ssbo_transmit);
-        gl_mem_buffer_storage(b->ssbo_transmit, (GLsizeiptr)(sizeof(float) * (size_t)n), NULL, GL_DYNAMIC_STORAGE_BIT);
-        b->transmit_count = n;
-    }
-    glNamedBufferSubData(b->ssbo_transmit, 0, (GLsizeiptr)(sizeof(float) * (size_t)n), t);
-    free(t);
-}
-
 /* ---- The frame ------------------------------------------------------------------------------------ */
 
 static void uniform_u(GLuint prog, const char *name, unsigned v) { glProgramUniform1ui(prog, glGetUniformLocation(prog, name), v); }
@@ -370,7 +346,7 @@ static void bounce_lights(gl_core *core)
     uniform_u(b->prog_sources, "u_count", n);
     glDispatchCompute(groups, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_BOUNCE_TRANSMIT, b->ssbo_transmit);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_BOUNCE_TRANSMIT, gs->mat.ssbo_transmit);
     uniform_u(b->prog_exitance, "u_count", n);
     uniform_u(b->prog_relight, "u_count", n);
     int bounces = (int)core->shared[GL_P_INTERREFLECTION_BOUNCES];
@@ -420,7 +396,7 @@ static void bounce_apply(gl_core *core)
     glBindTextureUnit(2, f->albedo);
     glBindTextureUnit(3, b->tex);
     glBindTextureUnit(4, b->tex_plane);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_BOUNCE_TRANSMIT, b->ssbo_transmit);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GL_SSBO_BOUNCE_TRANSMIT, core->gs.mat.ssbo_transmit);
     uniform_u(b->prog_apply, "u_count", (unsigned)core->gs.bounce_count);
     uniform_i(b->prog_apply, "u_stride", b->stride);
     gl_fullscreen_triangle(core->vao_empty);
@@ -435,7 +411,6 @@ sss_result gl_bounce_frame(gl_core *core, sss_error *err)
     int stride = (int)floor(core->height / core->shared[GL_P_INTERREFLECTION_ROWS] + 0.5);
     if (res == SSS_OK) res = bounce_target(core, stride < 1 ? 1 : stride, err);
     if (res != SSS_OK || core->gs.bounce_count == 0) return res;
-    bounce_transmittance(core);
     gl_scene_bind(core);
     bounce_lights(core);
     bounce_gather(core);

@@ -62,6 +62,7 @@ static int same_material(const sss_scene_material *a, const sss_scene_material *
 typedef struct upload_work {
     gl_object_record *orec;
     gl_material_record *mrec;
+    float *transmit;                      /* per GL material: gl_scene_materials.ssbo_transmit */
     const sss_scene_material **mref;      /* per GL material of a scene object */
     const gl_lut_cascade **cascades;      /* per subsurface material, in LUT layer order */
     gl_lut_cascade *owned;                /* the cascades computed here (not from tables) */
@@ -73,6 +74,7 @@ static void work_free(upload_work *w)
     for (int i = 0; w->owned && i < w->owned_count; i++) gl_lut_cascade_free(&w->owned[i]);
     free(w->orec);
     free(w->mrec);
+    free(w->transmit);
     free(w->mref);
     free(w->cascades);
     free(w->owned);
@@ -114,6 +116,7 @@ static sss_result add_material(const gl_core *core, const sss_scene *s, gl_scene
     rec->params[2] = -1.0f;
     rec->params[3] = -1.0f;
     if (!gm->subsurface) return SSS_OK;
+    w->transmit[mi] = (float)(1.0 - 2.0 * sss_fresnel_moment1(sm->optical.eta));
     rec->params[0] = (float)sm->optical.eta;
     rec->params[1] = (float)sss_bssrdf_normalization(sm->optical.eta);
     sss_result res = take_cascade(core, mat, w, sm, err);
@@ -332,6 +335,7 @@ static void materials_free(gl_scene_materials *mat)
     delete_buffer(&mat->ssbo_objects);
     delete_buffer(&mat->ssbo_materials);
     delete_buffer(&mat->ssbo_lut_scales);
+    delete_buffer(&mat->ssbo_transmit);
     if (mat->lut_array) glDeleteTextures(1, &mat->lut_array);
     memset(mat, 0, sizeof *mat);
 }
@@ -350,11 +354,12 @@ static sss_result build_materials(const gl_core *core, const sss_scene *s, gl_sc
     mat->of_object = calloc(n_obj, sizeof *mat->of_object);
     w.orec = calloc(n_obj, sizeof *w.orec);
     w.mrec = calloc(n_obj, sizeof *w.mrec);
+    w.transmit = calloc(n_obj, sizeof *w.transmit);
     w.mref = calloc(n_obj, sizeof *w.mref);
     w.cascades = calloc(n_obj, sizeof *w.cascades);
     w.owned = calloc(n_obj, sizeof *w.owned);
     sss_result res = SSS_OK;
-    if (!mat->items || !mat->of_object || !w.orec || !w.mrec || !w.mref || !w.cascades || !w.owned)
+    if (!mat->items || !mat->of_object || !w.orec || !w.mrec || !w.transmit || !w.mref || !w.cascades || !w.owned)
         res = sss_error_set(err, SSS_ERROR_OUT_OF_MEMORY, "out of memory (scene upload)");
     for (int k = 0; k < 3; k++) {
         b->lo[k] = INFINITY;
@@ -365,9 +370,11 @@ static sss_result build_materials(const gl_core *core, const sss_scene *s, gl_sc
     if (res == SSS_OK) res = upload_luts(mat, &w, err);
     if (res == SSS_OK) {
         size_t ob = sizeof *w.orec * n_obj, mb = sizeof *w.mrec * (size_t)mat->count;
+        size_t tb = sizeof *w.transmit * (size_t)mat->count;
         mat->ssbo_objects = make_buffer(w.orec, ob, NULL);
         mat->ssbo_materials = make_buffer(w.mrec, mb, NULL);
-        mat->record_bytes += ob + mb;
+        mat->ssbo_transmit = make_buffer(w.transmit, tb, NULL);
+        mat->record_bytes += ob + mb + tb;
     }
     work_free(&w);
     if (res != SSS_OK) materials_free(mat);
